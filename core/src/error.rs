@@ -1,0 +1,43 @@
+//! The core's one error enum (plain, `no_std`).
+
+use core::fmt;
+
+/// Everything that can go wrong in `specpoly-core`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// Fewer samples than needed (at least one for data, two breakpoints for spans).
+    Empty,
+    /// Wavelength and value slices differ in length.
+    LengthMismatch,
+    /// A NaN or infinite wavelength or value, at this index.
+    NonFinite(usize),
+    /// Wavelengths (or breakpoints) not strictly increasing, at this index.
+    NotIncreasing(usize),
+    /// The data lie entirely outside 380–780 nm, or a breakpoint falls outside it.
+    OutOfRange,
+    /// Two spectra with different breakpoints were combined.
+    BreaksMismatch,
+    /// A singular matrix (a degenerate display primary set or fit).
+    Singular,
+    /// A table (transfer curve) holds too many or too few points for its capacity.
+    Capacity,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Empty => write!(f, "no data"),
+            Error::LengthMismatch => write!(f, "wavelengths and values differ in length"),
+            Error::NonFinite(i) => write!(f, "non-finite number (NaN or infinity) at sample {i}"),
+            Error::NotIncreasing(i) => {
+                write!(f, "wavelengths must be strictly increasing (sample {i})")
+            }
+            Error::OutOfRange => write!(f, "data lie outside 380-780 nm"),
+            Error::BreaksMismatch => write!(f, "spectra have different span breakpoints"),
+            Error::Singular => write!(f, "singular matrix"),
+            Error::Capacity => write!(f, "table size outside its capacity"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

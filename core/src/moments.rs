@@ -1,0 +1,137 @@
+//! Moments of the basis functions against a light and an observer, so that the XYZ of any
+//! spectrum on the same breakpoints is three dot products.
+//!
+//! For span `s = [a, b]` and basis function `Tₖ(t(λ))`,
+//!
+//! `Mₓ[k][s] = K · Σ_λ w(λ) Tₖ(t(λ)) S(λ) x̄(λ)`, and likewise for ȳ, z̄,
+//!
+//! summed at 1 nm over 380–780 nm, with `S` the light's tabulated power linearly interpolated
+//! (never a polynomial fit: §7.1 of the paper), `w = ½` on interior breakpoints (each side takes
+//! half) and 1 elsewhere, and `K = 100 / Σ_λ S(λ) ȳ(λ)` so a perfect white has `Y = 100`.
+//! Then `X = Σₖ Σₛ Mₓ[k][s] · coef[k][s]` is *exactly* the 1 nm sum of the polynomial spectrum
+//! times the light and observer: the only error left is the polynomial's own.
+//!
+//! The paper instead fitted x̄, ȳ, z̄ by cubics and integrated the degree-6 product analytically
+//! (eq. 7); [`crate::paper`] keeps that path for reproduction.
+
+use crate::{cheb::basis_f64, Breaks, Observer, Spectrum, Tabulated, Xyz};
+
+/// Precomputed moments for one (observer, light, breakpoints).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Moments<const S: usize, const C: usize> {
+    breaks: Breaks<S>,
+    /// `m[axis][k][s]`, axis 0..3 = X, Y, Z.
+    m: [[[f32; S]; C]; 3],
+    white: Xyz,
+}
+
+impl<const S: usize, const C: usize> Moments<S, C> {
+    /// Computes the moments (f64 accumulation, 401 wavelengths).
+    pub fn new(observer: Observer, light: &Tabulated<'_>, breaks: Breaks<S>) -> Self {
+        let mut acc = [[[0.0f64; S]; C]; 3];
+        let mut white = [0.0f64; 3];
+        let mut t_k = [0.0f64; C];
+        let table = observer.table();
+        for (i, cmf) in table.iter().enumerate() {
+            let nm = 380.0 + i as f64;
+            let power = light.at(nm);
+            let sw = [
+                power * cmf[0] as f64,
+                power * cmf[1] as f64,
+                power * cmf[2] as f64,
+            ];
+            for (w, v) in white.iter_mut().zip(sw) {
+                *w += v;
+            }
+            for s in 0..S {
+                let (a, b) = breaks.span(s);
+                let (a, b) = (a as f64, b as f64);
+                if nm < a || nm > b {
+                    continue;
+                }
+                let interior_edge = (nm == a && s > 0) || (nm == b && s + 1 < S);
+                let w = if interior_edge { 0.5 } else { 1.0 };
+                let t = (2.0 * nm - (a + b)) / (b - a);
+                basis_f64(t, &mut t_k);
+                for axis in 0..3 {
+                    for k in 0..C {
+                        acc[axis][k][s] += w * t_k[k] * sw[axis];
+                    }
+                }
+            }
+        }
+        let norm = if white[1] > 0.0 {
+            100.0 / white[1]
+        } else {
+            0.0
+        };
+        let mut m = [[[0.0f32; S]; C]; 3];
+        for axis in 0..3 {
+            for k in 0..C {
+                for s in 0..S {
+                    m[axis][k][s] = (acc[axis][k][s] * norm) as f32;
+                }
+            }
+        }
+        Self {
+            breaks,
+            m,
+            white: Xyz::new((white[0] * norm) as f32, 100.0, (white[2] * norm) as f32),
+        }
+    }
+
+    /// The breakpoints these moments belong to.
+    pub fn breaks(&self) -> &Breaks<S> {
+        &self.breaks
+    }
+
+    /// XYZ of the perfect reflector under this light (`Y = 100`).
+    pub fn white(&self) -> Xyz {
+        self.white
+    }
+
+    /// XYZ of `r` as a reflectance under the light: three dot products of length `S·C`.
+    #[inline]
+    pub fn xyz(&self, r: &Spectrum<S, C>) -> Xyz {
+        debug_assert!(self.breaks == *r.breaks(), "moments for other breakpoints");
+        let c = r.coefficients();
+        let mut out = [0.0f32; 3];
+        for (o, m) in out.iter_mut().zip(self.m.iter()) {
+            let mut acc = [0.0f32; S];
+            for k in 0..C {
+                for s in 0..S {
+                    acc[s] += m[k][s] * c[k][s];
+                }
+            }
+            *o = acc.iter().sum();
+        }
+        Xyz::new(out[0], out[1], out[2])
+    }
+}
+
+/// The colour reference: XYZ of reflectance `r` under `light` as a 1 nm f64 sum over 380–780 nm
+/// of the linear interpolants, normalised so the perfect white has `Y = 100`.
+/// Returns `(XYZ of r, XYZ of the white)`.
+pub fn exact_xyz(
+    observer: Observer,
+    light: &Tabulated<'_>,
+    r: impl Fn(f64) -> f64,
+) -> ([f64; 3], [f64; 3]) {
+    let mut xyz = [0.0f64; 3];
+    let mut white = [0.0f64; 3];
+    for (i, cmf) in observer.table().iter().enumerate() {
+        let nm = 380.0 + i as f64;
+        let p = light.at(nm);
+        let rv = r(nm);
+        for k in 0..3 {
+            white[k] += p * cmf[k] as f64;
+            xyz[k] += rv * p * cmf[k] as f64;
+        }
+    }
+    let norm = 100.0 / white[1];
+    for k in 0..3 {
+        xyz[k] *= norm;
+        white[k] *= norm;
+    }
+    (xyz, white)
+}
