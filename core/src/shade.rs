@@ -13,15 +13,19 @@
 //!   (the paper's "RGB problem", §3).
 
 use crate::{
-    moments::exact_xyz, Display, Error, Mat3, Moments, Observer, Spectrum, Tabulated, Xyz,
+    moments::exact_xyz, Breaks, Display, Error, Mat3, Moments, Observer, Spectrum, Tabulated, Xyz,
     LAMBDA_MAX, LAMBDA_MIN,
 };
 
 /// A colour quantity that shading multiplies, adds and scales, and finally integrates to XYZ
 /// under a light.
 pub trait Shade: Copy {
+    /// What fixes the representation's layout beyond its type (breakpoints for spectra).
+    type Layout: Copy + PartialEq + core::fmt::Debug;
     /// The per-light precomputation this representation integrates against.
     type Light;
+    /// Precomputes a light (tabulated, never fitted) under an observer for this layout.
+    fn light(observer: Observer, light: &Tabulated<'_>, layout: Self::Layout) -> Self::Light;
     /// The constant reflectance `v` (needs the light for layout, e.g. breakpoints).
     fn constant(v: f32, light: &Self::Light) -> Self;
     /// Product (reduced to the representation's size where it would grow).
@@ -39,7 +43,11 @@ pub trait Shade: Copy {
 }
 
 impl<const S: usize, const C: usize> Shade for Spectrum<S, C> {
+    type Layout = Breaks<S>;
     type Light = Moments<S, C>;
+    fn light(observer: Observer, light: &Tabulated<'_>, layout: Breaks<S>) -> Self::Light {
+        Moments::new(observer, light, layout)
+    }
     #[inline]
     fn constant(v: f32, light: &Self::Light) -> Self {
         Spectrum::constant(*light.breaks(), v)
@@ -111,7 +119,11 @@ impl<const N: usize> SampledLight<N> {
 }
 
 impl<const N: usize> Shade for Sampled<N> {
+    type Layout = ();
     type Light = SampledLight<N>;
+    fn light(observer: Observer, light: &Tabulated<'_>, _: ()) -> Self::Light {
+        SampledLight::new(observer, light)
+    }
     #[inline]
     fn constant(v: f32, _: &Self::Light) -> Self {
         Sampled([v; N])
@@ -194,7 +206,11 @@ impl RgbLight {
 }
 
 impl Shade for Rgb {
+    type Layout = ();
     type Light = RgbLight;
+    fn light(observer: Observer, light: &Tabulated<'_>, _: ()) -> Self::Light {
+        RgbLight::new(observer, light)
+    }
     #[inline]
     fn constant(v: f32, _: &Self::Light) -> Self {
         Rgb([v; 3])

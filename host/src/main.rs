@@ -1,1 +1,12 @@
-fn main() {}
+//! The `specpoly` binary: parse, run, and turn any error into one line on stderr with exit code
+//! 2 (usage) or 1 (data, I/O, device).
+
+use clap::Parser;
+
+fn main() {
+    let cli = specpoly::cli::Cli::parse();
+    if let Err(e) = specpoly::cli::run(cli) {
+        eprintln!("specpoly: error: {e}");
+        std::process::exit(e.exit_code());
+    }
+}

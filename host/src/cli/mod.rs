@@ -1,0 +1,59 @@
+//! Command-line interface: one file per command (parse, call, print), dispatched here.
+
+use crate::error::Result;
+use clap::{Parser, Subcommand};
+
+pub mod accuracy;
+pub mod calibrate;
+pub mod fit;
+pub mod led;
+pub mod plot;
+pub mod render;
+pub mod table1;
+pub mod xyz;
+
+/// Spectral shading with piecewise polynomials and calibrated colour output
+/// (after Raso & Fournier 1991).
+#[derive(Debug, Parser)]
+#[command(name = "specpoly", version, about, long_about = None)]
+pub struct Cli {
+    /// The command.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// XYZ, xyY and Lab of reflectances under an illuminant, in any representation.
+    Xyz(xyz::XyzArgs),
+    /// Fit spectra: coefficients, per-span fit errors and the fit's ΔE00.
+    Fit(fit::FitArgs),
+    /// Plot data, fitted polynomials and span boundaries (the paper's Figures 4 and 5).
+    Plot(plot::PlotArgs),
+    /// The paper's Table 1 on our data, the paper's numbers beside ours.
+    Table1(table1::Table1Args),
+    /// ΔE00 of every representation against the 1 nm reference; writes docs/accuracy.md.
+    Accuracy(accuracy::AccuracyArgs),
+    /// Render a scene with the spectral ray tracer.
+    Render(render::RenderArgs),
+    /// Measure a display and write its calibration (and ICC profile).
+    #[command(subcommand)]
+    Calibrate(calibrate::CalibrateCommand),
+    /// Drive the RGB-LED controller firmware over a serial port.
+    Led(led::LedArgs),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Xyz(a) => xyz::run(&a),
+        Command::Fit(a) => fit::run(&a),
+        Command::Plot(a) => plot::run(&a),
+        Command::Table1(a) => table1::run(&a),
+        Command::Accuracy(a) => accuracy::run(&a),
+        Command::Render(a) => render::run(&a),
+        Command::Calibrate(c) => calibrate::run(c),
+        Command::Led(a) => led::run(&a),
+    }
+}

@@ -1,0 +1,31 @@
+//! Reference data embedded in the binary, so the CLI runs anywhere: the same files in `data/`
+//! that the tests read (see data/README.md for sources). CIE observers and illuminants live in
+//! `specpoly-core` (compiled in as constants).
+
+/// A built-in table: its name on the command line, its CSV text and what it is.
+pub struct BuiltinTable {
+    /// Name used as `NAME` or `NAME#COLUMN`.
+    pub name: &'static str,
+    /// The CSV text.
+    pub csv: &'static str,
+    /// One-line description.
+    pub about: &'static str,
+}
+
+/// Every built-in table besides the illuminants.
+pub const TABLES: &[BuiltinTable] = &[
+    BuiltinTable {
+        name: "colorchecker",
+        csv: include_str!("../../data/reflectances/colorchecker_babelcolor_average.csv"),
+        about: "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
+    },
+    BuiltinTable {
+        name: "crt",
+        csv: include_str!("../../data/displays/crt_brainard_1997.csv"),
+        about:
+            "a typical CRT's red, green, blue phosphor spectra (Brainard 1997), 380-780 nm @ 5 nm",
+    },
+];
+
+/// The shipped ArgyllCMS .ti3 measurements of a real LCD (see data/README.md).
+pub const ACER_TI3: &str = include_str!("../../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3");

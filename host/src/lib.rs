@@ -1,0 +1,13 @@
+//! # specpoly (host)
+//!
+//! The `specpoly` command-line tool on top of `specpoly-core`: spectra in, calibrated colours
+//! out; a spectral ray tracer; a monitor-calibration workflow; the LED controller's host side.
+//! The library target exists so tests and benchmarks can call the same code as the binary.
+#![forbid(unsafe_code)]
+
+pub mod cli;
+pub mod data;
+pub mod error;
+pub mod io;
+pub mod repr;
+pub mod spectra;
