@@ -5,6 +5,7 @@
 //! The library target exists so tests and benchmarks can call the same code as the binary.
 #![forbid(unsafe_code)]
 
+pub mod calibrate;
 pub mod cli;
 pub mod data;
 pub mod error;
