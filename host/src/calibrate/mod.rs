@@ -2,3 +2,8 @@
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
 pub mod measurement;
+pub mod display;
+pub mod instrument;
+pub mod patches;
+pub mod run;
+pub mod sim;

@@ -1,0 +1,99 @@
+//! Where patches are shown (`--display`): the [`PatchDisplay`] trait and its implementations.
+//!
+//! | spec | implementation |
+//! |---|---|
+//! | `web[:PORT][,wait=SECS][,timeout=SECS]` | [`web::WebDisplay`]: a full-window page served on `127.0.0.1` (an ephemeral port unless given) |
+//! | `manual` | [`manual::ManualDisplay`]: prints the RGB to set and waits for Enter |
+//! | `sim:SPD[,options]` | [`sim::SimDisplay`]: a simulated display (see [`crate::calibrate::sim`]) |
+
+use crate::calibrate::sim::{SimHandle, SimModel};
+use crate::error::{CliError, Result};
+use std::time::Duration;
+
+pub mod manual;
+pub mod sim;
+pub mod web;
+
+/// Something that shows colour patches.
+pub trait PatchDisplay {
+    /// One line saying what and where (printed at the start of a run; for `web` it holds the
+    /// URL).
+    fn describe(&self) -> String;
+
+    /// Shows `rgb` (device values in `[0, 1]`, on the 8-bit grid) and returns once it is on
+    /// screen.
+    fn show(&mut self, rgb: [f64; 3]) -> Result<()>;
+
+    /// How long to wait after [`Self::show`] before measuring unless `--settle` says otherwise.
+    fn default_settle(&self) -> Duration;
+
+    /// The simulated display behind this one, if it is simulated (the `sim` instrument reads
+    /// it).
+    fn simulation(&self) -> Option<SimHandle> {
+        None
+    }
+}
+
+/// Opens the display named by `spec`.
+pub fn open(spec: &str) -> Result<Box<dyn PatchDisplay>> {
+    let (kind, rest) = match spec.split_once(':') {
+        Some((k, r)) => (k, Some(r)),
+        None => match spec.split_once(',') {
+            Some((k, _)) => (k, None),
+            None => (spec, None),
+        },
+    };
+    match kind {
+        "web" => Ok(Box::new(web::WebDisplay::from_spec(spec)?)),
+        "manual" if rest.is_none() && spec == "manual" => {
+            Ok(Box::new(manual::ManualDisplay::stdin()))
+        }
+        "sim" => {
+            let rest = rest.ok_or_else(|| {
+                CliError::usage(
+                    "`--display sim` needs spectra: `sim:crt` or `sim:FILE.csv[,options]`",
+                )
+            })?;
+            Ok(Box::new(sim::SimDisplay::new(SimHandle::new(
+                SimModel::parse(rest)?,
+            ))))
+        }
+        _ => Err(CliError::usage(format!(
+            "--display `{spec}`: expected `web[:PORT]`, `manual` or `sim:SPD[,options]`"
+        ))),
+    }
+}
+
+/// A display whose patches a simulated display follows too: lets `--instrument sim:SPD`
+/// measure what a real display (web page, manual) is showing.
+pub struct Mirrored {
+    inner: Box<dyn PatchDisplay>,
+    sim: SimHandle,
+}
+
+impl Mirrored {
+    /// `inner` mirrored onto `sim`.
+    pub fn new(inner: Box<dyn PatchDisplay>, sim: SimHandle) -> Self {
+        Self { inner, sim }
+    }
+}
+
+impl PatchDisplay for Mirrored {
+    fn describe(&self) -> String {
+        self.inner.describe()
+    }
+
+    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+        self.inner.show(rgb)?;
+        self.sim.set(rgb);
+        Ok(())
+    }
+
+    fn default_settle(&self) -> Duration {
+        self.inner.default_settle()
+    }
+
+    fn simulation(&self) -> Option<SimHandle> {
+        Some(self.sim.clone())
+    }
+}
