@@ -1,9 +1,9 @@
 //! Monitor calibration: patch sets, where patches are shown, where readings come from, the
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
-pub mod measurement;
 pub mod display;
 pub mod instrument;
+pub mod measurement;
 pub mod patches;
 pub mod run;
 pub mod sim;
