@@ -223,22 +223,28 @@ impl<const S: usize, const C: usize> Spectrum<S, C> {
         let a = &self.coef;
         let b = &o.coef;
         let mut c = [[0.0f32; S]; C];
-        for i in 0..C {
-            for j in 0..C {
-                let sum = i + j;
-                let diff = i.abs_diff(j);
-                for s in 0..S {
-                    let p = a[i][s] * b[j][s];
-                    if sum < C {
-                        c[sum][s] += p;
+        // Tᵢ·Tⱼ = ½(Tᵢ₊ⱼ + T|ᵢ₋ⱼ|), span by span. The i, j loops have constant trip counts
+        // and unroll completely; the span loop then vectorises over the coefficient-major
+        // storage (measured: 3.7× faster than a symmetric i < j form, docs/performance.md).
+        for s in 0..S {
+            let mut ac = [0.0f32; C];
+            let mut bc = [0.0f32; C];
+            for k in 0..C {
+                ac[k] = a[k][s];
+                bc[k] = b[k][s];
+            }
+            let mut cc = [0.0f32; C];
+            for i in 0..C {
+                for j in 0..C {
+                    let p = ac[i] * bc[j];
+                    if i + j < C {
+                        cc[i + j] += p;
                     }
-                    c[diff][s] += p;
+                    cc[i.abs_diff(j)] += p;
                 }
             }
-        }
-        for row in c.iter_mut() {
-            for v in row.iter_mut() {
-                *v *= 0.5;
+            for k in 0..C {
+                c[k][s] = 0.5 * cc[k];
             }
         }
         Self {
