@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
+# target, QEMU for the firmware, Chromium for the web patch display), then formatting, lints,
+# all tests (host, core, cross-crate, firmware under QEMU) and the microcontroller build of the
+# core. Stops with a clear message if something cannot be installed; never skips a test.
+set -euo pipefail
+cd "$(dirname "$0")"
+say() { printf '\n== %s\n' "$*"; }
+
+say "checking tools"
+missing=()
+command -v qemu-system-arm >/dev/null 2>&1 || missing+=(qemu-system-arm)
+command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+if ((${#missing[@]})); then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "installing ${missing[*]} (apt)"
+    apt-get update -o DPkg::Lock::Timeout=600 -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 \
+      --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    echo "test.sh: missing ${missing[*]}: install them (Debian: apt-get install ${missing[*]}) and run again" >&2
+    exit 1
+  fi
+fi
+for tool in qemu-system-arm chromium; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
+done
+if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then
+  rustup target add thumbv7em-none-eabihf
+fi
+for c in rustfmt clippy; do
+  rustup component list --installed | grep -q "^$c" || rustup component add "$c"
+done
+
+say "cargo fmt --check"
+cargo fmt --all --check
+(cd firmware && cargo fmt --check)
+
+say "cargo clippy -D warnings"
+cargo clippy --workspace --all-targets -- -D warnings
+(cd firmware && cargo clippy --release -- -D warnings)
+
+say "specpoly-core for a microcontroller (thumbv7em-none-eabihf)"
+cargo build -p specpoly-core --target thumbv7em-none-eabihf
+
+say "tests (host, core, cross-crate, firmware under QEMU)"
+cargo test --workspace --no-fail-fast
+
+say "all tests passed"
