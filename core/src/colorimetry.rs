@@ -38,11 +38,6 @@ impl Xyz {
         Self::new(a[0], a[1], a[2])
     }
 
-    /// Component-wise sum.
-    pub fn add(self, o: Xyz) -> Xyz {
-        Xyz::new(self.x + o.x, self.y + o.y, self.z + o.z)
-    }
-
     /// Scaled by `k`.
     pub fn scale(self, k: f32) -> Xyz {
         Xyz::new(self.x * k, self.y * k, self.z * k)
@@ -63,6 +58,14 @@ impl Xyz {
             y: self.y / s,
             big_y: self.y,
         }
+    }
+}
+
+impl core::ops::Add for Xyz {
+    type Output = Xyz;
+    /// Component-wise sum.
+    fn add(self, o: Xyz) -> Xyz {
+        Xyz::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 }
 

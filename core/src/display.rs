@@ -15,6 +15,8 @@ use heapless::Vec;
 /// Largest number of points of a tabulated transfer curve.
 pub const TABLE_MAX: usize = 64;
 
+// `Table` is much larger than the other variants; with no heap in `no_std` it stays inline.
+#[allow(clippy::large_enum_variant)]
 /// A channel's transfer curve between device value `v ∈ [0, 1]` and linear light `l ∈ [0, 1]`.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Transfer {
@@ -235,7 +237,7 @@ impl Display {
 
     /// XYZ at full drive of all three channels, black included.
     pub fn white(&self) -> Xyz {
-        Xyz::from_array(self.to_xyz.apply([1.0; 3])).add(self.black)
+        Xyz::from_array(self.to_xyz.apply([1.0; 3])) + self.black
     }
 
     /// Predicted XYZ for device values `rgb ∈ [0, 1]³` (in the display's luminance units).
@@ -245,7 +247,7 @@ impl Display {
             self.transfer[1].decode(rgb[1]),
             self.transfer[2].decode(rgb[2]),
         ];
-        Xyz::from_array(self.to_xyz.apply(lin)).add(self.black)
+        Xyz::from_array(self.to_xyz.apply(lin)) + self.black
     }
 
     /// Linear drive (unclipped) for an absolute XYZ in the display's units.
