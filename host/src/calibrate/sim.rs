@@ -95,7 +95,7 @@ impl SimModel {
             p[i] = spd_xyz(&t);
         }
         let y: f64 = p.iter().map(|c| c[1]).sum();
-        if !(y > 0.0) {
+        if y.is_nan() || y <= 0.0 {
             return Err(CliError::data(format!(
                 "{source}: the primaries have no luminance"
             )));

@@ -1,0 +1,242 @@
+//! Helpers for the `calibrate run` tests: run the real binary with a deadline, find the web
+//! display's URL in its output, play the part of the browser (poll `/patch`, acknowledge), and
+//! find Chromium.
+#![allow(dead_code)]
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// The binary under test.
+pub fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_specpoly"))
+}
+
+/// A finished run.
+#[derive(Debug)]
+pub struct Finished {
+    /// Exit code (`None`: killed at the deadline).
+    pub code: Option<i32>,
+    /// Everything on stdout.
+    pub stdout: String,
+    /// Everything on stderr.
+    pub stderr: String,
+}
+
+/// A running `specpoly` whose stdout lines are collected as they come.
+pub struct Running {
+    child: Child,
+    lines: mpsc::Receiver<String>,
+    seen: Vec<String>,
+    stderr: std::thread::JoinHandle<String>,
+}
+
+/// Starts `specpoly ARGS` with piped stdout/stderr (and stdin).
+pub fn start(args: &[&str]) -> Running {
+    let mut child = bin()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start specpoly");
+    let out = child.stdout.take().unwrap();
+    let mut err = child.stderr.take().unwrap();
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for l in BufReader::new(out).lines().map_while(Result::ok) {
+            if tx.send(l).is_err() {
+                break;
+            }
+        }
+    });
+    let stderr = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = err.read_to_string(&mut s);
+        s
+    });
+    Running {
+        child,
+        lines: rx,
+        seen: Vec::new(),
+        stderr,
+    }
+}
+
+impl Running {
+    /// Waits (at most `timeout`) for a stdout line containing `needle`.
+    pub fn wait_line(&mut self, needle: &str, timeout: Duration) -> String {
+        let deadline = Instant::now() + timeout;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.lines.recv_timeout(left) {
+                Ok(l) => {
+                    self.seen.push(l.clone());
+                    if l.contains(needle) {
+                        return l;
+                    }
+                }
+                Err(_) => {
+                    let _ = self.child.kill();
+                    panic!(
+                        "no `{needle}` on stdout within {timeout:?}; got {:?}",
+                        self.seen
+                    );
+                }
+            }
+        }
+    }
+
+    /// The web display's base URL (`http://127.0.0.1:PORT/`), from the first lines of output.
+    pub fn web_url(&mut self) -> String {
+        let l = self.wait_line("http://127.0.0.1:", Duration::from_secs(30));
+        let i = l.find("http://").unwrap();
+        l[i..].split_whitespace().next().unwrap().to_string()
+    }
+
+    /// Writes to the child's stdin.
+    pub fn stdin(&mut self, text: &str) {
+        if let Some(s) = self.child.stdin.as_mut() {
+            let _ = s.write_all(text.as_bytes());
+            let _ = s.flush();
+        }
+    }
+
+    /// Waits for the exit, killing the process at `timeout`.
+    pub fn finish(mut self, timeout: Duration) -> Finished {
+        drop(self.child.stdin.take());
+        let deadline = Instant::now() + timeout;
+        let code = loop {
+            if let Some(st) = self.child.try_wait().unwrap() {
+                break st.code();
+            }
+            if Instant::now() >= deadline {
+                let _ = self.child.kill();
+                let _ = self.child.wait();
+                break None;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        let mut stdout = self.seen.join("\n");
+        while let Ok(l) = self.lines.recv_timeout(Duration::from_millis(200)) {
+            stdout.push('\n');
+            stdout.push_str(&l);
+        }
+        let stderr = self.stderr.join().unwrap_or_default();
+        Finished {
+            code,
+            stdout,
+            stderr,
+        }
+    }
+}
+
+/// Runs `specpoly ARGS` to the end (at most `timeout`).
+pub fn run(args: &[&str], timeout: Duration) -> Finished {
+    start(args).finish(timeout)
+}
+
+/// One HTTP GET on the loopback; the body.
+pub fn http_get(base: &str, path: &str) -> Option<String> {
+    let hostport = base.trim_start_matches("http://").trim_end_matches('/');
+    let mut s = TcpStream::connect(hostport).ok()?;
+    s.set_read_timeout(Some(Duration::from_secs(2))).ok()?;
+    write!(s, "GET {path} HTTP/1.1\r\nHost: {hostport}\r\n\r\n").ok()?;
+    let mut out = String::new();
+    s.read_to_string(&mut out).ok()?;
+    out.split_once("\r\n\r\n").map(|(_, b)| b.to_string())
+}
+
+/// Plays the browser for a web display: polls `/patch`, records the colour, acknowledges it.
+pub struct FakeBrowser {
+    /// The patch the "page" shows.
+    pub current: Arc<Mutex<[f64; 3]>>,
+    stop: Arc<AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for FakeBrowser {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+/// Starts polling `base` (`http://127.0.0.1:PORT/`).
+pub fn fake_browser(base: &str) -> FakeBrowser {
+    let current = Arc::new(Mutex::new([0.0; 3]));
+    let stop = Arc::new(AtomicBool::new(false));
+    let (c, s, base) = (current.clone(), stop.clone(), base.to_string());
+    let thread = std::thread::spawn(move || {
+        let mut seq = 0u64;
+        while !s.load(Ordering::SeqCst) {
+            if let Some(body) = http_get(&base, "/patch") {
+                if let Ok(v) = serde_json::from_str::<serde_json::Value>(&body) {
+                    let n = v["seq"].as_u64().unwrap_or(0);
+                    if n != seq {
+                        let rgb = &v["rgb"];
+                        *c.lock().unwrap() = [0, 1, 2].map(|i| rgb[i].as_f64().unwrap_or(0.0));
+                        seq = n;
+                        let _ = http_get(&base, &format!("/shown?seq={n}"));
+                    }
+                }
+            }
+            std::thread::sleep(Duration::from_millis(5));
+        }
+    });
+    FakeBrowser {
+        current,
+        stop,
+        thread: Some(thread),
+    }
+}
+
+/// Chromium's executable: `$CHROMIUM`, else `chromium` or `chromium-browser` on the PATH.
+/// Panics with how to install it when there is none: the browser tests must not pass
+/// without a browser.
+pub fn chromium() -> PathBuf {
+    if let Some(p) = std::env::var_os("CHROMIUM") {
+        return PathBuf::from(p);
+    }
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    for dir in std::env::split_paths(&path) {
+        for name in ["chromium", "chromium-browser"] {
+            let p = dir.join(name);
+            if p.is_file() {
+                return p;
+            }
+        }
+    }
+    panic!(
+        "chromium not found (set $CHROMIUM or install it: apt-get update && apt-get install -y chromium); \
+         the web display is tested in a real headless browser and this test does not skip"
+    );
+}
+
+/// Chromium's headless flags, with a fresh profile in `profile`.
+pub fn chromium_args(profile: &std::path::Path) -> Vec<String> {
+    [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--no-first-run",
+        "--disable-quic",
+        "--disable-sync",
+        "--force-color-profile=srgb",
+        "--hide-scrollbars",
+        "--window-size=240,160",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .chain([format!("--user-data-dir={}", profile.display())])
+    .collect()
+}
