@@ -171,7 +171,11 @@ impl Drop for FakeBrowser {
 
 /// Starts polling `base` (`http://127.0.0.1:PORT/`).
 pub fn fake_browser(base: &str) -> FakeBrowser {
-    let current = Arc::new(Mutex::new([0.0; 3]));
+    fake_browser_into(base, Arc::new(Mutex::new([0.0; 3])))
+}
+
+/// Starts polling `base`, writing the colour shown into `current` before acknowledging it.
+pub fn fake_browser_into(base: &str, current: Arc<Mutex<[f64; 3]>>) -> FakeBrowser {
     let stop = Arc::new(AtomicBool::new(false));
     let (c, s, base) = (current.clone(), stop.clone(), base.to_string());
     let thread = std::thread::spawn(move || {

@@ -61,7 +61,11 @@ pub fn c_exp(v: f64) -> String {
 
 /// Starts an emulator measuring `source`.
 pub fn spawn(source: impl Fn() -> [f64; 3] + Send + 'static, faults: Faults) -> Emulator {
-    let (mut master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
+    let (master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
+    // `pair` opens the master without close-on-exec: a `specpoly` started by the test would
+    // inherit it and keep the pty up after the emulator "unplugs". The clone is
+    // close-on-exec (F_DUPFD_CLOEXEC); the original is closed at once.
+    let mut master = master.try_clone_native().expect("clone the master");
     let path = slave.name().expect("the slave's name");
     master
         .set_timeout(Duration::from_millis(20))
