@@ -7,6 +7,7 @@
 
 pub mod calibrate;
 pub mod cli;
+pub mod colour;
 pub mod data;
 pub mod error;
 pub mod io;

@@ -116,6 +116,7 @@ pub fn resolve(spec: &str) -> Result<Vec<Named>> {
                         .iter()
                         .find(|(n, _)| n.eq_ignore_ascii_case(c))
                 })
+                .or_else(|| unique_word_prefix(&table, c))
                 .ok_or_else(|| {
                     CliError::usage(format!(
                         "`{source}` has no column `{c}`; it has: {}",
@@ -125,6 +126,18 @@ pub fn resolve(spec: &str) -> Result<Vec<Named>> {
             Ok(vec![make(col)?])
         }
     }
+}
+
+/// The one column whose name starts with `c` followed by a space (case-insensitive), so
+/// `colorchecker#white` names `white 9.5 (.05 D)`; `None` when none or several match.
+fn unique_word_prefix<'t>(t: &'t Table, c: &str) -> Option<&'t (String, Vec<f32>)> {
+    let c = c.to_ascii_lowercase();
+    let mut hits = t.columns.iter().filter(|(n, _)| {
+        let n = n.to_ascii_lowercase();
+        n.strip_prefix(&c).is_some_and(|rest| rest.starts_with(' '))
+    });
+    let first = hits.next()?;
+    hits.next().is_none().then_some(first)
 }
 
 fn column_list(t: &Table) -> String {

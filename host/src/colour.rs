@@ -1,0 +1,263 @@
+//! Colour of reflectances and chains of reflectances under a light, in any representation,
+//! and the f64 reference they are judged against. Shared by `xyz`, `fit`, `accuracy` (and any
+//! other command that needs "the colour of this spectrum").
+//!
+//! The maths (CIE 015:2018 §7): a reflectance `R(λ)` under a light `S(λ)` seen by an observer
+//! `x̄, ȳ, z̄` has `X = K Σ_λ R(λ) S(λ) x̄(λ)` (likewise `Y`, `Z`), summed at 1 nm over
+//! 380–780 nm with `K = 100 / Σ_λ S(λ) ȳ(λ)`, so the perfect white has `Y = 100`. An
+//! inter-reflection chain `R₁ R₂ … Rₖ` is the product of the reflectances, wavelength by
+//! wavelength. The reference ([`reference`]) does exactly this in f64 on the linear
+//! interpolants of the tabulated data ([`specpoly_core::exact_xyz`]); a representation
+//! ([`Chains`]) converts every reflectance, multiplies with its own `Shade::mul` (degree
+//! reduction for polynomials, per-sample for sampling, per-channel for RGB) and integrates
+//! with its own `Shade::xyz`. CIELAB is always taken against the light's exact white, so the
+//! white-point error of a representation (e.g. a coarsely sampled light) counts as error.
+
+use crate::repr::{Repr, Visitor};
+use specpoly_core::{
+    delta_e2000, exact_xyz, Breaks, Error, Lab, Observer, Shade, Spectrum, Tabulated, Xyz,
+    DEFAULT_COEFFS, DEFAULT_SPANS, PAPER_BREAKS,
+};
+
+/// A computed colour: XYZ and the white it is relative to (both with the white's `Y = 100`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Colour {
+    /// Tristimulus values.
+    pub xyz: [f64; 3],
+    /// The light's white (perfect reflector).
+    pub white: [f64; 3],
+}
+
+impl Colour {
+    /// Chromaticity `x, y` (paper eq. 8); black gets the white's chromaticity.
+    pub fn xy(&self) -> [f64; 2] {
+        let chroma = |v: [f64; 3]| {
+            let s = v[0] + v[1] + v[2];
+            (s > 0.0).then(|| [v[0] / s, v[1] / s])
+        };
+        chroma(self.xyz)
+            .or_else(|| chroma(self.white))
+            .unwrap_or([1.0 / 3.0, 1.0 / 3.0])
+    }
+
+    /// CIELAB against the white.
+    pub fn lab(&self) -> Lab {
+        Lab::from_xyz(self.xyz, self.white)
+    }
+
+    /// CIEDE2000 between two colours.
+    pub fn delta_e(&self, o: &Colour) -> f64 {
+        delta_e2000(self.lab(), o.lab())
+    }
+}
+
+/// The light's exact white (1 nm f64 sum; `Y = 100`).
+pub fn white(observer: Observer, light: &Tabulated<'_>) -> [f64; 3] {
+    exact_xyz(observer, light, |_| 1.0).1
+}
+
+/// The reference colour of the chain `spectra[chain[0]] · spectra[chain[1]] · …` (1 nm f64 sum
+/// of the product of the linear interpolants).
+pub fn reference(
+    observer: Observer,
+    light: &Tabulated<'_>,
+    spectra: &[Tabulated<'_>],
+    chain: &[usize],
+) -> Colour {
+    let (xyz, white) = exact_xyz(observer, light, |nm| {
+        chain.iter().map(|&i| spectra[i].at(nm)).product()
+    });
+    Colour { xyz, white }
+}
+
+/// A [`Visitor`]: the colours of chains of reflectances in one representation, as
+/// [`crate::repr::dispatch`] monomorphises it. Every chain must be non-empty.
+pub struct Chains<'a> {
+    /// The observer.
+    pub observer: Observer,
+    /// The light (tabulated, never fitted).
+    pub light: Tabulated<'a>,
+    /// The reflectances.
+    pub spectra: &'a [Tabulated<'a>],
+    /// Each chain: indices into `spectra`, multiplied in this order.
+    pub chains: &'a [Vec<usize>],
+}
+
+impl Visitor for Chains<'_> {
+    type Output = Result<Vec<Colour>, Error>;
+    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output {
+        let light = T::light(self.observer, &self.light, layout);
+        let white = white(self.observer, &self.light);
+        let reps = self
+            .spectra
+            .iter()
+            .map(|r| T::from_reflectance(r, &light))
+            .collect::<Result<Vec<T>, Error>>()?;
+        Ok(self
+            .chains
+            .iter()
+            .map(|chain| {
+                let q = chain[1..]
+                    .iter()
+                    .fold(reps[chain[0]], |acc, &i| acc.mul(&reps[i]));
+                let xyz = q.xyz(&light);
+                Colour {
+                    xyz: [xyz.x as f64, xyz.y as f64, xyz.z as f64],
+                    white,
+                }
+            })
+            .collect())
+    }
+}
+
+/// The colours of `chains` in representation `repr` (see [`Chains`]).
+pub fn chains(
+    repr: Repr,
+    observer: Observer,
+    light: &Tabulated<'_>,
+    spectra: &[Tabulated<'_>],
+    chains: &[Vec<usize>],
+) -> Result<Vec<Colour>, Error> {
+    crate::repr::dispatch(
+        repr,
+        Chains {
+            observer,
+            light: *light,
+            spectra,
+            chains,
+        },
+    )
+}
+
+/// The paper's literal colour path (Raso & Fournier 1991, eq. 7 with the light fitted too;
+/// [`specpoly_core::paper::xyz_paper_path`]): each reflectance fitted by the paper's 2 cubic
+/// spans, the chain multiplied with reduction, then light and CMFs as cubics.
+pub fn paper_path(
+    observer: Observer,
+    light: &Tabulated<'_>,
+    spectra: &[Tabulated<'_>],
+    chains: &[Vec<usize>],
+) -> Result<Vec<Colour>, Error> {
+    let white = white(observer, light);
+    let reps = spectra
+        .iter()
+        .map(|r| Spectrum::<2, 4>::fit(PAPER_BREAKS, r))
+        .collect::<Result<Vec<_>, Error>>()?;
+    Ok(chains
+        .iter()
+        .map(|chain| {
+            let q = chain[1..]
+                .iter()
+                .fold(reps[chain[0]], |acc, &i| acc.mul(&reps[i]));
+            let xyz: Xyz = specpoly_core::paper::xyz_paper_path(observer, light, &q);
+            Colour {
+                xyz: [xyz.x as f64, xyz.y as f64, xyz.z as f64],
+                white,
+            }
+        })
+        .collect())
+}
+
+/// Generic code over the polynomial representations only (`poly`, `paper`, `poly:SxD`), for
+/// what needs the `Spectrum` itself (coefficients, fit errors, evaluation for plots).
+pub trait PolyVisitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs with `Spectrum<S, C>` on `breaks`.
+    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output;
+}
+
+macro_rules! poly_by_coeffs {
+    ($s:literal, $c:expr, $v:expr) => {
+        match $c {
+            2 => $v.visit::<$s, 2>(Breaks::<$s>::uniform()),
+            3 => $v.visit::<$s, 3>(Breaks::<$s>::uniform()),
+            4 => $v.visit::<$s, 4>(Breaks::<$s>::uniform()),
+            5 => $v.visit::<$s, 5>(Breaks::<$s>::uniform()),
+            _ => $v.visit::<$s, 6>(Breaks::<$s>::uniform()),
+        }
+    };
+}
+
+/// Runs `v` with the `Spectrum` type of a polynomial `repr`; `None` for the others (sampled,
+/// RGB, exact). Supports what [`Repr`]'s parser accepts.
+pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
+    Some(match repr {
+        Repr::Paper => v.visit::<2, 4>(PAPER_BREAKS),
+        Repr::Poly {
+            spans: DEFAULT_SPANS,
+            coeffs: DEFAULT_COEFFS,
+        } => v.visit::<DEFAULT_SPANS, DEFAULT_COEFFS>(Breaks::uniform()),
+        Repr::Poly { spans, coeffs } => match spans {
+            1 => poly_by_coeffs!(1, coeffs, v),
+            2 => poly_by_coeffs!(2, coeffs, v),
+            3 => poly_by_coeffs!(3, coeffs, v),
+            4 => poly_by_coeffs!(4, coeffs, v),
+            6 => poly_by_coeffs!(6, coeffs, v),
+            8 => poly_by_coeffs!(8, coeffs, v),
+            12 => poly_by_coeffs!(12, coeffs, v),
+            _ => poly_by_coeffs!(16, coeffs, v),
+        },
+        Repr::Sampled(_) | Repr::Rgb | Repr::Exact => return None,
+    })
+}
+
+/// Summary statistics of colour differences.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Number of values.
+    pub n: usize,
+    /// Mean.
+    pub mean: f64,
+    /// 95th percentile (nearest rank: the `⌈0.95 n⌉`-th smallest).
+    pub p95: f64,
+    /// Maximum.
+    pub max: f64,
+}
+
+impl Stats {
+    /// Statistics of `v` (all zero when empty).
+    pub fn of(v: &[f64]) -> Stats {
+        if v.is_empty() {
+            return Stats::default();
+        }
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        let n = s.len();
+        let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n);
+        Stats {
+            n,
+            mean: s.iter().sum::<f64>() / n as f64,
+            p95: s[rank - 1],
+            max: s[n - 1],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use specpoly_core::Illuminant;
+
+    #[test]
+    fn stats_nearest_rank() {
+        let v: Vec<f64> = (1..=20).map(f64::from).collect();
+        let s = Stats::of(&v);
+        assert_eq!((s.n, s.mean, s.p95, s.max), (20, 10.5, 19.0, 20.0));
+    }
+
+    #[test]
+    fn exact_repr_matches_reference() {
+        let d65 = Illuminant::D65.tabulated();
+        let a = Illuminant::A.tabulated();
+        let spectra = [d65, a];
+        let ch = [vec![0], vec![0, 1]];
+        let r = chains(Repr::Exact, Observer::Cie1964, &d65, &spectra, &ch).unwrap();
+        for (c, chain) in r.iter().zip(&ch) {
+            let want = reference(Observer::Cie1964, &d65, &spectra, chain);
+            for k in 0..3 {
+                assert!((c.xyz[k] / want.xyz[k] - 1.0).abs() < 1e-4);
+            }
+        }
+    }
+}
