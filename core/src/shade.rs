@@ -19,11 +19,13 @@ use crate::{
 
 /// A colour quantity that shading multiplies, adds and scales, and finally integrates to XYZ
 /// under a light.
-pub trait Shade: Copy {
+///
+/// `Send + Sync` (values and lights are plain data) so a renderer can share them across threads.
+pub trait Shade: Copy + Send + Sync {
     /// What fixes the representation's layout beyond its type (breakpoints for spectra).
-    type Layout: Copy + PartialEq + core::fmt::Debug;
+    type Layout: Copy + PartialEq + core::fmt::Debug + Send + Sync;
     /// The per-light precomputation this representation integrates against.
-    type Light;
+    type Light: Send + Sync;
     /// Precomputes a light (tabulated, never fitted) under an observer for this layout.
     fn light(observer: Observer, light: &Tabulated<'_>, layout: Self::Layout) -> Self::Light;
     /// The constant reflectance `v` (needs the light for layout, e.g. breakpoints).
