@@ -1,0 +1,473 @@
+//! Commands (host → controller): parsing and formatting. The grammar is in firmware/PROTOCOL.md.
+
+use crate::number::{parse_f32, write_f32, NumberError};
+use crate::{ErrorCode, Fault, MAX_FACTORS};
+use core::fmt::{self, Write};
+use core::str::SplitAsciiWhitespace;
+use specpoly_core::{
+    display::TABLE_MAX, Breaks, DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum,
+    Spectrum, Transfer, Xyy, Xyz, PAPER_BREAKS,
+};
+
+/// Which transfer curves a `trc` command sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Channels {
+    /// Red only (`r`).
+    Red,
+    /// Green only (`g`).
+    Green,
+    /// Blue only (`b`).
+    Blue,
+    /// All three (`rgb`).
+    All,
+}
+
+impl Channels {
+    /// The wire name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Channels::Red => "r",
+            Channels::Green => "g",
+            Channels::Blue => "b",
+            Channels::All => "rgb",
+        }
+    }
+
+    /// Whether channel `i` (0 = red) is included.
+    pub fn includes(self, i: usize) -> bool {
+        match self {
+            Channels::Red => i == 0,
+            Channels::Green => i == 1,
+            Channels::Blue => i == 2,
+            Channels::All => i < 3,
+        }
+    }
+}
+
+/// A reflectance in one of the two built-in representations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reflectance {
+    /// The paper's 2 cubic spans split at 550 nm (`paper`, 8 coefficients).
+    Paper(PaperSpectrum),
+    /// The project default, 8 uniform cubic spans (`default`, 32 coefficients).
+    Default(DefaultSpectrum),
+}
+
+impl Reflectance {
+    /// The preset's wire name.
+    pub fn preset(&self) -> &'static str {
+        match self {
+            Reflectance::Paper(_) => "paper",
+            Reflectance::Default(_) => "default",
+        }
+    }
+
+    /// The reduced product (the paper's eq. 6, [`Spectrum::mul`]); `None` for two presets.
+    pub fn mul(&self, o: &Self) -> Option<Self> {
+        match (self, o) {
+            (Reflectance::Paper(a), Reflectance::Paper(b)) => Some(Reflectance::Paper(a.mul(b))),
+            (Reflectance::Default(a), Reflectance::Default(b)) => {
+                Some(Reflectance::Default(a.mul(b)))
+            }
+            _ => None,
+        }
+    }
+
+    /// Writes the coefficients on the wire order: span by span, each span's Chebyshev
+    /// coefficients `c₀ … c₃` low to high, separated by spaces.
+    pub fn write_coefficients<W: Write>(&self, w: &mut W) -> fmt::Result {
+        match self {
+            Reflectance::Paper(s) => write_spectrum(w, s),
+            Reflectance::Default(s) => write_spectrum(w, s),
+        }
+    }
+}
+
+fn write_spectrum<W: Write, const S: usize, const C: usize>(
+    w: &mut W,
+    s: &Spectrum<S, C>,
+) -> fmt::Result {
+    let c = s.coefficients();
+    for span in 0..S {
+        for k in 0..C {
+            if span + k > 0 {
+                w.write_char(' ')?;
+            }
+            write_f32(w, c[k][span])?;
+        }
+    }
+    Ok(())
+}
+
+/// A command to the controller.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// `hello`: protocol version and limits.
+    Hello,
+    /// `cal xr yr Yr xg yg Yg xb yb Yb`: the primaries' chromaticities and luminances at full
+    /// drive (Cowan's model, paper §7.3).
+    Calibrate {
+        /// `[x, y]` of red, green, blue.
+        xy: [[f32; 2]; 3],
+        /// Luminance `Y` of each primary at full drive (any unit; only ratios matter).
+        luminance: [f32; 3],
+    },
+    /// `trc CHANNELS CURVE`: a transfer curve.
+    Transfer {
+        /// Which channels.
+        channels: Channels,
+        /// The curve.
+        curve: Transfer,
+    },
+    /// `map clip|desaturate`: the gamut mapping.
+    Map(GamutMap),
+    /// `observer 1931|1964`: the observer used for reflectances.
+    Observer(Observer),
+    /// `xyz X Y Z`: a colour, relative to the LED's white at `Y = 100`.
+    Xyz(Xyz),
+    /// `xyy x y Y`: a colour by chromaticity and relative luminance (white `Y = 100`).
+    Xyy(Xyy),
+    /// `refl PRESET ILLUMINANT c… [* c…]…`: a reflectance, or the product of up to
+    /// [`MAX_FACTORS`] reflectances, under a built-in illuminant. The parser folds the factors
+    /// with the reduced product as it reads them.
+    Reflect {
+        /// The light.
+        illuminant: Illuminant,
+        /// The product of the factors.
+        product: Reflectance,
+        /// How many factors were multiplied.
+        factors: u8,
+    },
+    /// `state`: the calibration and the last colour.
+    State,
+}
+
+fn number(tok: &str, at: usize) -> Result<f32, Fault> {
+    parse_f32(tok).map_err(|e| match e {
+        NumberError::Syntax => Fault::at(ErrorCode::BadNumber, at),
+        NumberError::Range => Fault::at(ErrorCode::OutOfRange, at),
+    })
+}
+
+/// Words of a line with their positions.
+struct Words<'a> {
+    it: SplitAsciiWhitespace<'a>,
+    pos: usize,
+}
+
+impl<'a> Words<'a> {
+    fn next(&mut self) -> Option<(&'a str, usize)> {
+        let w = self.it.next()?;
+        self.pos += 1;
+        Some((w, self.pos))
+    }
+    fn need(&mut self) -> Result<(&'a str, usize), Fault> {
+        self.next()
+            .ok_or(Fault::at(ErrorCode::MissingArgument, self.pos + 1))
+    }
+    fn number(&mut self) -> Result<f32, Fault> {
+        let (w, at) = self.need()?;
+        number(w, at)
+    }
+    fn end(&mut self) -> Result<(), Fault> {
+        match self.next() {
+            None => Ok(()),
+            Some((_, at)) => Err(Fault::at(ErrorCode::ExtraArgument, at)),
+        }
+    }
+}
+
+impl Command {
+    /// Parses one line (without its newline). Never panics; any input gives a command or a
+    /// [`Fault`].
+    pub fn parse(line: &str) -> Result<Command, Fault> {
+        let mut it = line.split_ascii_whitespace();
+        let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
+        let mut w = Words { it, pos: 0 };
+        let cmd = match head {
+            "hello" => Command::Hello,
+            "state" => Command::State,
+            "cal" => {
+                let mut xy = [[0.0; 2]; 3];
+                let mut luminance = [0.0; 3];
+                for i in 0..3 {
+                    for c in 0..3 {
+                        let (tok, at) = w.need()?;
+                        let v = number(tok, at)?;
+                        let ok = if c < 2 {
+                            (0.0..=1.0).contains(&v) && !(c == 1 && v == 0.0)
+                        } else {
+                            v > 0.0
+                        };
+                        if !ok {
+                            return Err(Fault::at(ErrorCode::OutOfRange, at));
+                        }
+                        if c < 2 {
+                            xy[i][c] = v;
+                        } else {
+                            luminance[i] = v;
+                        }
+                    }
+                }
+                Command::Calibrate { xy, luminance }
+            }
+            "trc" => {
+                let (ch, at) = w.need()?;
+                let channels = match ch {
+                    "r" => Channels::Red,
+                    "g" => Channels::Green,
+                    "b" => Channels::Blue,
+                    "rgb" => Channels::All,
+                    _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
+                };
+                let (kind, at) = w.need()?;
+                let curve = match kind {
+                    "linear" => Transfer::Linear,
+                    "srgb" => Transfer::Srgb,
+                    "gamma" => {
+                        let (tok, at) = w.need()?;
+                        let g = number(tok, at)?;
+                        if !(0.1..=10.0).contains(&g) {
+                            return Err(Fault::at(ErrorCode::OutOfRange, at));
+                        }
+                        Transfer::Gamma(g)
+                    }
+                    "table" => {
+                        let mut v = [0.0f32; TABLE_MAX];
+                        let mut n = 0;
+                        while let Some((tok, at)) = w.next() {
+                            if n == TABLE_MAX {
+                                return Err(Fault::at(ErrorCode::BadCurve, at));
+                            }
+                            v[n] = number(tok, at)?;
+                            n += 1;
+                        }
+                        Transfer::table(&v[..n]).map_err(|_| Fault::at(ErrorCode::BadCurve, 2))?
+                    }
+                    _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
+                };
+                Command::Transfer { channels, curve }
+            }
+            "map" => {
+                let (m, at) = w.need()?;
+                Command::Map(match m {
+                    "clip" => GamutMap::Clip,
+                    "desaturate" => GamutMap::Desaturate,
+                    _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
+                })
+            }
+            "observer" => {
+                let (o, at) = w.need()?;
+                Command::Observer(match o {
+                    "1931" => Observer::Cie1931,
+                    "1964" => Observer::Cie1964,
+                    _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
+                })
+            }
+            "xyz" => {
+                let x = w.number()?;
+                let y = w.number()?;
+                let z = w.number()?;
+                Command::Xyz(Xyz::new(x, y, z))
+            }
+            "xyy" => {
+                let mut v = [0.0; 3];
+                for (i, o) in v.iter_mut().enumerate() {
+                    let (tok, at) = w.need()?;
+                    *o = number(tok, at)?;
+                    let ok = match i {
+                        0 => (0.0..=1.0).contains(o),
+                        1 => *o > 0.0 && *o <= 1.0,
+                        _ => true,
+                    };
+                    if !ok {
+                        return Err(Fault::at(ErrorCode::OutOfRange, at));
+                    }
+                }
+                Command::Xyy(Xyy {
+                    x: v[0],
+                    y: v[1],
+                    big_y: v[2],
+                })
+            }
+            "refl" => {
+                let (preset, at) = w.need()?;
+                let paper = match preset {
+                    "paper" => true,
+                    "default" => false,
+                    _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
+                };
+                let (ill, at) = w.need()?;
+                let illuminant =
+                    Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
+                let (product, factors) = if paper {
+                    let (p, n) = read_product::<2, 4>(&mut w, PAPER_BREAKS)?;
+                    (Reflectance::Paper(p), n)
+                } else {
+                    let (p, n) = read_product::<8, 4>(&mut w, Breaks::uniform())?;
+                    (Reflectance::Default(p), n)
+                };
+                Command::Reflect {
+                    illuminant,
+                    product,
+                    factors,
+                }
+            }
+            _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
+        };
+        w.end()?;
+        Ok(cmd)
+    }
+
+    /// Writes the command line (no newline). [`Command::Reflect`] is written as its product,
+    /// one factor; use [`write_reflect`] to send the factors themselves.
+    pub fn write<W: Write>(&self, w: &mut W) -> fmt::Result {
+        match self {
+            Command::Hello => w.write_str("hello"),
+            Command::State => w.write_str("state"),
+            Command::Calibrate { xy, luminance } => {
+                w.write_str("cal")?;
+                for i in 0..3 {
+                    for v in [xy[i][0], xy[i][1], luminance[i]] {
+                        w.write_char(' ')?;
+                        write_f32(w, v)?;
+                    }
+                }
+                Ok(())
+            }
+            Command::Transfer { channels, curve } => {
+                w.write_str("trc ")?;
+                w.write_str(channels.name())?;
+                w.write_char(' ')?;
+                write_curve(w, curve, ' ')
+            }
+            Command::Map(m) => {
+                w.write_str("map ")?;
+                w.write_str(map_name(*m))
+            }
+            Command::Observer(o) => {
+                w.write_str("observer ")?;
+                w.write_str(o.name())
+            }
+            Command::Xyz(v) => {
+                w.write_str("xyz")?;
+                for c in v.to_array() {
+                    w.write_char(' ')?;
+                    write_f32(w, c)?;
+                }
+                Ok(())
+            }
+            Command::Xyy(v) => {
+                w.write_str("xyy")?;
+                for c in [v.x, v.y, v.big_y] {
+                    w.write_char(' ')?;
+                    write_f32(w, c)?;
+                }
+                Ok(())
+            }
+            Command::Reflect {
+                illuminant,
+                product,
+                ..
+            } => write_reflect(w, *illuminant, core::slice::from_ref(product)),
+        }
+    }
+}
+
+/// Reads `S·C` coefficients per factor, factors separated by `*`, folding them with the
+/// reduced product. Coefficients are span by span, each span's `c₀ … c_{C−1}`.
+fn read_product<const S: usize, const C: usize>(
+    w: &mut Words<'_>,
+    breaks: Breaks<S>,
+) -> Result<(Spectrum<S, C>, u8), Fault> {
+    let mut product: Option<Spectrum<S, C>> = None;
+    let mut factors = 0u8;
+    loop {
+        let mut f = Spectrum::<S, C>::zero(breaks);
+        for i in 0..S * C {
+            let (tok, at) = w
+                .next()
+                .ok_or(Fault::at(ErrorCode::WrongCount, w.pos + 1))?;
+            if tok == "*" {
+                return Err(Fault::at(ErrorCode::WrongCount, at));
+            }
+            f.coefficients_mut()[i % C][i / C] = number(tok, at)?;
+        }
+        factors += 1;
+        product = Some(match product {
+            None => f,
+            Some(p) => p.mul(&f),
+        });
+        match w.next() {
+            None => break,
+            Some(("*", at)) => {
+                if factors as usize >= MAX_FACTORS {
+                    return Err(Fault::at(ErrorCode::WrongCount, at));
+                }
+            }
+            Some((_, at)) => return Err(Fault::at(ErrorCode::WrongCount, at)),
+        }
+    }
+    match product {
+        Some(p) => Ok((p, factors)),
+        None => Err(Fault::new(ErrorCode::WrongCount)),
+    }
+}
+
+/// The wire name of a gamut map.
+pub fn map_name(m: GamutMap) -> &'static str {
+    match m {
+        GamutMap::Clip => "clip",
+        GamutMap::Desaturate => "desaturate",
+    }
+}
+
+/// Writes a curve as `linear`, `srgb`, `gamma G` or `table v0 v1 …`, with `sep` between the
+/// kind and its numbers (`' '` in commands, `':'` in `state` replies, where a table is written
+/// as its point count only).
+pub fn write_curve<W: Write>(w: &mut W, c: &Transfer, sep: char) -> fmt::Result {
+    match c {
+        Transfer::Linear => w.write_str("linear"),
+        Transfer::Srgb => w.write_str("srgb"),
+        Transfer::Gamma(g) => {
+            w.write_str("gamma")?;
+            w.write_char(sep)?;
+            write_f32(w, *g)
+        }
+        Transfer::Table(t) => {
+            w.write_str("table")?;
+            if sep == ' ' {
+                for v in t {
+                    w.write_char(' ')?;
+                    write_f32(w, *v)?;
+                }
+                Ok(())
+            } else {
+                w.write_char(sep)?;
+                crate::number::write_int(w, t.len() as i64)
+            }
+        }
+    }
+}
+
+/// Writes `refl PRESET ILLUMINANT c… * c… …` for the product of `factors` (at least one, all
+/// of one preset, at most [`MAX_FACTORS`]).
+pub fn write_reflect<W: Write>(
+    w: &mut W,
+    illuminant: Illuminant,
+    factors: &[Reflectance],
+) -> fmt::Result {
+    let first = factors.first().ok_or(fmt::Error)?;
+    if factors.len() > MAX_FACTORS || factors.iter().any(|f| f.preset() != first.preset()) {
+        return Err(fmt::Error);
+    }
+    w.write_str("refl ")?;
+    w.write_str(first.preset())?;
+    w.write_char(' ')?;
+    w.write_str(illuminant.name())?;
+    for (i, f) in factors.iter().enumerate() {
+        w.write_str(if i == 0 { " " } else { " * " })?;
+        f.write_coefficients(w)?;
+    }
+    Ok(())
+}

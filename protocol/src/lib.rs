@@ -1,0 +1,39 @@
+//! # specpoly-protocol
+//!
+//! The RGB-LED controller's line protocol, shared by the host CLI (`specpoly led`) and the
+//! firmware (`specpoly-firmware`), so both sides read and write the same grammar. Pure: no I/O,
+//! no allocation, `no_std`; every parser returns a value or a [`Fault`] for any input and never
+//! panics (fuzzed in `tests/fuzz.rs`). The grammar and its versioning are documented in
+//! `firmware/PROTOCOL.md`.
+//!
+//! - [`LineReader`] assembles bounded lines from bytes;
+//! - [`Command`] is a request (host → controller), [`Reply`] an answer (controller → host);
+//! - [`number`] reads and writes decimals without `core`'s large float tables.
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod command;
+pub mod fault;
+pub mod line;
+pub mod number;
+pub mod reply;
+
+pub use command::{write_reflect, Channels, Command, Reflectance};
+pub use fault::{ErrorCode, Fault};
+pub use line::LineReader;
+pub use reply::{ColourReport, CurveSummary, Gamut, Reply, StateReport};
+
+/// Protocol version, reported by `hello` and `state`. Incremented when a command or reply
+/// changes meaning; new reply keys do not change it (readers ignore unknown keys).
+pub const PROTOCOL_VERSION: u16 = 1;
+
+/// Longest line accepted, in bytes, without its `\n`: two default-preset factors at full
+/// precision (2 × 32 numbers of ≤ 15 characters) fit.
+pub const MAX_LINE: usize = 1024;
+
+/// Most factors in one `refl` product.
+pub const MAX_FACTORS: usize = 4;
+
+/// Longest reply line, in bytes, without its `\n`.
+pub const MAX_REPLY: usize = 320;

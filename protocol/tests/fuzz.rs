@@ -1,0 +1,390 @@
+//! The protocol on arbitrary and on well-formed input: parsers never panic, every command and
+//! reply survives `write → parse`, and replies stay within `MAX_REPLY`.
+//!
+//! The fuzzing is proptest (random bytes, random token soups built from the grammar's own
+//! words, and mutations of valid lines), which runs under plain `cargo test` with no nightly
+//! toolchain or cargo-fuzz.
+
+use proptest::prelude::*;
+use specpoly_core::{
+    Breaks, DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum, Spectrum, Transfer,
+    Xyy, Xyz, PAPER_BREAKS,
+};
+use specpoly_protocol::{
+    write_reflect, Channels, ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut,
+    LineReader, Reflectance, Reply, StateReport, MAX_LINE, MAX_REPLY,
+};
+
+fn line_of(c: &Command) -> String {
+    let mut s = String::new();
+    c.write(&mut s).unwrap();
+    s
+}
+
+fn reply_of(r: &Reply) -> String {
+    let mut s = String::new();
+    r.write(&mut s).unwrap();
+    s
+}
+
+/// Feeds bytes to a reader, collecting what it reports per line.
+fn feed(bytes: &[u8]) -> Vec<Result<String, Fault>> {
+    let mut r = LineReader::<MAX_LINE>::new();
+    let mut out = Vec::new();
+    for b in bytes {
+        if let Some(l) = r.push(*b) {
+            out.push(l.map(str::to_owned));
+        }
+    }
+    out
+}
+
+const WORDS: &[&str] = &[
+    "hello",
+    "state",
+    "cal",
+    "trc",
+    "map",
+    "observer",
+    "xyz",
+    "xyy",
+    "refl",
+    "paper",
+    "default",
+    "D65",
+    "FL11",
+    "a",
+    "*",
+    "r",
+    "g",
+    "b",
+    "rgb",
+    "linear",
+    "srgb",
+    "gamma",
+    "table",
+    "clip",
+    "desaturate",
+    "1931",
+    "1964",
+    "0",
+    "1",
+    "-1",
+    "0.5",
+    "1e39",
+    "nan",
+    "2.2",
+    "0.3127",
+    "1e-45",
+    "ok",
+    "err",
+    "colour",
+    "xyz=1,2,3",
+    "duty=1,2,3",
+    "max=65535",
+    "gamut=in",
+    "=",
+    ",",
+    "at=3",
+];
+
+fn spectrum_default(seed: f32) -> DefaultSpectrum {
+    let mut s = Spectrum::<8, 4>::zero(Breaks::uniform());
+    for k in 0..4 {
+        for sp in 0..8 {
+            s.coefficients_mut()[k][sp] = seed * (0.3 + 0.05 * sp as f32) / (1.0 + k as f32);
+        }
+    }
+    s
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..3000)) {
+        for line in feed(&bytes) {
+            match line {
+                Ok(l) => {
+                    prop_assert!(l.len() <= MAX_LINE);
+                    let _ = Command::parse(&l);
+                    let _ = Reply::parse(&l);
+                }
+                Err(f) => prop_assert!(matches!(f.code, ErrorCode::TooLong | ErrorCode::BadByte)),
+            }
+        }
+    }
+
+    #[test]
+    fn arbitrary_strings_never_panic(s in "\\PC{0,400}") {
+        let _ = Command::parse(&s);
+        let _ = Reply::parse(&s);
+    }
+
+    #[test]
+    fn token_soup_never_panics(idx in proptest::collection::vec(0..WORDS.len(), 0..80)) {
+        let line: Vec<&str> = idx.iter().map(|i| WORDS[*i]).collect();
+        let line = line.join(" ");
+        let _ = Command::parse(&line);
+        let _ = Reply::parse(&line);
+    }
+
+    #[test]
+    fn mutated_valid_lines_never_panic(cut in 0usize..400, byte in any::<u8>(), pos in 0usize..400) {
+        let valid = [
+            line_of(&Command::Calibrate { xy: [[0.64, 0.33], [0.3, 0.6], [0.15, 0.06]], luminance: [21.0, 72.0, 7.0] }),
+            line_of(&Command::Reflect { illuminant: Illuminant::FL11, product: Reflectance::Default(spectrum_default(0.7)), factors: 1 }),
+            reply_of(&Reply::Colour(ColourReport { xyz: Xyz::new(1.0, 2.0, 3.0), led: Xyz::new(1.0, 2.0, 3.0), linear: [0.1, 0.2, 0.3], duty: [1, 2, 3], max: 65535, gamut: Gamut::In })),
+        ];
+        for v in valid {
+            let mut b = v.into_bytes();
+            let p = pos % (b.len() + 1);
+            b.insert(p, byte);
+            b.truncate(cut.max(1));
+            if let Ok(s) = String::from_utf8(b) {
+                let _ = Command::parse(&s);
+                let _ = Reply::parse(&s);
+            }
+        }
+    }
+
+    #[test]
+    fn colour_commands_round_trip(x in -1e6f32..1e6, y in -1e6f32..1e6, z in -1e6f32..1e6) {
+        let c = Command::Xyz(Xyz::new(x, y, z));
+        prop_assert_eq!(Command::parse(&line_of(&c)), Ok(c));
+    }
+
+    #[test]
+    fn colour_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), d in proptest::array::uniform3(any::<u16>()), m in any::<u16>(), g in 0..3u8) {
+        prop_assume!(v.iter().all(|x| x.is_finite()));
+        let r = Reply::Colour(ColourReport {
+            xyz: Xyz::new(v[0], v[1], v[2]),
+            led: Xyz::new(v[3], v[4], v[5]),
+            linear: [v[6], v[7], v[8]],
+            duty: d,
+            max: m,
+            gamut: [Gamut::In, Gamut::Out(GamutMap::Clip), Gamut::Out(GamutMap::Desaturate)][g as usize],
+        });
+        let s = reply_of(&r);
+        prop_assert!(s.len() <= MAX_REPLY, "{} bytes", s.len());
+        prop_assert_eq!(Reply::parse(&s), Ok(r));
+    }
+
+    #[test]
+    fn state_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), gm in any::<f32>()) {
+        prop_assume!(v.iter().all(|x| x.is_finite()) && gm.is_finite());
+        let r = Reply::State(StateReport {
+            protocol: 1,
+            primaries: [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]],
+            trc: [CurveSummary::Gamma(gm), CurveSummary::Table(64), CurveSummary::Srgb],
+            map: GamutMap::Desaturate,
+            observer: Observer::Cie1964,
+            duty: [65535; 3],
+            max: 65535,
+        });
+        let s = reply_of(&r);
+        prop_assert!(s.len() <= MAX_REPLY, "{} bytes", s.len());
+        prop_assert_eq!(Reply::parse(&s), Ok(r));
+    }
+}
+
+#[test]
+fn every_command_round_trips() {
+    let table = Transfer::table(&[0.0, 0.01, 0.2, 0.55, 1.0]).unwrap();
+    let commands = [
+        Command::Hello,
+        Command::State,
+        Command::Calibrate {
+            xy: [[0.7, 0.29], [0.17, 0.7], [0.135, 0.04]],
+            luminance: [2.5, 7.25, 1.0],
+        },
+        Command::Transfer {
+            channels: Channels::All,
+            curve: Transfer::Srgb,
+        },
+        Command::Transfer {
+            channels: Channels::Green,
+            curve: Transfer::Gamma(2.2),
+        },
+        Command::Transfer {
+            channels: Channels::Blue,
+            curve: table,
+        },
+        Command::Map(GamutMap::Desaturate),
+        Command::Observer(Observer::Cie1964),
+        Command::Xyz(Xyz::new(41.24, 21.26, 1.93)),
+        Command::Xyy(Xyy {
+            x: 0.3127,
+            y: 0.329,
+            big_y: 50.0,
+        }),
+        Command::Reflect {
+            illuminant: Illuminant::D65,
+            product: Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 0.5)),
+            factors: 1,
+        },
+        Command::Reflect {
+            illuminant: Illuminant::A,
+            product: Reflectance::Default(spectrum_default(-0.3)),
+            factors: 1,
+        },
+    ];
+    for c in commands {
+        let l = line_of(&c);
+        assert!(l.len() <= MAX_LINE);
+        assert_eq!(Command::parse(&l), Ok(c), "{l}");
+    }
+}
+
+#[test]
+fn products_are_folded_with_the_reduced_product() {
+    let a = spectrum_default(0.9);
+    let b = spectrum_default(0.4);
+    let c = spectrum_default(-0.2);
+    let factors = [
+        Reflectance::Default(a),
+        Reflectance::Default(b),
+        Reflectance::Default(c),
+    ];
+    let mut line = String::new();
+    write_reflect(&mut line, Illuminant::FL2, &factors).unwrap();
+    assert!(line.len() <= MAX_LINE, "{}", line.len());
+    match Command::parse(&line) {
+        Ok(Command::Reflect {
+            illuminant,
+            product: Reflectance::Default(p),
+            factors,
+        }) => {
+            assert_eq!(illuminant, Illuminant::FL2);
+            assert_eq!(factors, 3);
+            assert_eq!(p, a.mul(&b).mul(&c));
+        }
+        other => panic!("{other:?}"),
+    }
+    // mixed presets cannot be written
+    let mixed = [
+        Reflectance::Default(a),
+        Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 1.0)),
+    ];
+    assert!(write_reflect(&mut String::new(), Illuminant::D65, &mixed).is_err());
+}
+
+#[test]
+fn bad_lines_name_the_word_at_fault() {
+    let cases: &[(&str, ErrorCode, Option<u16>)] = &[
+        ("", ErrorCode::UnknownCommand, Some(0)),
+        ("blink", ErrorCode::UnknownCommand, Some(0)),
+        ("xyz 1 2", ErrorCode::MissingArgument, Some(3)),
+        ("xyz 1 2 3 4", ErrorCode::ExtraArgument, Some(4)),
+        ("xyz 1 two 3", ErrorCode::BadNumber, Some(2)),
+        ("xyz 1 2 1e40", ErrorCode::OutOfRange, Some(3)),
+        ("xyy 0.3 0 10", ErrorCode::OutOfRange, Some(2)),
+        ("map vivid", ErrorCode::UnknownName, Some(1)),
+        ("observer 2000", ErrorCode::UnknownName, Some(1)),
+        ("trc x srgb", ErrorCode::UnknownName, Some(1)),
+        ("trc r gamma 0", ErrorCode::OutOfRange, Some(3)),
+        ("trc r table 0 0.5 0.4", ErrorCode::BadCurve, Some(2)),
+        ("trc r table 0", ErrorCode::BadCurve, Some(2)),
+        ("refl paper D99 1 2", ErrorCode::UnknownName, Some(2)),
+        ("refl rgb D65 1", ErrorCode::UnknownName, Some(1)),
+        ("refl paper D65 1 2 3", ErrorCode::WrongCount, Some(6)),
+        (
+            "refl paper D65 1 2 3 4 5 6 7 8 9",
+            ErrorCode::WrongCount,
+            Some(11),
+        ),
+        (
+            "refl paper D65 1 2 3 4 5 6 7 8 *",
+            ErrorCode::WrongCount,
+            Some(12),
+        ),
+        (
+            "refl paper D65 1 2 3 * 5 6 7 8",
+            ErrorCode::WrongCount,
+            Some(6),
+        ),
+        (
+            "cal 0.64 0.33 1 0.3 0.6 1 0.15 0.06",
+            ErrorCode::MissingArgument,
+            Some(9),
+        ),
+        (
+            "cal 0.64 0.33 -1 0.3 0.6 1 0.15 0.06 1",
+            ErrorCode::OutOfRange,
+            Some(3),
+        ),
+    ];
+    for (line, code, at) in cases {
+        assert_eq!(
+            Command::parse(line),
+            Err(Fault {
+                code: *code,
+                at: *at
+            }),
+            "{line:?}"
+        );
+    }
+    // more than MAX_FACTORS factors
+    let one = "0.5 0 0 0 0.5 0 0 0";
+    let five = [one; 5].join(" * ");
+    assert_eq!(
+        Command::parse(&format!("refl paper D65 {five}")).map_err(|f| f.code),
+        Err(ErrorCode::WrongCount)
+    );
+}
+
+#[test]
+fn the_line_reader_bounds_and_reports() {
+    let mut bytes = vec![b'x'; MAX_LINE + 10];
+    bytes.extend_from_slice(b"\nstate\r\nxy\x00z\nhello\n\n");
+    let got = feed(&bytes);
+    assert_eq!(
+        got,
+        vec![
+            Err(Fault::new(ErrorCode::TooLong)),
+            Ok("state".to_owned()),
+            Err(Fault::new(ErrorCode::BadByte)),
+            Ok("hello".to_owned()),
+            Ok(String::new()),
+        ]
+    );
+    // exactly MAX_LINE bytes is accepted
+    let mut exact = vec![b' '; MAX_LINE];
+    exact.push(b'\n');
+    assert_eq!(feed(&exact), vec![Ok(" ".repeat(MAX_LINE))]);
+}
+
+#[test]
+fn replies_parse_and_reject() {
+    assert_eq!(
+        Reply::parse("ok hello specpoly-led protocol=1 max_line=1024 max=65535 future=1"),
+        Ok(Reply::Hello {
+            protocol: 1,
+            max_line: 1024,
+            max: 65535
+        })
+    );
+    assert_eq!(Reply::parse("ok cal"), Ok(Reply::Done("cal")));
+    assert_eq!(
+        Reply::parse("err bad-number at=2"),
+        Ok(Reply::Error(Fault {
+            code: ErrorCode::BadNumber,
+            at: Some(2)
+        }))
+    );
+    for bad in [
+        "",
+        "ok",
+        "ok colour xyz=1,2",
+        "ok colour xyz=1,2,3 led=1,2,3 linear=0,0,0 duty=1,2,3 max=9 gamut=maybe",
+        "ok hello other-device protocol=1 max_line=1 max=1",
+        "err no-such-code",
+        "garbage",
+    ] {
+        assert_eq!(
+            Reply::parse(bad),
+            Err(Fault::new(ErrorCode::BadReply)),
+            "{bad:?}"
+        );
+    }
+}
