@@ -2,8 +2,11 @@
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
 pub mod display;
+pub mod file;
+pub mod fit;
 pub mod instrument;
 pub mod measurement;
 pub mod patches;
 pub mod run;
 pub mod sim;
+pub mod verify;

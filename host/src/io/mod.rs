@@ -1,4 +1,5 @@
 //! File formats and output: CSV spectra, atomic file writes.
 
 pub mod atomic;
+pub mod cgats;
 pub mod csv;

@@ -1,0 +1,365 @@
+//! Fitting Cowan's model (Cowan 1983; the paper's §7.3) to display measurements.
+//!
+//! The model: `XYZ(r, g, b) = M · (t_R(r), t_G(g), t_B(b)) + K`, with `K` the black (XYZ at
+//! device 0, 0, 0), the columns `P_i` of `M` the primaries at full drive minus black, and
+//! `t_i` each channel's transfer curve from device value to linear light (`t_i(0) = 0`,
+//! `t_i(1) = 1`).
+//!
+//! 1. Repeated device values are averaged. `K` is the mean of the `(0, 0, 0)` patches; `P_i`
+//!    the mean of the full-drive single-channel patches minus `K`.
+//! 2. Each channel's ramp (patches where the other two channels are 0) gives
+//!    `t_i(v) = ((XYZ(v) − K) · P_i) / |P_i|²`, the least-squares scale of `P_i` that best
+//!    explains the ramp patch (Cowan's scalar-channel assumption: the primary's chromaticity
+//!    does not change with drive once black is removed).
+//! 3. The table: the ramp interpolated with a monotone cubic (Fritsch & Carlson 1980) and
+//!    resampled at `n ≤ 64` evenly spaced device values (what `specpoly-core` tabulates),
+//!    forced non-decreasing. The gamma: the exponent of `v^γ` nearest the ramp in least squares.
+//! 4. Optionally (`MatrixFit::LeastSquares`) `M` is re-fitted by linear least squares over all
+//!    fit patches, given their linearised drive and `K`: `M = argmin Σ w ‖XYZ − K − M·t‖²` with
+//!    `w = 1 / (Y + 0.01·Y_white)²` (relative error, so dark patches count as much as bright
+//!    ones, as ΔE does). This absorbs the small channel interaction of LCDs that the pure
+//!    full-drive matrix misses; see docs/calibration.md for the figures.
+//! 5. Additivity (Cowan's other assumption): the measured white against
+//!    `XYZ(R) + XYZ(G) + XYZ(B) − 2·K`, as ΔE00 (CIELAB relative to the measured white) and as
+//!    the luminance difference in percent.
+
+use super::file::{
+    Calibration, CalibrationData, FitReport, Primaries, Primary, Provenance, TransferCurves,
+    TransferKind, FORMAT, VERSION,
+};
+use super::measurement::Measurement;
+use super::verify;
+use crate::error::{CliError, Result};
+
+/// How the matrix `M` is found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum MatrixFit {
+    /// Cowan: the full-drive primaries minus black.
+    Cowan,
+    /// Weighted linear least squares over every fit patch (needs mixtures among them).
+    #[default]
+    #[value(name = "least-squares")]
+    LeastSquares,
+}
+
+/// Fit options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FitOptions {
+    /// The transfer curve the model uses (both are always fitted and stored).
+    pub transfer: TransferKind,
+    /// How the matrix is found.
+    pub matrix: MatrixFit,
+    /// Points of each transfer table (2–64).
+    pub table_points: usize,
+    /// Whether the measurements are in cd/m² (else relative, white `Y = 100`).
+    pub absolute: bool,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            transfer: TransferKind::Table,
+            matrix: MatrixFit::LeastSquares,
+            table_points: specpoly_core::display::TABLE_MAX,
+            absolute: true,
+        }
+    }
+}
+
+/// Whether a patch is one the pure Cowan model is built from: black, white, or a
+/// single-channel ramp step.
+pub fn is_ramp(m: &Measurement) -> bool {
+    let zeros = m.device.iter().filter(|v| **v <= 1e-9).count();
+    zeros >= 2 || m.device.iter().all(|v| *v >= 1.0 - 1e-9)
+}
+
+/// Averages repeated device values (device values equal to 1e-6).
+fn groups(meas: &[Measurement]) -> Vec<Measurement> {
+    let key = |m: &Measurement| m.device.map(|v| (v * 1e6).round() as i64);
+    let mut keys: Vec<([i64; 3], [f64; 3], usize)> = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    for m in meas {
+        let k = key(m);
+        let i = *index.entry(k).or_insert_with(|| {
+            keys.push((k, [0.0; 3], 0));
+            keys.len() - 1
+        });
+        for c in 0..3 {
+            keys[i].1[c] += m.xyz[c];
+        }
+        keys[i].2 += 1;
+    }
+    keys.into_iter()
+        .map(|(k, s, n)| Measurement {
+            device: k.map(|v| v as f64 / 1e6),
+            xyz: s.map(|v| v / n as f64),
+        })
+        .collect()
+}
+
+fn find(g: &[Measurement], dev: [f64; 3]) -> Option<[f64; 3]> {
+    g.iter()
+        .find(|m| (0..3).all(|c| (m.device[c] - dev[c]).abs() < 1e-9))
+        .map(|m| m.xyz)
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Monotone piecewise-cubic interpolation (Fritsch & Carlson 1980) through `(x, y)`, `x`
+/// strictly increasing, evaluated at `t`.
+pub fn pchip(x: &[f64], y: &[f64], t: f64) -> f64 {
+    let n = x.len();
+    if n == 1 {
+        return y[0];
+    }
+    let t = t.clamp(x[0], x[n - 1]);
+    let k = x.partition_point(|v| *v <= t).clamp(1, n - 1) - 1;
+    let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    let d: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
+    let slope = |i: usize| -> f64 {
+        if i == 0 {
+            d[0]
+        } else if i == n - 1 {
+            d[n - 2]
+        } else if d[i - 1] * d[i] <= 0.0 {
+            0.0
+        } else {
+            let w1 = 2.0 * h[i] + h[i - 1];
+            let w2 = h[i] + 2.0 * h[i - 1];
+            (w1 + w2) / (w1 / d[i - 1] + w2 / d[i])
+        }
+    };
+    let (m0, m1) = (slope(k), slope(k + 1));
+    let s = (t - x[k]) / h[k];
+    let (s2, s3) = (s * s, s * s * s);
+    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
+    let h10 = s3 - 2.0 * s2 + s;
+    let h01 = -2.0 * s3 + 3.0 * s2;
+    let h11 = s3 - s2;
+    h00 * y[k] + h10 * h[k] * m0 + h01 * y[k + 1] + h11 * h[k] * m1
+}
+
+/// The exponent of `v^γ` nearest the points in least squares (golden-section search on
+/// `γ ∈ [0.3, 6]`).
+fn fit_gamma(v: &[f64], l: &[f64]) -> f64 {
+    let cost = |g: f64| -> f64 {
+        v.iter()
+            .zip(l)
+            .map(|(v, l)| (v.powf(g) - l).powi(2))
+            .sum()
+    };
+    let (mut a, mut b) = (0.3f64, 6.0f64);
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..100 {
+        let c = b - r * (b - a);
+        let d = a + r * (b - a);
+        if cost(c) < cost(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// Solves the 3×3 system `A x = b` (Cramer's rule, f64); `None` if singular.
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(a);
+    let scale = a.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
+    if !d.is_finite() || d.abs() <= 1e-14 * scale.powi(3) {
+        return None;
+    }
+    let mut x = [0.0; 3];
+    for (c, xc) in x.iter_mut().enumerate() {
+        let mut m = a;
+        for r in 0..3 {
+            m[r][c] = b[r];
+        }
+        *xc = det(m) / d;
+    }
+    Some(x)
+}
+
+/// Fits the model to measurements (device values 0–1, XYZ in cd/m² or relative — say which in
+/// `opts.absolute`). Needs black `(0,0,0)` and the three full-drive primaries; the ramps
+/// give the curves. The returned calibration's provenance is empty except for the patch
+/// counts; the caller fills in the source.
+pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
+    if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
+        return Err(CliError::usage(format!(
+            "table points {} must be 2–{}",
+            opts.table_points,
+            specpoly_core::display::TABLE_MAX
+        )));
+    }
+    if let Some(i) = meas
+        .iter()
+        .position(|m| m.device.iter().chain(&m.xyz).any(|v| !v.is_finite()))
+    {
+        return Err(CliError::data(format!("measurement {} is not finite", i + 1)));
+    }
+    let g = groups(meas);
+    let black = find(&g, [0.0; 3]).ok_or_else(|| {
+        CliError::data("no black patch (device 0 0 0): Cowan's model needs the black level")
+    })?;
+    let names = ["red", "green", "blue"];
+    let mut p = [[0.0; 3]; 3];
+    for c in 0..3 {
+        let mut dev = [0.0; 3];
+        dev[c] = 1.0;
+        let full = find(&g, dev).ok_or_else(|| {
+            CliError::data(format!(
+                "no full-drive {} patch (device {} {} {})",
+                names[c], dev[0], dev[1], dev[2]
+            ))
+        })?;
+        p[c] = sub(full, black);
+        if p[c][1] <= 0.0 || p[c].iter().sum::<f64>() <= 0.0 {
+            return Err(CliError::data(format!(
+                "the full-drive {} patch is not brighter than black",
+                names[c]
+            )));
+        }
+    }
+    // ramps → tables and gammas
+    let n = opts.table_points;
+    let mut tables: [Vec<f64>; 3] = Default::default();
+    let mut gamma = [0.0; 3];
+    for c in 0..3 {
+        let mut pts: Vec<(f64, f64)> = g
+            .iter()
+            .filter(|m| (0..3).all(|k| k == c || m.device[k] <= 1e-9))
+            .map(|m| {
+                (
+                    m.device[c],
+                    dot(sub(m.xyz, black), p[c]) / dot(p[c], p[c]),
+                )
+            })
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
+        let mut t: Vec<f64> = (0..n)
+            .map(|i| pchip(&x, &y, i as f64 / (n - 1) as f64))
+            .collect();
+        t[0] = 0.0;
+        t[n - 1] = 1.0;
+        for i in 1..n {
+            t[i] = t[i].clamp(t[i - 1], 1.0);
+        }
+        tables[c] = t;
+        let inner: Vec<usize> = (0..x.len()).filter(|i| x[*i] > 0.0 && x[*i] < 1.0).collect();
+        gamma[c] = if inner.is_empty() {
+            1.0
+        } else {
+            fit_gamma(
+                &inner.iter().map(|i| x[*i]).collect::<Vec<_>>(),
+                &inner.iter().map(|i| y[*i]).collect::<Vec<_>>(),
+            )
+        };
+    }
+    let white = find(&g, [1.0; 3]);
+    let build = |p: [[f64; 3]; 3], matrix: &str| -> Result<Calibration> {
+        let prim = p.map(Primary::from_xyz);
+        let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]);
+        Calibration::new(CalibrationData {
+            format: FORMAT.into(),
+            version: VERSION,
+            units: if opts.absolute { "cd/m2" } else { "relative" }.into(),
+            black,
+            white: white.unwrap_or(model_white),
+            primaries: Primaries {
+                red: prim[0],
+                green: prim[1],
+                blue: prim[2],
+            },
+            transfer: TransferCurves {
+                kind: opts.transfer,
+                gamma,
+                red: tables[0].clone(),
+                green: tables[1].clone(),
+                blue: tables[2].clone(),
+            },
+            fit: FitReport {
+                matrix: matrix.into(),
+                ..Default::default()
+            },
+            provenance: Provenance::default(),
+        })
+    };
+    let mut cal = build(p, "cowan")?;
+    if opts.matrix == MatrixFit::LeastSquares {
+        let wy = white.map_or(p[0][1] + p[1][1] + p[2][1], |w| w[1]);
+        // normal equations: (Σ w t tᵀ) m_r = Σ w t (XYZ_r − K_r) for each row r
+        let mut a = [[0.0; 3]; 3];
+        let mut b = [[0.0; 3]; 3];
+        for m in &g {
+            let t = cal.linearise(m.device);
+            let y = sub(m.xyz, black);
+            let w = 1.0 / (m.xyz[1].max(0.0) + 0.01 * wy).powi(2);
+            for i in 0..3 {
+                for j in 0..3 {
+                    a[i][j] += w * t[i] * t[j];
+                }
+                for r in 0..3 {
+                    b[r][i] += w * t[i] * y[r];
+                }
+            }
+        }
+        let rows: Option<Vec<[f64; 3]>> = (0..3).map(|r| solve3(a, b[r])).collect();
+        let rows = rows.ok_or_else(|| {
+            CliError::data("least-squares matrix: the fit patches do not span three channels")
+        })?;
+        let lsq = [0, 1, 2].map(|c| [rows[0][c], rows[1][c], rows[2][c]]);
+        cal = build(lsq, "least-squares")?;
+    }
+    let residual = verify::stats(&verify::delta_e(&cal, meas));
+    let (additivity_delta_e00, additivity_luminance_percent) = match white {
+        Some(w) => {
+            let pred = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]);
+            (
+                Some(verify::delta_e00(pred, w, w)),
+                Some((pred[1] / w[1] - 1.0) * 100.0),
+            )
+        }
+        None => (None, None),
+    };
+    let (report, prov) = cal.report_mut();
+    report.residual = residual;
+    report.additivity_delta_e00 = additivity_delta_e00;
+    report.additivity_luminance_percent = additivity_luminance_percent;
+    prov.patches_fit = meas.len();
+    prov.patches_total = meas.len();
+    prov.created = super::file::now_utc();
+    Ok(cal)
+}
+
+/// Fits on `fit_set` and verifies on `verify_set` (may be empty), recording both in the
+/// report and the provenance's patch counts.
+pub fn fit_and_verify(
+    fit_set: &[Measurement],
+    verify_set: &[Measurement],
+    opts: &FitOptions,
+) -> Result<Calibration> {
+    let mut cal = fit(fit_set, opts)?;
+    let v = if verify_set.is_empty() {
+        None
+    } else {
+        Some(verify::stats(&verify::delta_e(&cal, verify_set)))
+    };
+    let (report, prov) = cal.report_mut();
+    report.verification = v;
+    prov.patches_verify = verify_set.len();
+    prov.patches_total = fit_set.len() + verify_set.len();
+    Ok(cal)
+}
