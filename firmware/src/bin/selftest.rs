@@ -1,0 +1,226 @@
+//! On-target tests and measurements, under QEMU with semihosting: exits 0 when every check
+//! passes, 1 otherwise. Prints, for the host tests and docs/performance.md:
+//!
+//! - `check NAME ok|FAIL`;
+//! - `insns PRESET WHAT N`: instructions per call (meaningful under `-icount shift=0`);
+//! - `colour I duty R G B`: duties of a fixed set of colours on an sRGB-curve LED (compared
+//!   between the libm and the `fast-math` builds on the host);
+//! - `stack BYTES`: the deepest stack use (painted);
+//! - `selftest: pass|fail`.
+#![no_std]
+#![no_main]
+
+use core::fmt::Write as _;
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use heapless::String;
+use specpoly_core::{
+    Breaks, DefaultSpectrum, Illuminant, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
+    PAPER_BREAKS,
+};
+use specpoly_firmware::board::{icount::Counter, stack};
+use specpoly_firmware::Controller;
+use specpoly_protocol::{
+    write_reflect, Command, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
+};
+
+/// A smooth test reflectance: a sigmoid-like ramp, as Chebyshev coefficients per span.
+fn ramp<const S: usize>(breaks: Breaks<S>, level: f32) -> Spectrum<S, 4> {
+    let mut s = Spectrum::<S, 4>::zero(breaks);
+    for sp in 0..S {
+        let c = s.coefficients_mut();
+        c[0][sp] = level * (0.2 + 0.6 * sp as f32 / S as f32);
+        c[1][sp] = 0.05 * level;
+        c[2][sp] = -0.01;
+        c[3][sp] = 0.002;
+    }
+    s
+}
+
+struct Checks {
+    failed: u32,
+}
+
+impl Checks {
+    fn check(&mut self, name: &str, ok: bool) {
+        hprintln!("check {} {}", name, if ok { "ok" } else { "FAIL" });
+        if !ok {
+            self.failed += 1;
+        }
+    }
+}
+
+fn handle(c: &mut Controller, line: &str) -> Reply {
+    c.handle(Command::parse(line))
+}
+
+#[entry]
+fn main() -> ! {
+    stack::paint();
+    let mut checks = Checks { failed: 0 };
+    let Some(p) = cortex_m::Peripherals::take() else {
+        hprintln!("selftest: no peripherals");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {}
+    };
+    let mut counter = Counter::new(p.SYST);
+    let mut c = Controller::new(u16::MAX);
+
+    // 1. colour results
+    let w = c.display().white();
+    let mut line: String<MAX_LINE> = String::new();
+    let _ = write!(line, "xyz {} 100 {}", w.x * 100.0 / w.y, w.z * 100.0 / w.y);
+    let white_ok = matches!(handle(&mut c, &line),
+        Reply::Colour(r) if r.gamut == Gamut::In && r.duty.iter().all(|d| *d >= 65534));
+    checks.check("white-at-full-duty", white_ok);
+
+    let mut worst = 0.0f32;
+    for (x, y, big_y) in [(0.3127, 0.329, 50.0), (0.4, 0.4, 30.0), (0.25, 0.3, 10.0)] {
+        let t = Xyy { x, y, big_y }.to_xyz();
+        let r = c.colour(t);
+        for (a, b) in r.led.to_array().iter().zip(t.to_array()) {
+            worst = worst.max((a - b).abs());
+        }
+    }
+    checks.check("in-gamut-emitted-within-quantisation", worst < 0.01);
+
+    let out = matches!(handle(&mut c, "xyy 0.08 0.85 50"),
+        Reply::Colour(r) if r.gamut != Gamut::In);
+    checks.check("out-of-gamut-reported", out);
+
+    let one = DefaultSpectrum::constant(Breaks::uniform(), 1.0);
+    let d65 = c.reflectance_xyz(Illuminant::D65, &Reflectance::Default(one));
+    checks.check(
+        "perfect-reflector-is-d65-white",
+        (d65.x - 95.04).abs() < 0.05 && (d65.y - 100.0).abs() < 1e-3 && (d65.z - 108.88).abs() < 0.05,
+    );
+
+    let half = Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 0.5));
+    line.clear();
+    let _ = write_reflect(&mut line, Illuminant::A, &[half, half]);
+    let quarter = matches!(handle(&mut c, &line),
+        Reply::Colour(r) if (r.xyz.y - 25.0).abs() < 1e-3);
+    checks.check("product-of-halves-is-a-quarter", quarter);
+
+    // 2. fuzz: random bytes never panic and every reply fits
+    let mut reader = LineReader::<MAX_LINE>::new();
+    let mut out: String<MAX_REPLY> = String::new();
+    let mut seed = 0x2545_F491u32;
+    let mut replies = 0u32;
+    let mut fits = true;
+    let words: [&[u8]; 8] = [b"refl ", b"default ", b"D65 ", b"0.5 ", b"* ", b"xyz ", b"\n", b"trc r table "];
+    for i in 0..60_000u32 {
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        // half raw bytes, half grammar words, so parsing goes deep
+        let chunk: &[u8] = if i % 2 == 0 {
+            &[(seed & 0xff) as u8]
+        } else {
+            words[(seed % 8) as usize]
+        };
+        for b in chunk {
+            if let Some(l) = reader.push(*b) {
+                let r = match l {
+                    Ok(l) => c.handle(Command::parse(l)),
+                    Err(f) => Reply::Error(f),
+                };
+                out.clear();
+                fits &= r.write(&mut out).is_ok();
+                replies += 1;
+            }
+        }
+    }
+    checks.check("fuzz-replies-fit", fits && replies > 100);
+
+    // 3. instruction counts (under -icount shift=0)
+    let cal = counter.insns_per_call(10, || cortex_m::asm::delay(100_000));
+    hprintln!("insns calibration delay-100000 {}", cal);
+    let n = 20;
+    let ill = Illuminant::D65.tabulated();
+    let m_paper = Moments::<2, 4>::new(Observer::Cie1931, &ill, PAPER_BREAKS);
+    let m_default = Moments::<8, 4>::new(Observer::Cie1931, &ill, Breaks::uniform());
+    let rp = ramp(PAPER_BREAKS, 0.9);
+    let rd = ramp(Breaks::<8>::uniform(), 0.9);
+    let disp = c.display().clone();
+    let insns = counter.insns_per_call(2, || {
+        core::hint::black_box(Moments::<2, 4>::new(Observer::Cie1931, &ill, PAPER_BREAKS));
+    });
+    hprintln!("insns paper moments {}", insns);
+    let insns = counter.insns_per_call(2, || {
+        core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill, Breaks::uniform()));
+    });
+    hprintln!("insns default moments {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        core::hint::black_box(core::hint::black_box(&rp).mul(core::hint::black_box(&rp)));
+    });
+    hprintln!("insns paper mul {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        core::hint::black_box(core::hint::black_box(&rd).mul(core::hint::black_box(&rd)));
+    });
+    hprintln!("insns default mul {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        core::hint::black_box(m_paper.xyz(core::hint::black_box(&rp)));
+    });
+    hprintln!("insns paper xyz {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        core::hint::black_box(m_default.xyz(core::hint::black_box(&rd)));
+    });
+    hprintln!("insns default xyz {}", insns);
+    let target = m_default.xyz(&rd);
+    for (name, curve) in [("linear", "trc rgb linear"), ("srgb", "trc rgb srgb")] {
+        let _ = handle(&mut c, curve);
+        let d = c.display().clone();
+        let insns = counter.insns_per_call(n * 50, || {
+            core::hint::black_box(
+                d.encode_relative(core::hint::black_box(target), specpoly_core::GamutMap::Clip),
+            );
+        });
+        hprintln!("insns {} encode {}", name, insns);
+    }
+    let _ = disp;
+    // whole colour computations: reflectance (cached moments) → XYZ → duties
+    for (preset, r) in [("paper", Reflectance::Paper(rp)), ("default", Reflectance::Default(rd))] {
+        let _ = handle(&mut c, "trc rgb srgb");
+        let _ = c.reflectance_xyz(Illuminant::D65, &r); // fill the moments cache
+        let insns = counter.insns_per_call(n * 10, || {
+            let xyz = c.reflectance_xyz(Illuminant::D65, core::hint::black_box(&r));
+            core::hint::black_box(c.colour(xyz));
+        });
+        hprintln!("insns {} colour {}", preset, insns);
+        // a whole line: parse (two factors), compute, format the reply
+        line.clear();
+        let _ = write_reflect(&mut line, Illuminant::D65, &[r, r]);
+        let insns = counter.insns_per_call(n, || {
+            let reply = c.handle(Command::parse(core::hint::black_box(&line)));
+            out.clear();
+            let _ = reply.write(&mut out);
+        });
+        hprintln!("insns {} line-2-factors {}", preset, insns);
+    }
+
+    // 4. colours on an sRGB-curve LED, for the libm / fast-math comparison on the host
+    let _ = handle(&mut c, "trc rgb srgb");
+    let mut i = 0;
+    for x in [0.25f32, 0.3, 0.35, 0.4, 0.45] {
+        for y in [0.25f32, 0.3, 0.35, 0.4] {
+            for big_y in [5.0f32, 20.0, 60.0] {
+                let r = c.colour(Xyy { x, y, big_y }.to_xyz());
+                hprintln!("colour {} duty {} {} {}", i, r.duty[0], r.duty[1], r.duty[2]);
+                i += 1;
+            }
+        }
+    }
+
+    hprintln!("stack {}", stack::high_water());
+    if checks.failed == 0 {
+        hprintln!("selftest: pass");
+        debug::exit(debug::EXIT_SUCCESS);
+    } else {
+        hprintln!("selftest: fail ({} checks)", checks.failed);
+        debug::exit(debug::EXIT_FAILURE);
+    }
+    loop {
+        cortex_m::asm::wfi();
+    }
+}

@@ -1,0 +1,21 @@
+//! # specpoly-firmware
+//!
+//! An RGB-LED colour controller on `specpoly-core`: an RGB LED is a three-primary display, so
+//! its colour is controlled with the same mathematics as a monitor (Cowan's model, the paper's
+//! §7.3). Commands arrive as lines on the UART ([`specpoly_protocol`], `PROTOCOL.md`); the
+//! [`controller`] computes XYZ and duties; the [`led`] driver sets three PWM channels.
+//!
+//! The controller and the driver are target-independent and unit-tested on the host; the board
+//! support ([`board`]: UART, a PWM stand-in, stack painting, an instruction counter) exists only
+//! for `thumbv7em-none-eabihf` (QEMU `mps2-an386`). No heap.
+#![cfg_attr(not(test), no_std)]
+#![warn(missing_docs)]
+
+pub mod controller;
+pub mod led;
+
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub mod board;
+
+pub use controller::Controller;
+pub use led::{LedError, RgbLed};
