@@ -9,6 +9,7 @@ use crate::error::{CliError, Result};
 use crate::repr::Repr;
 use crate::spectra::{self, Named};
 use specpoly_core::{Observer, Tabulated};
+use std::fmt::Write as _;
 
 /// Arguments of `specpoly xyz`.
 #[derive(Debug, clap::Args)]
@@ -116,23 +117,26 @@ pub fn run(a: &XyzArgs) -> Result<()> {
     if a.json {
         let s = serde_json::to_string_pretty(&rows)
             .map_err(|e| CliError::data(format!("JSON: {e}")))?;
-        println!("{s}");
-        return Ok(());
+        return crate::io::stdout::print(&format!("{s}\n"));
     }
+    let mut o = String::new();
     let w = rows.iter().map(|r| r.name.len()).max().unwrap_or(4).max(4);
-    println!(
+    let _ = writeln!(
+        o,
         "# illuminant {}, CIE {} observer, repr {}; Lab against the illuminant's white (Y = 100)",
         a.illuminant, a.observer, a.repr
     );
-    println!(
+    let _ = writeln!(
+        o,
         "{:<w$} {:>9} {:>9} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8}",
         "name", "X", "Y", "Z", "x", "y", "L*", "a*", "b*"
     );
     for r in &rows {
-        println!(
+        let _ = writeln!(
+            o,
             "{:<w$} {:>9.4} {:>9.4} {:>9.4} {:>7.4} {:>7.4} {:>8.3} {:>8.3} {:>8.3}",
             r.name, r.x_, r.y_, r.z_, r.x, r.y, r.l, r.a, r.b
         );
     }
-    Ok(())
+    crate::io::stdout::print(&o)
 }

@@ -1,0 +1,14 @@
+//! Printing a command's whole output at once. A closed pipe (`specpoly … | head`) is not an
+//! error: the reader has what it wanted, so the command ends quietly instead of panicking.
+
+use crate::error::{CliError, Result};
+use std::io::Write;
+
+/// Writes `text` to stdout; a broken pipe counts as success.
+pub fn print(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::io("stdout", e)),
+        _ => Ok(()),
+    }
+}
