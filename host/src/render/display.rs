@@ -1,0 +1,112 @@
+//! The display an image is encoded for: `sRGB` (IEC 61966-2-1), or a small TOML file giving a
+//! measured display's primaries (Cowan 1983):
+//!
+//! ```toml
+//! primaries = [[0.640, 0.330], [0.300, 0.600], [0.150, 0.060]]  # x, y of red, green, blue
+//! luminance = [21.3, 71.5, 7.2]      # Y (cd/m²) of each primary at full drive
+//! gamma = 2.2                        # or: transfer = "srgb", or: transfer = [0.0, …, 1.0] (a table)
+//! black = [0.2, 0.21, 0.25]          # optional: XYZ (cd/m²) at zero drive
+//! ```
+//!
+//! The calibration workflow (`specpoly calibrate`) measures these numbers.
+
+use crate::error::{CliError, Result};
+use serde::Deserialize;
+use specpoly_core::{Display, Transfer, Xyz};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DisplayFile {
+    primaries: [[f32; 2]; 3],
+    luminance: [f32; 3],
+    gamma: Option<f32>,
+    transfer: Option<TransferSpec>,
+    black: Option<[f32; 3]>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum TransferSpec {
+    Name(String),
+    Table(Vec<f32>),
+}
+
+/// `sRGB` (any case) or a display TOML file.
+pub fn load(spec: &str) -> Result<Display> {
+    if spec.eq_ignore_ascii_case("srgb") {
+        return Ok(Display::srgb());
+    }
+    let path = std::path::Path::new(spec);
+    if !path.exists() {
+        return Err(CliError::usage(format!(
+            "--display `{spec}`: not `sRGB` and no such file"
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    parse(&text, spec)
+}
+
+/// Parses a display TOML; `source` names it in errors.
+pub fn parse(text: &str, source: &str) -> Result<Display> {
+    let f: DisplayFile = toml::from_str(text)
+        .map_err(|e| CliError::data(format!("{source}: {}", e.message().trim())))?;
+    let curve = match (f.gamma, f.transfer) {
+        (Some(_), Some(_)) => {
+            return Err(CliError::data(format!(
+                "{source}: give `gamma` or `transfer`, not both"
+            )))
+        }
+        (Some(g), None) if g.is_finite() && g > 0.0 => Transfer::Gamma(g),
+        (Some(g), None) => {
+            return Err(CliError::data(format!(
+                "{source}: gamma {g} must be positive"
+            )))
+        }
+        (None, None) => Transfer::Srgb,
+        (None, Some(TransferSpec::Name(n))) => match n.to_ascii_lowercase().as_str() {
+            "srgb" => Transfer::Srgb,
+            "linear" => Transfer::Linear,
+            _ => {
+                return Err(CliError::data(format!(
+                    "{source}: transfer `{n}`: use \"srgb\", \"linear\" or a table"
+                )))
+            }
+        },
+        (None, Some(TransferSpec::Table(t))) => Transfer::table(&t)
+            .map_err(|e| CliError::data(format!("{source}: transfer table: {e}")))?,
+    };
+    let black = f.black.map(Xyz::from_array).unwrap_or_default();
+    if f.luminance.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
+        return Err(CliError::data(format!(
+            "{source}: every primary's luminance must be positive"
+        )));
+    }
+    Display::from_primaries(
+        f.primaries,
+        f.luminance,
+        black,
+        [curve.clone(), curve.clone(), curve],
+    )
+    .map_err(|e| CliError::data(format!("{source}: {e}")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_a_display() {
+        let d = parse(
+            "primaries = [[0.64, 0.33], [0.30, 0.60], [0.15, 0.06]]\nluminance = [21.26, 71.52, 7.22]\ngamma = 2.2\n",
+            "d.toml",
+        )
+        .unwrap();
+        assert!((d.white().y - 100.0).abs() < 0.01);
+        assert!(parse("primaries = 1", "d.toml").is_err());
+        assert!(parse(
+            "primaries = [[0.64, 0.33], [0.30, 0.60], [0.15, 0.06]]\nluminance = [1, 1, -1]\n",
+            "d.toml"
+        )
+        .is_err());
+    }
+}

@@ -1,0 +1,662 @@
+//! The scene file (TOML, documented in `docs/scenes.md`) and its resolution into geometry and
+//! tabulated spectra. Unknown keys are errors (`deny_unknown_fields`); every error names the
+//! file and the object.
+
+use super::geometry::{Camera, Shape, V3};
+use super::upsample;
+use crate::error::{CliError, Result};
+use crate::spectra::{self, Named};
+use serde::de::{self, Deserializer, MapAccess, Visitor};
+use serde::Deserialize;
+use specpoly_core::Observer;
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// A spectrum as a scene file writes it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SpectrumSpec {
+    /// A constant (flat) spectrum: `0.8`.
+    Constant(f32),
+    /// A spectrum name: `"colorchecker#red"`, `"FL11"`, `"my.csv#paint"`.
+    Name(String),
+    /// A table: `{ spectrum = NAME, scale = K, normalize = true }` or `{ rgb = [r, g, b] }`.
+    Table(SpectrumTable),
+}
+
+/// The table form of a spectrum.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectrumTable {
+    /// A spectrum name.
+    pub spectrum: Option<String>,
+    /// A linear-sRGB colour, upsampled to a smooth reflectance (see [`upsample`]).
+    pub rgb: Option<[f32; 3]>,
+    /// Divide by the maximum over 380–780 nm first.
+    #[serde(default)]
+    pub normalize: bool,
+    /// Multiply by this.
+    pub scale: Option<f32>,
+}
+
+impl<'de> Deserialize<'de> for SpectrumSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = SpectrumSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str(
+                    "a spectrum: a number, a name like \"colorchecker#red\", or a table \
+                     { spectrum = NAME, scale = K, normalize = BOOL } / { rgb = [R, G, B] }",
+                )
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> std::result::Result<SpectrumSpec, E> {
+                Ok(SpectrumSpec::Constant(v as f32))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> std::result::Result<SpectrumSpec, E> {
+                Ok(SpectrumSpec::Constant(v as f32))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> std::result::Result<SpectrumSpec, E> {
+                Ok(SpectrumSpec::Constant(v as f32))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> std::result::Result<SpectrumSpec, E> {
+                Ok(SpectrumSpec::Name(v.to_string()))
+            }
+            fn visit_map<A: MapAccess<'de>>(
+                self,
+                m: A,
+            ) -> std::result::Result<SpectrumSpec, A::Error> {
+                let t = SpectrumTable::deserialize(de::value::MapAccessDeserializer::new(m))?;
+                Ok(SpectrumSpec::Table(t))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+fn zero() -> SpectrumSpec {
+    SpectrumSpec::Constant(0.0)
+}
+fn one() -> f32 {
+    1.0
+}
+
+/// `[render]`: image and tracer settings.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    /// Image width (pixels).
+    #[serde(default = "default_size")]
+    pub width: u32,
+    /// Image height (pixels).
+    #[serde(default = "default_size")]
+    pub height: u32,
+    /// Samples per pixel along each axis (a regular `n × n` grid).
+    #[serde(default = "default_samples")]
+    pub samples: u32,
+    /// Largest number of reflections/refractions along a path.
+    #[serde(default = "default_depth")]
+    pub max_depth: u32,
+    /// `"1931"` or `"1964"`.
+    #[serde(default = "default_observer")]
+    pub observer: String,
+    /// Scales every XYZ before display.
+    #[serde(default = "one")]
+    pub exposure: f32,
+    /// Adapt the first light's white to the display white (Bradford) before display.
+    #[serde(default = "yes")]
+    pub white_balance: bool,
+}
+
+fn default_size() -> u32 {
+    256
+}
+fn default_samples() -> u32 {
+    1
+}
+fn default_depth() -> u32 {
+    5
+}
+fn default_observer() -> String {
+    "1931".into()
+}
+fn yes() -> bool {
+    true
+}
+
+impl Default for RenderSection {
+    fn default() -> Self {
+        Self {
+            width: default_size(),
+            height: default_size(),
+            samples: default_samples(),
+            max_depth: default_depth(),
+            observer: default_observer(),
+            exposure: 1.0,
+            white_balance: true,
+        }
+    }
+}
+
+/// `[camera]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// Eye position.
+    pub position: [f32; 3],
+    /// Point looked at.
+    pub look_at: [f32; 3],
+    /// Up direction.
+    #[serde(default = "up")]
+    pub up: [f32; 3],
+    /// Vertical field of view (degrees).
+    #[serde(default = "fov")]
+    pub fov: f32,
+}
+fn up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn fov() -> f32 {
+    40.0
+}
+
+/// `[ambient]`: the ambient light and the background.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AmbientSection {
+    /// The ambient light's spectral power distribution.
+    pub spectrum: SpectrumSpec,
+    /// Ambient intensity `k_a` (the ambient term is `k_a · diffuse`).
+    #[serde(default)]
+    pub intensity: f32,
+    /// What rays that leave the scene see: a reflectance lit by the ambient light at unit
+    /// intensity.
+    #[serde(default = "zero")]
+    pub background: SpectrumSpec,
+}
+
+/// `[[light]]`: a point light.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightSection {
+    /// Position.
+    pub position: [f32; 3],
+    /// Spectral power distribution (a name: `D65`, `FL11`, a file).
+    pub spectrum: SpectrumSpec,
+    /// Intensity: a white surface facing the light has `Y = 100 · intensity`.
+    #[serde(default = "one")]
+    pub intensity: f32,
+}
+
+/// `[materials.NAME]`: Whitted's illumination model with Phong highlights.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// Lambertian diffuse reflectance.
+    #[serde(default = "zero")]
+    pub diffuse: SpectrumSpec,
+    /// Phong specular coefficient (a number, or a spectrum for coloured highlights).
+    #[serde(default = "zero")]
+    pub specular: SpectrumSpec,
+    /// Phong exponent.
+    #[serde(default = "default_phong")]
+    pub phong: f32,
+    /// Mirror reflectance.
+    #[serde(default = "zero")]
+    pub mirror: SpectrumSpec,
+    /// Transmission filter, applied at every crossing of the surface.
+    #[serde(default = "zero")]
+    pub transmission: SpectrumSpec,
+    /// Index of refraction (of the inside; the outside is air, 1).
+    #[serde(default = "one")]
+    pub ior: f32,
+}
+fn default_phong() -> f32 {
+    32.0
+}
+
+/// `[[sphere]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSection {
+    /// Centre.
+    pub center: [f32; 3],
+    /// Radius (> 0).
+    pub radius: f32,
+    /// Material name.
+    pub material: String,
+}
+
+/// `[[plane]]`, optionally a checkerboard of two materials.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSection {
+    /// A point on the plane.
+    pub point: [f32; 3],
+    /// The normal (front side).
+    pub normal: [f32; 3],
+    /// Material name.
+    pub material: String,
+    /// Second material of a checkerboard.
+    pub checker_material: Option<String>,
+    /// Checker square size.
+    #[serde(default = "one")]
+    pub checker_size: f32,
+}
+
+/// `[[box]]`: axis-aligned.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSection {
+    /// Lower corner.
+    pub min: [f32; 3],
+    /// Upper corner.
+    pub max: [f32; 3],
+    /// Material name.
+    pub material: String,
+}
+
+/// A scene file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Image and tracer settings.
+    #[serde(default)]
+    pub render: RenderSection,
+    /// Camera.
+    pub camera: CameraSection,
+    /// Ambient light and background.
+    pub ambient: Option<AmbientSection>,
+    /// Point lights.
+    #[serde(default)]
+    pub light: Vec<LightSection>,
+    /// Materials by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSection>,
+    /// Spheres.
+    #[serde(default)]
+    pub sphere: Vec<SphereSection>,
+    /// Planes.
+    #[serde(default)]
+    pub plane: Vec<PlaneSection>,
+    /// Boxes.
+    #[serde(default, rename = "box")]
+    pub boxes: Vec<BoxSection>,
+}
+
+/// A material with every spectrum resolved to tabulated data (`None` = zero).
+#[derive(Clone, Debug)]
+pub struct Material {
+    /// Its name in the file.
+    pub name: String,
+    /// Lambertian diffuse reflectance.
+    pub diffuse: Option<Named>,
+    /// Phong specular coefficient.
+    pub specular: Option<Named>,
+    /// Phong exponent.
+    pub phong: f32,
+    /// Mirror reflectance.
+    pub mirror: Option<Named>,
+    /// Transmission filter.
+    pub transmission: Option<Named>,
+    /// Index of refraction.
+    pub ior: f32,
+}
+
+/// A point light with its spectrum.
+#[derive(Clone, Debug)]
+pub struct Light {
+    /// Position.
+    pub position: V3,
+    /// Spectral power distribution (tabulated, never fitted).
+    pub spd: Named,
+    /// Intensity.
+    pub intensity: f32,
+}
+
+/// A shape and its material(s): `materials.1` is the checkerboard's second material.
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// Geometry.
+    pub shape: Shape,
+    /// Material index.
+    pub material: usize,
+    /// Checkerboard: second material and square size.
+    pub checker: Option<(usize, f32)>,
+}
+
+/// A resolved scene: geometry, materials and lights with tabulated spectra.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Image and tracer settings.
+    pub render: RenderSection,
+    /// The observer.
+    pub observer: Observer,
+    /// Camera.
+    pub camera: Camera,
+    /// Ambient light.
+    pub ambient: Light,
+    /// The background reflectance (lit by the ambient light at unit intensity).
+    pub background: Option<Named>,
+    /// Point lights.
+    pub lights: Vec<Light>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Objects.
+    pub objects: Vec<Object>,
+}
+
+fn is_zero(s: &SpectrumSpec) -> bool {
+    matches!(s, SpectrumSpec::Constant(v) if *v == 0.0)
+}
+
+fn flat(name: String, v: f32) -> Result<Named> {
+    Named::new(name, vec![380.0, 780.0], vec![v, v])
+}
+
+/// Resolves one spectrum; `what` names it in errors (`scene.toml: materials.red.diffuse`).
+pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
+    let data = |e: CliError| CliError::data(format!("{what}: {e}"));
+    let finite = |v: f32, field: &str| {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(CliError::data(format!("{what}: {field} must be finite")))
+        }
+    };
+    match spec {
+        SpectrumSpec::Constant(v) => flat(format!("{v}"), finite(*v, "the value")?),
+        SpectrumSpec::Name(n) => {
+            let mut v = spectra::resolve(n).map_err(data)?;
+            if v.len() != 1 {
+                return Err(CliError::data(format!(
+                    "{what}: `{n}` names {} spectra; name one column",
+                    v.len()
+                )));
+            }
+            Ok(v.remove(0))
+        }
+        SpectrumSpec::Table(t) => {
+            let mut named = match (&t.spectrum, t.rgb) {
+                (Some(_), Some(_)) => {
+                    return Err(CliError::data(format!(
+                        "{what}: give either `spectrum` or `rgb`, not both"
+                    )))
+                }
+                (None, None) => {
+                    return Err(CliError::data(format!(
+                        "{what}: a spectrum table needs `spectrum = NAME` or `rgb = [R, G, B]`"
+                    )))
+                }
+                (Some(n), None) => resolve_spectrum(&SpectrumSpec::Name(n.clone()), what)?,
+                (None, Some(rgb)) => {
+                    for c in rgb {
+                        finite(c, "rgb")?;
+                    }
+                    Named::new(
+                        format!("rgb({}, {}, {})", rgb[0], rgb[1], rgb[2]),
+                        upsample::wavelengths(),
+                        upsample::rgb_to_reflectance(rgb),
+                    )?
+                }
+            };
+            let mut k = finite(t.scale.unwrap_or(1.0), "scale")?;
+            if t.normalize {
+                let t = named.tabulated();
+                let max = (380..=780).map(|nm| t.at(nm as f64)).fold(0.0f64, f64::max);
+                if max <= 0.0 {
+                    return Err(CliError::data(format!(
+                        "{what}: cannot normalize `{}`: its maximum is not positive",
+                        named.name
+                    )));
+                }
+                k /= max as f32;
+            }
+            if k != 1.0 {
+                for v in named.values.iter_mut() {
+                    *v *= k;
+                }
+                named.name = format!("{}×{k}", named.name);
+            }
+            Ok(named)
+        }
+    }
+}
+
+fn optional(spec: &SpectrumSpec, what: &str) -> Result<Option<Named>> {
+    if is_zero(spec) {
+        Ok(None)
+    } else {
+        resolve_spectrum(spec, what).map(Some)
+    }
+}
+
+fn v3(a: [f32; 3], what: &str) -> Result<V3> {
+    if a.iter().all(|v| v.is_finite()) {
+        Ok(V3::from_array(a))
+    } else {
+        Err(CliError::data(format!(
+            "{what}: coordinates must be finite"
+        )))
+    }
+}
+
+impl SceneFile {
+    /// Parses TOML text; `source` names the file in errors.
+    pub fn parse(text: &str, source: &str) -> Result<Self> {
+        toml::from_str(text).map_err(|e| {
+            let msg = e.message().trim().to_string();
+            let at = e
+                .span()
+                .map(|s| {
+                    let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
+                    format!(":{line}")
+                })
+                .unwrap_or_default();
+            CliError::data(format!("{source}{at}: {msg}"))
+        })
+    }
+
+    /// Resolves names, checks values and builds the scene. `source` names the file in errors.
+    pub fn resolve(&self, source: &str) -> Result<Scene> {
+        let r = &self.render;
+        let observer = Observer::from_name(&r.observer).ok_or_else(|| {
+            CliError::data(format!(
+                "{source}: render.observer `{}`: use \"1931\" or \"1964\"",
+                r.observer
+            ))
+        })?;
+        if r.width == 0 || r.height == 0 || r.width > 16384 || r.height > 16384 {
+            return Err(CliError::data(format!(
+                "{source}: render size {}x{} must be 1..16384 on each side",
+                r.width, r.height
+            )));
+        }
+        if r.samples == 0 || r.samples > 16 {
+            return Err(CliError::data(format!(
+                "{source}: render.samples {} must be 1..16",
+                r.samples
+            )));
+        }
+        if !(r.exposure.is_finite() && r.exposure > 0.0) {
+            return Err(CliError::data(format!(
+                "{source}: render.exposure must be positive"
+            )));
+        }
+        let c = &self.camera;
+        let pos = v3(c.position, &format!("{source}: camera.position"))?;
+        let at = v3(c.look_at, &format!("{source}: camera.look_at"))?;
+        let up = v3(c.up, &format!("{source}: camera.up"))?;
+        if (at - pos).length() == 0.0 || (at - pos).cross(up).length() < 1e-6 {
+            return Err(CliError::data(format!(
+                "{source}: camera: look_at must differ from position and not lie along up"
+            )));
+        }
+        if !(c.fov > 0.0 && c.fov < 180.0) {
+            return Err(CliError::data(format!(
+                "{source}: camera.fov {} must be between 0 and 180 degrees",
+                c.fov
+            )));
+        }
+        let camera = Camera::new(pos, at, up, c.fov);
+
+        let mut materials = Vec::new();
+        for (name, m) in &self.materials {
+            let w = |f: &str| format!("{source}: materials.{name}.{f}");
+            if !(m.phong.is_finite() && m.phong >= 0.0) {
+                return Err(CliError::data(format!("{} must be ≥ 0", w("phong"))));
+            }
+            if !(m.ior.is_finite() && m.ior > 0.0) {
+                return Err(CliError::data(format!("{} must be positive", w("ior"))));
+            }
+            materials.push(Material {
+                name: name.clone(),
+                diffuse: optional(&m.diffuse, &w("diffuse"))?,
+                specular: optional(&m.specular, &w("specular"))?,
+                phong: m.phong,
+                mirror: optional(&m.mirror, &w("mirror"))?,
+                transmission: optional(&m.transmission, &w("transmission"))?,
+                ior: m.ior,
+            });
+        }
+        let material = |name: &str, what: &str| -> Result<usize> {
+            self.materials
+                .keys()
+                .position(|k| k == name)
+                .ok_or_else(|| {
+                    let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                    CliError::data(format!(
+                        "{source}: {what}: unknown material `{name}` (defined: {})",
+                        if known.is_empty() {
+                            "none".to_string()
+                        } else {
+                            known.join(", ")
+                        }
+                    ))
+                })
+        };
+
+        let mut objects = Vec::new();
+        for (i, s) in self.sphere.iter().enumerate() {
+            let what = format!("sphere {}", i + 1);
+            if !(s.radius.is_finite() && s.radius > 0.0) {
+                return Err(CliError::data(format!(
+                    "{source}: {what}: radius {} must be positive",
+                    s.radius
+                )));
+            }
+            objects.push(Object {
+                shape: Shape::Sphere {
+                    center: v3(s.center, &format!("{source}: {what}"))?,
+                    radius: s.radius,
+                },
+                material: material(&s.material, &what)?,
+                checker: None,
+            });
+        }
+        for (i, p) in self.plane.iter().enumerate() {
+            let what = format!("plane {}", i + 1);
+            let n = v3(p.normal, &format!("{source}: {what}"))?;
+            if n.length() < 1e-6 {
+                return Err(CliError::data(format!(
+                    "{source}: {what}: the normal must not be zero"
+                )));
+            }
+            let checker = match &p.checker_material {
+                Some(m) => {
+                    if !(p.checker_size.is_finite() && p.checker_size > 0.0) {
+                        return Err(CliError::data(format!(
+                            "{source}: {what}: checker_size must be positive"
+                        )));
+                    }
+                    Some((material(m, &what)?, p.checker_size))
+                }
+                None => None,
+            };
+            objects.push(Object {
+                shape: Shape::Plane {
+                    point: v3(p.point, &format!("{source}: {what}"))?,
+                    normal: n.normalize(),
+                },
+                material: material(&p.material, &what)?,
+                checker,
+            });
+        }
+        for (i, b) in self.boxes.iter().enumerate() {
+            let what = format!("box {}", i + 1);
+            let (lo, hi) = (
+                v3(b.min, &format!("{source}: {what}"))?,
+                v3(b.max, &format!("{source}: {what}"))?,
+            );
+            if !(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z) {
+                return Err(CliError::data(format!(
+                    "{source}: {what}: max must exceed min on every axis"
+                )));
+            }
+            objects.push(Object {
+                shape: Shape::Box { min: lo, max: hi },
+                material: material(&b.material, &what)?,
+                checker: None,
+            });
+        }
+
+        let mut lights = Vec::new();
+        for (i, l) in self.light.iter().enumerate() {
+            let what = format!("{source}: light {}", i + 1);
+            if !(l.intensity.is_finite() && l.intensity >= 0.0) {
+                return Err(CliError::data(format!("{what}: intensity must be ≥ 0")));
+            }
+            lights.push(Light {
+                position: v3(l.position, &what)?,
+                spd: resolve_spectrum(&l.spectrum, &format!("{what}: spectrum"))?,
+                intensity: l.intensity,
+            });
+        }
+        let (ambient, background) = match &self.ambient {
+            Some(a) => {
+                if !(a.intensity.is_finite() && a.intensity >= 0.0) {
+                    return Err(CliError::data(format!(
+                        "{source}: ambient.intensity must be ≥ 0"
+                    )));
+                }
+                (
+                    Light {
+                        position: V3::default(),
+                        spd: resolve_spectrum(&a.spectrum, &format!("{source}: ambient.spectrum"))?,
+                        intensity: a.intensity,
+                    },
+                    optional(&a.background, &format!("{source}: ambient.background"))?,
+                )
+            }
+            None => (
+                Light {
+                    position: V3::default(),
+                    spd: match lights.first() {
+                        Some(l) => l.spd.clone(),
+                        None => flat("E".into(), 1.0)?,
+                    },
+                    intensity: 0.0,
+                },
+                None,
+            ),
+        };
+        for l in lights.iter().chain(std::iter::once(&ambient)) {
+            let t = l.spd.tabulated();
+            if (380..=780).all(|nm| t.at(nm as f64) <= 0.0) {
+                return Err(CliError::data(format!(
+                    "{source}: light spectrum `{}` has no power in 380-780 nm",
+                    l.spd.name
+                )));
+            }
+        }
+        Ok(Scene {
+            render: self.render.clone(),
+            observer,
+            camera,
+            ambient,
+            background,
+            lights,
+            materials,
+            objects,
+        })
+    }
+}
