@@ -11,5 +11,6 @@ pub mod colour;
 pub mod data;
 pub mod error;
 pub mod io;
+pub mod render;
 pub mod repr;
 pub mod spectra;
