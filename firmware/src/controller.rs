@@ -1,8 +1,8 @@
 //! The controller: protocol commands in, replies and duties out, on the same core as the host.
 //!
 //! State: the LED's calibration (Cowan's model: primaries' chromaticities and luminances,
-//! per-channel transfer curves), the gamut map, the observer, the moments of the last light
-//! per preset, and the last target colour. A colour goes
+//! per-channel transfer curves), the gamut map, the observer and the last target colour. The
+//! lights' moments are compiled in ([`crate::lights`]). A colour goes
 //!
 //! `reflectance(s) ─mul─▶ product ─· moments(observer, illuminant)─▶ XYZ ─Display─▶ duties`
 //!
@@ -11,50 +11,14 @@
 //! No chromatic adaptation: under illuminant A a white paper is shown as A's colour.
 //! Out-of-gamut targets are mapped with [`GamutMap`] and the reply says so.
 
-use crate::led::duty_of;
+use crate::{led::duty_of, lights};
 use specpoly_core::{
-    display::SRGB_PRIMARIES, Breaks, Display, GamutMap, Illuminant, Moments, Observer, Transfer,
-    Xyz, PAPER_BREAKS,
+    display::SRGB_PRIMARIES, Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
 use specpoly_protocol::{
-    ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut, Reflectance, Reply,
-    StateReport, PROTOCOL_VERSION,
+    ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut, Reflectance, Reply, StateReport,
+    PROTOCOL_VERSION,
 };
-
-/// Moments for one (observer, illuminant), kept until either changes.
-struct Light<const S: usize, const C: usize> {
-    observer: Observer,
-    illuminant: Illuminant,
-    moments: Moments<S, C>,
-}
-
-impl<const S: usize, const C: usize> Light<S, C> {
-    fn new(observer: Observer, illuminant: Illuminant, breaks: Breaks<S>) -> Self {
-        Self {
-            observer,
-            illuminant,
-            moments: Moments::new(observer, &illuminant.tabulated(), breaks),
-        }
-    }
-}
-
-/// Returns cached moments, recomputing them (≈ 401 wavelengths, f64) on a new light.
-fn moments<'a, const S: usize, const C: usize>(
-    slot: &'a mut Option<Light<S, C>>,
-    observer: Observer,
-    illuminant: Illuminant,
-    breaks: Breaks<S>,
-) -> &'a Moments<S, C> {
-    let fresh = !matches!(slot, Some(l) if l.observer == observer && l.illuminant == illuminant);
-    if fresh {
-        *slot = Some(Light::new(observer, illuminant, breaks));
-    }
-    match slot {
-        Some(l) => &l.moments,
-        // just filled
-        None => unreachable!(),
-    }
-}
 
 /// The LED colour controller.
 pub struct Controller {
@@ -63,8 +27,6 @@ pub struct Controller {
     display: Display,
     map: GamutMap,
     observer: Observer,
-    paper: Option<Light<2, 4>>,
-    default: Option<Light<8, 4>>,
     target: Xyz,
     duty: [u16; 3],
     max: u16,
@@ -79,8 +41,7 @@ impl Controller {
         let (_, luminance) = srgb.primaries();
         let xy = SRGB_PRIMARIES;
         let t = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
-        let display = match Display::from_primaries(xy, luminance, Xyz::default(), t)
-        {
+        let display = match Display::from_primaries(xy, luminance, Xyz::default(), t) {
             Ok(d) => d,
             // sRGB's primaries are valid (the core's unit tests)
             Err(_) => srgb,
@@ -91,8 +52,6 @@ impl Controller {
             display,
             map: GamutMap::Clip,
             observer: Observer::Cie1931,
-            paper: None,
-            default: None,
             target: Xyz::default(),
             duty: [0; 3],
             max,
@@ -152,10 +111,12 @@ impl Controller {
                 self.colour(self.target);
                 Reply::Done("map")
             }
-            Command::Observer(o) => {
+            Command::Observer(o) if lights::has_observer(o) => {
                 self.observer = o;
                 Reply::Done("observer")
             }
+            // not built in (feature `observer-1964`)
+            Command::Observer(_) => Reply::Error(Fault::at(ErrorCode::UnknownName, 1)),
             Command::Xyz(v) => Reply::Colour(self.colour(v)),
             Command::Xyy(v) => Reply::Colour(self.colour(v.to_xyz())),
             Command::Reflect {
@@ -170,16 +131,12 @@ impl Controller {
     }
 
     /// XYZ (perfect white `Y = 100`) of a reflectance under a built-in light, with the current
-    /// observer: three dot products against the light's moments.
-    pub fn reflectance_xyz(&mut self, illuminant: Illuminant, r: &Reflectance) -> Xyz {
+    /// observer: three dot products against the light's moments ([`crate::lights`]).
+    pub fn reflectance_xyz(&self, illuminant: Illuminant, r: &Reflectance) -> Xyz {
         let o = self.observer;
         match r {
-            Reflectance::Paper(s) => {
-                moments(&mut self.paper, o, illuminant, PAPER_BREAKS).xyz(s)
-            }
-            Reflectance::Default(s) => {
-                moments(&mut self.default, o, illuminant, Breaks::uniform()).xyz(s)
-            }
+            Reflectance::Paper(s) => lights::paper(o, illuminant).xyz(s),
+            Reflectance::Default(s) => lights::default(o, illuminant).xyz(s),
         }
     }
 
@@ -233,7 +190,7 @@ impl Controller {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use specpoly_core::{DefaultSpectrum, Xyy};
+    use specpoly_core::{Breaks, DefaultSpectrum, Xyy};
 
     fn run(c: &mut Controller, line: &str) -> Reply {
         c.handle(Command::parse(line))

@@ -13,6 +13,7 @@
 
 pub mod controller;
 pub mod led;
+pub mod lights;
 
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 pub mod board;

@@ -8,7 +8,7 @@ use core::fmt::Write as _;
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::hprintln;
 use heapless::String;
-use specpoly_firmware::board::{pwm::ReportedPwm, stack, uart::Uart};
+use specpoly_firmware::board::{host_line, pwm::ReportedPwm, stack, uart::Uart};
 use specpoly_firmware::{Controller, RgbLed};
 use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE, MAX_REPLY};
 
@@ -20,7 +20,8 @@ fn main() -> ! {
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
-        p.SYST.set_clock_source(cortex_m::peripheral::syst::SystClkSource::Core);
+        p.SYST
+            .set_clock_source(cortex_m::peripheral::syst::SystClkSource::Core);
         p.SYST.set_reload(TICK - 1);
         p.SYST.clear_current();
         p.SYST.enable_interrupt();
@@ -48,7 +49,7 @@ fn main() -> ! {
             continue;
         };
         let reply = match line {
-            Ok(l) if l.trim().is_empty() => continue,
+            Ok(l) if l.trim_ascii().is_empty() => continue,
             Ok(l) => controller.handle(Command::parse(l)),
             Err(f) => Reply::Error(f),
         };
@@ -62,13 +63,15 @@ fn main() -> ! {
         uart.write_byte(b'\n');
         let duty = controller.duty();
         if led.set(duty).is_ok() {
-            hprintln!(
-                "duty {} {} {} max={} stack={}",
-                duty[0],
-                duty[1],
-                duty[2],
-                led.max(),
-                stack::high_water()
+            host_line(
+                &["duty"],
+                &[
+                    (" ", duty[0] as i64),
+                    (" ", duty[1] as i64),
+                    (" ", duty[2] as i64),
+                    (" max=", led.max() as i64),
+                    (" stack=", stack::high_water() as i64),
+                ],
             );
         }
     }
@@ -76,9 +79,3 @@ fn main() -> ! {
 
 #[exception]
 fn SysTick() {}
-
-/// UART0 RX (IRQ 0) is the only enabled interrupt: clear it; `main` reads the byte.
-#[exception]
-unsafe fn DefaultHandler(_irqn: i16) {
-    Uart::clear_rx_interrupt();
-}

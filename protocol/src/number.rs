@@ -157,14 +157,14 @@ pub fn write_f32<W: Write>(w: &mut W, v: f32) -> fmt::Result {
         return w.write_str(if v > 0.0 { "inf" } else { "-inf" });
     }
     let mut buf = Small::default();
-    for p in 6..9 {
+    for p in 6..=9 {
         buf.len = 0;
-        write_digits(&mut buf, v, p)?;
-        if parse_f32(buf.as_str()) == Ok(v) {
-            return w.write_str(buf.as_str());
+        write_digits(&mut buf, v, p);
+        if p == 9 || parse_f32(buf.as_str()) == Ok(v) {
+            break;
         }
     }
-    write_digits(w, v, 9)
+    w.write_str(buf.as_str())
 }
 
 /// A 24-byte buffer for one formatted number.
@@ -181,6 +181,15 @@ impl Small {
     }
 }
 
+impl Small {
+    fn push(&mut self, c: u8) {
+        if self.len < self.b.len() {
+            self.b[self.len] = c;
+            self.len += 1;
+        }
+    }
+}
+
 impl Write for Small {
     fn write_str(&mut self, s: &str) -> fmt::Result {
         let end = self.len + s.len();
@@ -193,14 +202,14 @@ impl Write for Small {
     }
 }
 
-/// `v` (finite) rounded to `p ≤ 9` significant digits.
-fn write_digits<W: Write>(w: &mut W, v: f32, p: i32) -> fmt::Result {
+/// `v` (finite) rounded to `p ≤ 9` significant digits (at most 16 bytes: fits [`Small`]).
+fn write_digits(w: &mut Small, v: f32, p: i32) {
     if v < 0.0 || (v == 0.0 && v.is_sign_negative()) {
-        w.write_char('-')?;
+        w.push(b'-');
     }
     let a = (v as f64).abs();
     if a == 0.0 {
-        return w.write_char('0');
+        return w.push(b'0');
     }
     // decimal exponent e with 10^e ≤ a < 10^(e+1)
     let mut e: i32 = 0;
@@ -216,16 +225,16 @@ fn write_digits<W: Write>(w: &mut W, v: f32, p: i32) -> fmt::Result {
             e -= 1;
         }
     }
-    let lo = pow10_exact(p as u32 - 1) as u64;
+    let lo = pow10_exact(p as u32 - 1) as u32;
     let hi = lo * 10;
     // the loop above may be one off near a power of ten (inexact 10^e): correct and redo
-    let mut m = (scale10(a, p - 1 - e) + 0.5) as u64;
+    let mut m = (scale10(a, p - 1 - e) + 0.5) as u32;
     if m >= hi {
         e += 1;
-        m = (scale10(a, p - 1 - e) + 0.5) as u64;
+        m = (scale10(a, p - 1 - e) + 0.5) as u32;
     } else if m < lo {
         e -= 1;
-        m = (scale10(a, p - 1 - e) + 0.5) as u64;
+        m = (scale10(a, p - 1 - e) + 0.5) as u32;
     }
     if m >= hi {
         // rounded up to 10^p exactly
@@ -242,40 +251,39 @@ fn write_digits<W: Write>(w: &mut W, v: f32, p: i32) -> fmt::Result {
         n -= 1;
     }
     let digits = &digits[..n];
-    let put = |w: &mut W, d: &[u8]| -> fmt::Result {
+    let put = |w: &mut Small, d: &[u8]| {
         for c in d {
-            w.write_char(*c as char)?;
+            w.push(*c);
         }
-        Ok(())
     };
     if (0..9).contains(&e) {
         let int = e as usize + 1;
         if digits.len() <= int {
-            put(w, digits)?;
+            put(w, digits);
             for _ in digits.len()..int {
-                w.write_char('0')?;
+                w.push(b'0');
             }
         } else {
-            put(w, &digits[..int])?;
-            w.write_char('.')?;
-            put(w, &digits[int..])?;
+            put(w, &digits[..int]);
+            w.push(b'.');
+            put(w, &digits[int..]);
         }
     } else if (-5..0).contains(&e) {
-        w.write_str("0.")?;
+        w.push(b'0');
+        w.push(b'.');
         for _ in 0..(-e - 1) {
-            w.write_char('0')?;
+            w.push(b'0');
         }
-        put(w, digits)?;
+        put(w, digits);
     } else {
-        put(w, &digits[..1])?;
+        put(w, &digits[..1]);
         if digits.len() > 1 {
-            w.write_char('.')?;
-            put(w, &digits[1..])?;
+            w.push(b'.');
+            put(w, &digits[1..]);
         }
-        w.write_char('e')?;
-        write_int(w, e as i64)?;
+        w.push(b'e');
+        let _ = write_int(w, e as i64);
     }
-    Ok(())
 }
 
 /// Writes a signed integer in decimal (no `core::fmt` integer machinery needed).
@@ -283,8 +291,10 @@ pub fn write_int<W: Write>(w: &mut W, v: i64) -> fmt::Result {
     if v < 0 {
         w.write_char('-')?;
     }
-    let mut u = v.unsigned_abs();
-    let mut buf = [0u8; 20];
+    // u32 arithmetic: the protocol's integers (duties, positions, exponents) are small, and
+    // 64-bit division costs the firmware 1 KiB of flash
+    let mut u = v.unsigned_abs().min(u32::MAX as u64) as u32;
+    let mut buf = [0u8; 10];
     let mut n = 0;
     loop {
         buf[n] = b'0' + (u % 10) as u8;

@@ -92,7 +92,9 @@ fn main() -> ! {
     let d65 = c.reflectance_xyz(Illuminant::D65, &Reflectance::Default(one));
     checks.check(
         "perfect-reflector-is-d65-white",
-        (d65.x - 95.04).abs() < 0.05 && (d65.y - 100.0).abs() < 1e-3 && (d65.z - 108.88).abs() < 0.05,
+        (d65.x - 95.04).abs() < 0.05
+            && (d65.y - 100.0).abs() < 1e-3
+            && (d65.z - 108.88).abs() < 0.05,
     );
 
     let half = Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 0.5));
@@ -108,7 +110,16 @@ fn main() -> ! {
     let mut seed = 0x2545_F491u32;
     let mut replies = 0u32;
     let mut fits = true;
-    let words: [&[u8]; 8] = [b"refl ", b"default ", b"D65 ", b"0.5 ", b"* ", b"xyz ", b"\n", b"trc r table "];
+    let words: [&[u8]; 8] = [
+        b"refl ",
+        b"default ",
+        b"D65 ",
+        b"0.5 ",
+        b"* ",
+        b"xyz ",
+        b"\n",
+        b"trc r table ",
+    ];
     for i in 0..60_000u32 {
         seed ^= seed << 13;
         seed ^= seed >> 17;
@@ -148,7 +159,11 @@ fn main() -> ! {
     });
     hprintln!("insns paper moments {}", insns);
     let insns = counter.insns_per_call(2, || {
-        core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill, Breaks::uniform()));
+        core::hint::black_box(Moments::<8, 4>::new(
+            Observer::Cie1931,
+            &ill,
+            Breaks::uniform(),
+        ));
     });
     hprintln!("insns default moments {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
@@ -180,7 +195,10 @@ fn main() -> ! {
     }
     let _ = disp;
     // whole colour computations: reflectance (cached moments) → XYZ → duties
-    for (preset, r) in [("paper", Reflectance::Paper(rp)), ("default", Reflectance::Default(rd))] {
+    for (preset, r) in [
+        ("paper", Reflectance::Paper(rp)),
+        ("default", Reflectance::Default(rd)),
+    ] {
         let _ = handle(&mut c, "trc rgb srgb");
         let _ = c.reflectance_xyz(Illuminant::D65, &r); // fill the moments cache
         let insns = counter.insns_per_call(n * 10, || {
@@ -206,7 +224,13 @@ fn main() -> ! {
         for y in [0.25f32, 0.3, 0.35, 0.4] {
             for big_y in [5.0f32, 20.0, 60.0] {
                 let r = c.colour(Xyy { x, y, big_y }.to_xyz());
-                hprintln!("colour {} duty {} {} {}", i, r.duty[0], r.duty[1], r.duty[2]);
+                hprintln!(
+                    "colour {} duty {} {} {}",
+                    i,
+                    r.duty[0],
+                    r.duty[1],
+                    r.duty[2]
+                );
                 i += 1;
             }
         }
