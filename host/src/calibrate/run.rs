@@ -8,10 +8,13 @@
 //! keeps what it measured) and `CAL.toml` (the fit of the non-verification patches).
 
 use crate::calibrate::display::{self, PatchDisplay};
+use crate::calibrate::file;
+use crate::calibrate::fit::{self, FitOptions, MatrixFit};
 use crate::calibrate::instrument::{self, Instrument};
 use crate::calibrate::measurement::Measurement;
-use crate::calibrate::patches::Patch;
+use crate::calibrate::patches::{self, Patch};
 use crate::error::{CliError, Result};
+use crate::io::cgats::{self, Ti3Info};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -41,6 +44,10 @@ pub struct RunArgs {
     /// 500 for web].
     #[arg(long, value_name = "MS")]
     pub settle: Option<u64>,
+    /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
+    /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
+    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
+    pub matrix: MatrixFit,
 }
 
 /// Where the readings go: `CAL.toml` → `CAL.ti3`.
@@ -136,4 +143,167 @@ pub fn open(
 ) -> Result<(Box<dyn PatchDisplay>, Box<dyn Instrument>)> {
     let d = display::open(display_spec)?;
     instrument::open(instrument_spec, d)
+}
+
+/// The chromaticity and luminance of an XYZ.
+fn xyy(p: [f64; 3]) -> [f64; 3] {
+    let s = p[0] + p[1] + p[2];
+    if s > 0.0 {
+        [p[0] / s, p[1] / s, p[1]]
+    } else {
+        [0.0, 0.0, p[1]]
+    }
+}
+
+/// The primaries as the raw readings give them: full channel minus black (what a fit must
+/// come close to), `None` if a patch is missing.
+pub fn raw_primaries(patches: &[Patch], m: &[Measurement]) -> Option<[[f64; 3]; 3]> {
+    let find = |d: [f64; 3]| {
+        patches
+            .iter()
+            .zip(m)
+            .find(|(p, _)| p.device == d)
+            .map(|(_, m)| m.xyz)
+    };
+    let black = find([0.0; 3])?;
+    let mut out = [[0.0; 3]; 3];
+    for (ch, o) in out.iter_mut().enumerate() {
+        let mut d = [0.0; 3];
+        d[ch] = 1.0;
+        let f = find(d)?;
+        *o = [0, 1, 2].map(|k| f[k] - black[k]);
+    }
+    Some(out)
+}
+
+/// Runs `specpoly calibrate run`.
+pub fn run_cli(a: &RunArgs) -> Result<()> {
+    let set = patches::standard(a.ramp_steps, a.verify)?;
+    let ti3 = ti3_path(&a.output);
+    if ti3 == a.output {
+        return Err(CliError::usage(format!(
+            "-o {}: name the calibration `.toml`; the readings go to `.ti3` beside it",
+            a.output.display()
+        )));
+    }
+    let display = display::open(&a.display)?;
+    println!("display: {}", display.describe());
+    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
+    println!("instrument: {}", instrument.describe());
+    let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
+    println!(
+        "{} patches ({} for the fit, {} to verify); readings → {}",
+        set.len(),
+        set.len() - n_verify,
+        n_verify,
+        ti3.display()
+    );
+    let settle = a
+        .settle
+        .map(Duration::from_millis)
+        .unwrap_or_else(|| display.default_settle());
+    let info = Ti3Info {
+        descriptor: "specpoly calibrate run".into(),
+        instrument: Some(instrument.describe()),
+        created: Some(file::now_utc()),
+        absolute: true,
+    };
+    let taken = measure_all(display.as_mut(), instrument.as_mut(), &set, settle, |m| {
+        save_ti3(&ti3, m, &info)
+    })
+    .map_err(|i| {
+        let kept = if i.taken.is_empty() {
+            "no readings taken".to_string()
+        } else {
+            format!("{} readings kept in {}", i.taken.len(), ti3.display())
+        };
+        match i.error {
+            CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
+            e => CliError::data(format!("{e}; {kept}")),
+        }
+    })?;
+    println!("measured {} patches → {}", taken.len(), ti3.display());
+    if let Some(p) = raw_primaries(&set, &taken) {
+        for (name, p) in ["red", "green", "blue"].iter().zip(p) {
+            let c = xyy(p);
+            println!(
+                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (reading − black)",
+                c[0], c[1], c[2]
+            );
+        }
+    }
+    if let Some(sim) = display.simulation() {
+        let m = sim.model();
+        for (name, p) in ["red", "green", "blue"].iter().zip(m.primaries) {
+            let c = xyy(p);
+            println!(
+                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
+                c[0], c[1], c[2]
+            );
+        }
+    }
+    let fit_set: Vec<Measurement> = set
+        .iter()
+        .zip(&taken)
+        .filter(|(p, _)| p.kind.for_fit())
+        .map(|(_, m)| *m)
+        .collect();
+    let verify_set: Vec<Measurement> = set
+        .iter()
+        .zip(&taken)
+        .filter(|(p, _)| !p.kind.for_fit())
+        .map(|(_, m)| *m)
+        .collect();
+    fit_and_write(&a.output, &ti3, &info, a.matrix, &fit_set, &verify_set)
+}
+
+/// Writes the readings so far as a CGATS .ti3 (A's writer: ArgyllCMS's layout, normalised to
+/// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
+/// measured), atomically.
+fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
+    crate::io::atomic::write(path, cgats::write_ti3(m, info).as_bytes())
+}
+
+/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, writes `out` and prints the
+/// result.
+fn fit_and_write(
+    out: &Path,
+    ti3: &Path,
+    info: &Ti3Info,
+    matrix: MatrixFit,
+    fit_set: &[Measurement],
+    verify_set: &[Measurement],
+) -> Result<()> {
+    let opts = FitOptions {
+        matrix,
+        ..FitOptions::default()
+    };
+    let mut cal = fit::fit_and_verify(fit_set, verify_set, &opts)?;
+    {
+        let (_, prov) = cal.report_mut();
+        prov.source = ti3.display().to_string();
+        prov.instrument = info.instrument.clone().unwrap_or_default();
+        prov.measured = info.created.clone().unwrap_or_default();
+    }
+    cal.save(out)?;
+    let d = cal.data();
+    println!("fit ({} matrix) → {}", d.fit.matrix, out.display());
+    for (name, p) in ["red", "green", "blue"].iter().zip(d.primaries.array()) {
+        println!(
+            "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (fit)",
+            p.x, p.y, p.luminance
+        );
+    }
+    let r = &d.fit.residual;
+    println!(
+        "  ΔE00 on the {} fit patches: mean {:.2}, max {:.2}",
+        r.patches, r.mean, r.max
+    );
+    if let Some(v) = &d.fit.verification {
+        println!(
+            "  ΔE00 on the {} verification patches: mean {:.2}, 95th percentile {:.2}, max {:.2}",
+            v.patches, v.mean, v.p95, v.max
+        );
+    }
+    Ok(())
 }

@@ -1,0 +1,239 @@
+//! `specpoly calibrate run` on the simulated CRT (data/displays/crt_brainard_1997.csv), through
+//! the real binary: the primaries recovered from noisy readings agree with the SPD-integrated
+//! truth within 0.001 in x and y and 0.5 % in luminance; the manual display; usage errors.
+
+#[path = "common/calibrate_run.rs"]
+mod common;
+
+use specpoly::calibrate::sim::SimModel;
+use specpoly::calibrate::{file, patches};
+use specpoly::io::cgats;
+use std::path::Path;
+use std::time::Duration;
+
+/// Rows of a .ti3 in cd/m² (A's reader): `[R, G, B (0–100), X, Y, Z]`.
+fn ti3_rows(path: &Path) -> Vec<[f64; 6]> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let t = cgats::read_ti3(&text, &path.display().to_string()).unwrap();
+    let (m, absolute) = t.best_units();
+    assert!(absolute || m.len() < 2, "{}: not in cd/m²", path.display());
+    m.iter()
+        .map(|m| {
+            [
+                m.device[0] * 100.0,
+                m.device[1] * 100.0,
+                m.device[2] * 100.0,
+                m.xyz[0],
+                m.xyz[1],
+                m.xyz[2],
+            ]
+        })
+        .collect()
+}
+
+fn xyy(p: [f64; 3]) -> [f64; 3] {
+    let s = p[0] + p[1] + p[2];
+    [p[0] / s, p[1] / s, p[1]]
+}
+
+fn run_sim(display: &str, extra: &[&str]) -> (tempfile::TempDir, common::Finished) {
+    let dir = tempfile::tempdir().unwrap();
+    let cal = dir.path().join("crt.toml");
+    let mut args = vec![
+        "calibrate",
+        "run",
+        "--display",
+        display,
+        "--instrument",
+        "sim",
+        "-o",
+        cal.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let done = common::run(&args, Duration::from_secs(120));
+    (dir, done)
+}
+
+const NOISY: &str = "sim:crt,noise=0.001,black=0.2,flare=0.1,seed=42";
+
+#[test]
+fn readings_give_the_primaries_of_the_simulated_crt() {
+    let (dir, done) = run_sim(NOISY, &[]);
+    assert_eq!(done.code, Some(0), "{done:?}");
+    let rows = ti3_rows(&dir.path().join("crt.ti3"));
+    assert_eq!(rows.len(), patches::standard(9, 16).unwrap().len());
+    let truth = SimModel::parse(NOISY.trim_start_matches("sim:")).unwrap();
+    let black = rows
+        .iter()
+        .find(|r| r[..3] == [0.0; 3])
+        .expect("a black patch");
+    for ch in 0..3 {
+        let full = rows
+            .iter()
+            .find(|r| (0..3).all(|k| r[k] == if k == ch { 100.0 } else { 0.0 }))
+            .expect("a full primary");
+        let got = xyy([0, 1, 2].map(|k| full[3 + k] - black[3 + k]));
+        let want = xyy(truth.primaries[ch]);
+        assert!(
+            (got[0] - want[0]).abs() < 1e-3,
+            "ch {ch} x {got:?} {want:?}"
+        );
+        assert!(
+            (got[1] - want[1]).abs() < 1e-3,
+            "ch {ch} y {got:?} {want:?}"
+        );
+        assert!(
+            (got[2] / want[2] - 1.0).abs() < 5e-3,
+            "ch {ch} Y {got:?} {want:?}"
+        );
+    }
+    // the fitted calibration: primaries within 0.001 in x, y and 0.5 % in Y of the truth
+    let cal = file::load(&dir.path().join("crt.toml")).unwrap();
+    let d = cal.data();
+    assert_eq!(d.units, "cd/m2");
+    let mut worst = [0.0f64; 3];
+    for (ch, p) in d.primaries.array().iter().enumerate() {
+        let want = xyy(truth.primaries[ch]);
+        let e = [
+            (p.x - want[0]).abs(),
+            (p.y - want[1]).abs(),
+            (p.luminance / want[2] - 1.0).abs(),
+        ];
+        assert!(e[0] < 1e-3 && e[1] < 1e-3, "ch {ch}: {p:?} vs {want:?}");
+        assert!(e[2] < 5e-3, "ch {ch}: {p:?} vs {want:?}");
+        for k in 0..3 {
+            worst[k] = worst[k].max(e[k]);
+        }
+    }
+    // black and flare are recovered as the black level
+    let b = truth.xyz([0.0; 3]);
+    assert!(
+        (d.black[1] / b[1] - 1.0).abs() < 0.01,
+        "{:?} vs {b:?}",
+        d.black
+    );
+    let v = d.fit.verification.expect("verification statistics");
+    assert_eq!(v.patches, 16);
+    assert!(v.mean < 1.0 && v.max < 3.0, "{v:?}");
+    println!(
+        "worst primary error: x {:.5}, y {:.5}, Y {:.3} %; verification ΔE00 mean {:.2}, max {:.2}",
+        worst[0],
+        worst[1],
+        worst[2] * 100.0,
+        v.mean,
+        v.max
+    );
+}
+
+#[test]
+fn same_seed_same_readings() {
+    let (d1, r1) = run_sim(NOISY, &["--ramp-steps", "3", "--verify", "2"]);
+    let (d2, r2) = run_sim(NOISY, &["--ramp-steps", "3", "--verify", "2"]);
+    assert_eq!(r1.code, Some(0), "{r1:?}");
+    assert_eq!(r2.code, Some(0), "{r2:?}");
+    let a = std::fs::read_to_string(d1.path().join("crt.ti3")).unwrap();
+    let b = std::fs::read_to_string(d2.path().join("crt.ti3")).unwrap();
+    assert_eq!(
+        ti3_rows(&d1.path().join("crt.ti3")),
+        ti3_rows(&d2.path().join("crt.ti3"))
+    );
+    assert!(!a.is_empty() && !b.is_empty());
+}
+
+#[test]
+fn manual_display_waits_for_enter() {
+    let dir = tempfile::tempdir().unwrap();
+    let cal = dir.path().join("m.toml");
+    let n = patches::standard(3, 1).unwrap().len();
+    let mut run = common::start(&[
+        "calibrate",
+        "run",
+        "--display",
+        "manual",
+        "--instrument",
+        "sim:crt",
+        "--ramp-steps",
+        "3",
+        "--verify",
+        "1",
+        "-o",
+        cal.to_str().unwrap(),
+    ]);
+    run.stdin(&"\n".repeat(n));
+    let done = run.finish(Duration::from_secs(60));
+    assert_eq!(done.code, Some(0), "{done:?}");
+    assert!(done.stderr.contains("patch 1: set RGB 0 0 0"), "{done:?}");
+    assert!(done.stderr.contains("set RGB 255 255 255"), "{done:?}");
+    assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), n);
+
+    // `q` stops; what was measured stays
+    let mut run = common::start(&[
+        "calibrate",
+        "run",
+        "--display",
+        "manual",
+        "--instrument",
+        "sim:crt",
+        "-o",
+        cal.to_str().unwrap(),
+    ]);
+    run.stdin("\n\n\nq\n");
+    let done = run.finish(Duration::from_secs(60));
+    assert_eq!(done.code, Some(1), "{done:?}");
+    assert!(done.stderr.contains("stopped by the user"), "{done:?}");
+    assert!(done.stderr.contains("3 readings kept in"), "{done:?}");
+    assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), 3);
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for (display, instrument, needle) in [
+        (
+            "manual",
+            "sim",
+            "--instrument sim reads a simulated display",
+        ),
+        ("sim:crt", "sim:crt", "already simulated"),
+        ("projector", "sim", "--display `projector`"),
+        ("sim:crt,gamma=abc", "sim", "not a number"),
+        ("sim:crt", "usb", "--instrument `usb`"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let cal = dir.path().join("x.toml");
+        let done = common::run(
+            &[
+                "calibrate",
+                "run",
+                "--display",
+                display,
+                "--instrument",
+                instrument,
+                "-o",
+                cal.to_str().unwrap(),
+            ],
+            Duration::from_secs(30),
+        );
+        assert_eq!(done.code, Some(2), "{display} {instrument}: {done:?}");
+        assert!(
+            done.stderr.contains(needle),
+            "{display} {instrument}: {done:?}"
+        );
+        assert_eq!(done.stderr.trim().lines().count(), 1, "{done:?}");
+    }
+    let done = common::run(
+        &[
+            "calibrate",
+            "run",
+            "--display",
+            "sim:crt",
+            "--instrument",
+            "sim",
+            "--ramp-steps",
+            "1",
+            "-o",
+            "x.toml",
+        ],
+        Duration::from_secs(30),
+    );
+    assert_eq!(done.code, Some(2), "{done:?}");
+}
