@@ -11,6 +11,7 @@ pub mod colour;
 pub mod data;
 pub mod error;
 pub mod io;
+pub mod led;
 pub mod render;
 pub mod repr;
 pub mod spectra;
