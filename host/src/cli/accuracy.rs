@@ -536,6 +536,15 @@ fn product_cost(m: &Method) -> usize {
 
 /// Runs `specpoly accuracy`.
 pub fn run(a: &AccuracyArgs) -> Result<()> {
+    // Fail before the computation when the output's folder does not exist.
+    if let Some(dir) = a.output.parent() {
+        if !dir.as_os_str().is_empty() && !dir.is_dir() {
+            return Err(CliError::io(
+                &a.output,
+                std::io::Error::new(std::io::ErrorKind::NotFound, "no such directory"),
+            ));
+        }
+    }
     let doc = report()?;
     crate::io::atomic::write(&a.output, doc.as_bytes())?;
     eprintln!("wrote {}", a.output.display());

@@ -1,0 +1,208 @@
+//! Bad input through the real binary: one clear line on stderr, exit code 2 for usage and 1 for
+//! data errors, no panic, nothing on stdout, and no output file (not even a partial one).
+
+use std::path::Path;
+use std::process::Command;
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn specpoly(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
+        .args(args)
+        .output()
+        .expect("run specpoly");
+    Run {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// Asserts a clean failure with `code` whose one stderr line mentions every `needles`.
+fn fails(r: &Run, code: i32, needles: &[&str]) {
+    assert_eq!(r.code, code, "stderr: {}", r.stderr);
+    assert!(r.stdout.is_empty(), "stdout: {}", r.stdout);
+    assert!(!r.stderr.contains("panicked"), "{}", r.stderr);
+    let lines: Vec<&str> = r.stderr.lines().collect();
+    if code == 1 {
+        // our own errors: exactly one line
+        assert_eq!(lines.len(), 1, "{}", r.stderr);
+        assert!(lines[0].starts_with("specpoly: error: "), "{}", r.stderr);
+    } else {
+        assert!(r.stderr.contains("error"), "{}", r.stderr);
+    }
+    for n in needles {
+        assert!(
+            r.stderr.to_lowercase().contains(&n.to_lowercase()),
+            "`{n}` not in: {}",
+            r.stderr
+        );
+    }
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn malformed_csv_is_a_data_error_naming_the_file_and_line() {
+    let d = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str, &[&str]); 9] = [
+        ("noheader.csv", "400,0.1\n410,0.2\n", &["no header"]),
+        (
+            "text.csv",
+            "wavelength_nm,a\n400,0.1\n410,abc\n",
+            &["text.csv:3", "not a number"],
+        ),
+        (
+            "nan.csv",
+            "wavelength_nm,a\n400,NaN\n410,0.2\n",
+            &["not finite"],
+        ),
+        (
+            "decreasing.csv",
+            "wavelength_nm,a\n400,0.1\n390,0.2\n",
+            &["decreasing"],
+        ),
+        (
+            "duplicate.csv",
+            "wavelength_nm,a\n400,0.1\n400,0.2\n",
+            &["duplicate"],
+        ),
+        (
+            "emptycol.csv",
+            "wavelength_nm,a,b\n400,0.1,\n410,0.2,\n",
+            &["empty cell", "`b`"],
+        ),
+        (
+            "outside.csv",
+            "wavelength_nm,a\n800,0.1\n900,0.2\n",
+            &["outside 380-780"],
+        ),
+        ("empty.csv", "", &["empty"]),
+        ("ragged.csv", "wavelength_nm,a\n400,0.1,0.3\n", &["3 cells"]),
+    ];
+    for (name, text, needles) in cases {
+        let f = write(d.path(), name, text);
+        let spec = if name == "emptycol.csv" {
+            format!("{f}#a")
+        } else {
+            f.clone()
+        };
+        for cmd in [
+            vec!["xyz", spec.as_str()],
+            vec!["fit", spec.as_str()],
+            vec!["table1", spec.as_str()],
+        ] {
+            let r = specpoly(&cmd);
+            fails(&r, 1, needles);
+            assert!(r.stderr.contains(name), "{}", r.stderr);
+        }
+    }
+}
+
+#[test]
+fn unknown_names_are_usage_errors() {
+    fails(
+        &specpoly(&["xyz", "colorchecker#red", "--illuminant", "F99"]),
+        2,
+        &["F99", "illuminant"],
+    );
+    fails(
+        &specpoly(&["xyz", "colorchecker#nosuchpatch"]),
+        2,
+        &["no column `nosuchpatch`"],
+    );
+    fails(&specpoly(&["xyz", "colorchecker"]), 2, &["columns"]);
+    fails(
+        &specpoly(&["xyz", "no/such/file.csv"]),
+        2,
+        &["no such file"],
+    );
+    fails(
+        &specpoly(&["xyz", "colorchecker#red", "--repr", "poly:7x3"]),
+        2,
+        &["supported spans"],
+    );
+    fails(
+        &specpoly(&["xyz", "colorchecker#red", "--repr", "fancy"]),
+        2,
+        &["unknown representation"],
+    );
+    fails(
+        &specpoly(&["xyz", "colorchecker#red", "--observer", "1976"]),
+        2,
+        &["unknown observer"],
+    );
+    fails(
+        &specpoly(&["fit", "colorchecker#red", "--repr", "rgb"]),
+        2,
+        &["polynomial representation"],
+    );
+    // clap's own usage errors (missing arguments) exit with 2 too
+    assert_eq!(specpoly(&["xyz"]).code, 2);
+    assert_eq!(specpoly(&["plot", "colorchecker#red"]).code, 2);
+}
+
+#[test]
+fn no_partial_output_files() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("fig.svg");
+    let o = out.to_str().unwrap();
+    // bad data: nothing written
+    let bad = write(d.path(), "bad.csv", "wavelength_nm,a\n400,x\n");
+    fails(&specpoly(&["plot", &bad, "-o", o]), 1, &["not a number"]);
+    fails(
+        &specpoly(&["plot", "colorchecker#red", "--product", "-o", o]),
+        2,
+        &["two spectra"],
+    );
+    fails(
+        &specpoly(&["plot", "colorchecker#red", "-o", &format!("{o}.gif")]),
+        2,
+        &[".svg or .png"],
+    );
+    assert_eq!(files_in(d.path()), vec!["bad.csv"]);
+    // an unwritable path: a data (I/O) error, nothing left behind
+    let missing = d.path().join("no/such/dir/fig.png");
+    fails(
+        &specpoly(&["plot", "colorchecker#red", "-o", missing.to_str().unwrap()]),
+        1,
+        &["no/such/dir/fig.png"],
+    );
+    let missing_md = d.path().join("nodir/accuracy.md");
+    fails(
+        &specpoly(&["accuracy", "-o", missing_md.to_str().unwrap()]),
+        1,
+        &["nodir/accuracy.md"],
+    );
+    // a directory in the way of the output file
+    std::fs::create_dir(d.path().join("taken.svg")).unwrap();
+    let taken = d.path().join("taken.svg");
+    fails(
+        &specpoly(&["plot", "colorchecker#red", "-o", taken.to_str().unwrap()]),
+        1,
+        &["taken.svg"],
+    );
+    assert_eq!(files_in(d.path()), vec!["bad.csv", "taken.svg"]);
+    assert_eq!(
+        std::fs::read_dir(&taken).unwrap().count(),
+        0,
+        "nothing written into the directory"
+    );
+}
