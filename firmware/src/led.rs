@@ -101,8 +101,9 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use embedded_hal::pwm::ErrorKind;
     use embedded_hal_mock::eh1::pwm::{Mock, Transaction};
+    use embedded_hal_mock::eh1::MockError;
+    use std::io::ErrorKind;
 
     fn channel(max: u16, duties: &[u16]) -> Mock {
         let mut t = vec![Transaction::max_duty_cycle(max)];
@@ -147,13 +148,13 @@ mod tests {
         let mut g = Mock::new(&[
             Transaction::max_duty_cycle(100),
             Transaction::set_duty_cycle(0),
-            Transaction::set_duty_cycle(50).with_error(ErrorKind::Other),
+            Transaction::set_duty_cycle(50).with_error(MockError::Io(ErrorKind::Other)),
         ]);
         let b = channel(100, &[0]);
         let mut led = RgbLed::new(r, g.clone(), b).unwrap();
         assert_eq!(
             led.set([50, 50, 50]),
-            Err(LedError::Channel(1, ErrorKind::Other))
+            Err(LedError::Channel(1, MockError::Io(ErrorKind::Other)))
         );
         // the failed set leaves the recorded duties unchanged
         assert_eq!(led.duty(), [0, 0, 0]);

@@ -86,6 +86,12 @@ impl<P: Read + Write> Link<P> {
                 max: MAX_LINE,
             });
         }
+        self.exchange_unchecked(command)
+    }
+
+    /// As [`Self::exchange`] without the host's length check, to test the controller's own
+    /// limits.
+    pub fn exchange_unchecked(&mut self, command: &str) -> Result<String, LedError> {
         let io = |source| LedError::Io {
             port: self.name.clone(),
             source,
