@@ -23,8 +23,8 @@ use std::time::Duration;
 #[derive(Debug, Clone, clap::Args)]
 pub struct RunArgs {
     /// Where patches are shown: `web[:PORT]` (a page on 127.0.0.1; open the printed URL),
-    /// `manual` (prints the RGB, waits for Enter), `sim:SPD[,options]` (a simulated display,
-    /// e.g. `sim:crt,noise=0.001`).
+    /// `led:PORT` (the RGB-LED controller), `manual` (prints the RGB, waits for Enter),
+    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`).
     #[arg(long, value_name = "DISPLAY")]
     pub display: String,
     /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode), `sim`
@@ -41,7 +41,7 @@ pub struct RunArgs {
     #[arg(long, default_value_t = 16, value_name = "N")]
     pub verify: usize,
     /// Wait after a patch is on screen before reading it, ms [default: 0 for sim and manual,
-    /// 500 for web].
+    /// 100 for led, 500 for web].
     #[arg(long, value_name = "MS")]
     pub settle: Option<u64>,
     /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,

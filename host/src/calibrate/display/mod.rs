@@ -3,6 +3,7 @@
 //! | spec | implementation |
 //! |---|---|
 //! | `web[:PORT][,wait=SECS][,timeout=SECS]` | [`web::WebDisplay`]: a full-window page served on `127.0.0.1` (an ephemeral port unless given) |
+//! | `led:PORT[,timeout=SECS]` | [`led::LedDisplay`]: the RGB-LED controller (`specpoly-firmware`) |
 //! | `manual` | [`manual::ManualDisplay`]: prints the RGB to set and waits for Enter |
 //! | `sim:SPD[,options]` | [`sim::SimDisplay`]: a simulated display (see [`crate::calibrate::sim`]) |
 
@@ -10,6 +11,7 @@ use crate::calibrate::sim::{SimHandle, SimModel};
 use crate::error::{CliError, Result};
 use std::time::Duration;
 
+pub mod led;
 pub mod manual;
 pub mod sim;
 pub mod web;
@@ -45,6 +47,12 @@ pub fn open(spec: &str) -> Result<Box<dyn PatchDisplay>> {
     };
     match kind {
         "web" => Ok(Box::new(web::WebDisplay::from_spec(spec)?)),
+        "led" => {
+            let rest = rest.ok_or_else(|| {
+                CliError::usage("`--display led` needs the controller's port: `led:/dev/ttyACM0`")
+            })?;
+            Ok(Box::new(led::LedDisplay::from_spec(rest)?))
+        }
         "manual" if rest.is_none() && spec == "manual" => {
             Ok(Box::new(manual::ManualDisplay::stdin()))
         }
@@ -59,7 +67,7 @@ pub fn open(spec: &str) -> Result<Box<dyn PatchDisplay>> {
             ))))
         }
         _ => Err(CliError::usage(format!(
-            "--display `{spec}`: expected `web[:PORT]`, `manual` or `sim:SPD[,options]`"
+            "--display `{spec}`: expected `web[:PORT]`, `led:PORT`, `manual` or `sim:SPD[,options]`"
         ))),
     }
 }
