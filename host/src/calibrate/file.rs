@@ -204,7 +204,9 @@ pub struct Calibration {
 
 fn finite(name: &str, v: &[f64]) -> Result<()> {
     match v.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(CliError::data(format!("{name}[{i}] is not a finite number"))),
+        Some(i) => Err(CliError::data(format!(
+            "{name}[{i}] is not a finite number"
+        ))),
         None => Ok(()),
     }
 }
@@ -305,10 +307,7 @@ impl Calibration {
 
     /// Predicted XYZ for device values in `[0, 1]` (the calibration's units).
     pub fn predict(&self, rgb: [f64; 3]) -> [f64; 3] {
-        let v = self
-            .display
-            .device_to_xyz(rgb.map(|v| v as f32))
-            .to_array();
+        let v = self.display.device_to_xyz(rgb.map(|v| v as f32)).to_array();
         v.map(|x| x as f64)
     }
 

@@ -15,9 +15,13 @@
 //!    resampled at `n ≤ 64` evenly spaced device values (what `specpoly-core` tabulates),
 //!    forced non-decreasing. The gamma: the exponent of `v^γ` nearest the ramp in least squares.
 //! 4. Optionally (`MatrixFit::LeastSquares`) `M` is re-fitted by linear least squares over all
-//!    fit patches, given their linearised drive and `K`: `M = argmin Σ w ‖XYZ − K − M·t‖²` with
-//!    `w = 1 / (Y + 0.01·Y_white)²` (relative error, so dark patches count as much as bright
-//!    ones, as ΔE does). This absorbs the small channel interaction of LCDs that the pure
+//!    fit patches, given their linearised drive and `K`: `M = argmin Σ w ‖XYZ − K − M·t‖²`,
+//!    each tristimulus value `v` weighted by `((v/v_white) + 0.01)^(−4/3) / v_white²` (the
+//!    square of CIELAB's slope, so errors count about as ΔE counts them). With the table
+//!    transfer, the tables are then re-fitted over all fit patches given `M` (the model is
+//!    linear in the table values), with `t(0) = 0`, a light second-difference penalty and
+//!    monotonicity, and `M` again given the tables, three rounds: a shaper/matrix fit like
+//!    ArgyllCMS's `colprof -as`. It absorbs the channel interaction of LCDs that the pure
 //!    full-drive matrix misses; see docs/calibration.md for the figures.
 //! 5. Additivity (Cowan's other assumption): the measured white against
 //!    `XYZ(R) + XYZ(G) + XYZ(B) − 2·K`, as ΔE00 (CIELAB relative to the measured white) and as
@@ -53,6 +57,9 @@ pub struct FitOptions {
     pub table_points: usize,
     /// Whether the measurements are in cd/m² (else relative, white `Y = 100`).
     pub absolute: bool,
+    /// With a table transfer and the least-squares matrix: rounds of re-fitting the tables
+    /// over every fit patch given the matrix, then the matrix given the tables.
+    pub iterations: usize,
 }
 
 impl Default for FitOptions {
@@ -62,6 +69,7 @@ impl Default for FitOptions {
             matrix: MatrixFit::LeastSquares,
             table_points: specpoly_core::display::TABLE_MAX,
             absolute: true,
+            iterations: 3,
         }
     }
 }
@@ -148,12 +156,7 @@ pub fn pchip(x: &[f64], y: &[f64], t: f64) -> f64 {
 /// The exponent of `v^γ` nearest the points in least squares (golden-section search on
 /// `γ ∈ [0.3, 6]`).
 fn fit_gamma(v: &[f64], l: &[f64]) -> f64 {
-    let cost = |g: f64| -> f64 {
-        v.iter()
-            .zip(l)
-            .map(|(v, l)| (v.powf(g) - l).powi(2))
-            .sum()
-    };
+    let cost = |g: f64| -> f64 { v.iter().zip(l).map(|(v, l)| (v.powf(g) - l).powi(2)).sum() };
     let (mut a, mut b) = (0.3f64, 6.0f64);
     let r = (5f64.sqrt() - 1.0) / 2.0;
     for _ in 0..100 {
@@ -207,7 +210,10 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
         .iter()
         .position(|m| m.device.iter().chain(&m.xyz).any(|v| !v.is_finite()))
     {
-        return Err(CliError::data(format!("measurement {} is not finite", i + 1)));
+        return Err(CliError::data(format!(
+            "measurement {} is not finite",
+            i + 1
+        )));
     }
     let g = groups(meas);
     let black = find(&g, [0.0; 3]).ok_or_else(|| {
@@ -240,12 +246,7 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
         let mut pts: Vec<(f64, f64)> = g
             .iter()
             .filter(|m| (0..3).all(|k| k == c || m.device[k] <= 1e-9))
-            .map(|m| {
-                (
-                    m.device[c],
-                    dot(sub(m.xyz, black), p[c]) / dot(p[c], p[c]),
-                )
-            })
+            .map(|m| (m.device[c], dot(sub(m.xyz, black), p[c]) / dot(p[c], p[c])))
             .collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
@@ -258,7 +259,9 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             t[i] = t[i].clamp(t[i - 1], 1.0);
         }
         tables[c] = t;
-        let inner: Vec<usize> = (0..x.len()).filter(|i| x[*i] > 0.0 && x[*i] < 1.0).collect();
+        let inner: Vec<usize> = (0..x.len())
+            .filter(|i| x[*i] > 0.0 && x[*i] < 1.0)
+            .collect();
         gamma[c] = if inner.is_empty() {
             1.0
         } else {
@@ -269,7 +272,7 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
         };
     }
     let white = find(&g, [1.0; 3]);
-    let build = |p: [[f64; 3]; 3], matrix: &str| -> Result<Calibration> {
+    let build = |p: [[f64; 3]; 3], tables: &[Vec<f64>; 3], matrix: &str| -> Result<Calibration> {
         let prim = p.map(Primary::from_xyz);
         let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]);
         Calibration::new(CalibrationData {
@@ -297,31 +300,31 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             provenance: Provenance::default(),
         })
     };
-    let mut cal = build(p, "cowan")?;
+    let mut cal = build(p, &tables, "cowan")?;
     if opts.matrix == MatrixFit::LeastSquares {
-        let wy = white.map_or(p[0][1] + p[1][1] + p[2][1], |w| w[1]);
-        // normal equations: (Σ w t tᵀ) m_r = Σ w t (XYZ_r − K_r) for each row r
-        let mut a = [[0.0; 3]; 3];
-        let mut b = [[0.0; 3]; 3];
-        for m in &g {
-            let t = cal.linearise(m.device);
-            let y = sub(m.xyz, black);
-            let w = 1.0 / (m.xyz[1].max(0.0) + 0.01 * wy).powi(2);
-            for i in 0..3 {
-                for j in 0..3 {
-                    a[i][j] += w * t[i] * t[j];
-                }
-                for r in 0..3 {
-                    b[r][i] += w * t[i] * y[r];
-                }
-            }
-        }
-        let rows: Option<Vec<[f64; 3]>> = (0..3).map(|r| solve3(a, b[r])).collect();
-        let rows = rows.ok_or_else(|| {
+        let wxyz = white.unwrap_or([0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]));
+        let lsq = lsq_matrix(&cal, &g, black, wxyz).ok_or_else(|| {
             CliError::data("least-squares matrix: the fit patches do not span three channels")
         })?;
-        let lsq = [0, 1, 2].map(|c| [rows[0][c], rows[1][c], rows[2][c]]);
-        cal = build(lsq, "least-squares")?;
+        cal = build(lsq, &tables, "least-squares")?;
+        if opts.transfer == TransferKind::Table {
+            // alternate: tables given M, M given tables (a shaper/matrix fit)
+            let mut m = lsq;
+            for _ in 0..opts.iterations {
+                let Some(t) = refit_tables(&g, m, black, wxyz, n) else {
+                    break;
+                };
+                tables = t.0;
+                m = t.1;
+                cal = build(m, &tables, "least-squares")?;
+                m = lsq_matrix(&cal, &g, black, wxyz).ok_or_else(|| {
+                    CliError::data(
+                        "least-squares matrix: the fit patches do not span three channels",
+                    )
+                })?;
+                cal = build(m, &tables, "least-squares")?;
+            }
+        }
     }
     let residual = verify::stats(&verify::delta_e(&cal, meas));
     let (additivity_delta_e00, additivity_luminance_percent) = match white {
@@ -362,4 +365,147 @@ pub fn fit_and_verify(
     prov.patches_verify = verify_set.len();
     prov.patches_total = fit_set.len() + verify_set.len();
     Ok(cal)
+}
+
+/// The weight of a squared error in tristimulus value `v` (the white's is `w`): CIELAB's
+/// `f(t) = t^(1/3)` has slope `t^(−2/3) / 3`, so an error `dv` moves L*, a*, b* by about
+/// `(v/w)^(−2/3) dv / w`; its square is the weight (floored at 1 % of white, near CIELAB's
+/// linear toe).
+fn weight(v: f64, w: f64) -> f64 {
+    ((v / w).max(0.0) + 0.01).powf(-4.0 / 3.0) / (w * w)
+}
+
+/// Weighted least-squares `M` given the calibration's curves and black.
+fn lsq_matrix(
+    cal: &Calibration,
+    g: &[Measurement],
+    black: [f64; 3],
+    white: [f64; 3],
+) -> Option<[[f64; 3]; 3]> {
+    // one weighted least-squares problem per row r of M (X, Y, Z)
+    let mut a = [[[0.0; 3]; 3]; 3];
+    let mut b = [[0.0; 3]; 3];
+    for m in g {
+        let t = cal.linearise(m.device);
+        let y = sub(m.xyz, black);
+        for r in 0..3 {
+            let w = weight(m.xyz[r], white[r]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    a[r][i][j] += w * t[i] * t[j];
+                }
+                b[r][i] += w * t[i] * y[r];
+            }
+        }
+    }
+    let rows: Option<Vec<[f64; 3]>> = (0..3).map(|r| solve3(a[r], b[r])).collect();
+    let rows = rows?;
+    Some([0, 1, 2].map(|c| [rows[0][c], rows[1][c], rows[2][c]]))
+}
+
+/// Solves a dense symmetric system by Gaussian elimination with partial pivoting.
+fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n).max_by(|i, j| a[*i][c].abs().total_cmp(&a[*j][c].abs()))?;
+        if a[p][c].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..n {
+            let f = a[r][c] / a[c][c];
+            if f != 0.0 {
+                for k in c..n {
+                    a[r][k] -= f * a[c][k];
+                }
+                b[r] -= f * b[c];
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Given `M` (as columns: `m[channel][xyz]`), the `n`-point tables that minimise the weighted squared XYZ error over all
+/// patches (the model is linear in the table values through linear interpolation), with
+/// `t(0) = 0` and a small second-difference penalty for nodes few patches touch; then each
+/// table is made non-decreasing and scaled so `t(1) = 1`, the scale moving into `M`'s column.
+#[allow(clippy::type_complexity)]
+fn refit_tables(
+    g: &[Measurement],
+    m: [[f64; 3]; 3],
+    black: [f64; 3],
+    white: [f64; 3],
+    n: usize,
+) -> Option<([Vec<f64>; 3], [[f64; 3]; 3])> {
+    // unknowns: channel c, node k = 1..n-1 → index c·(n−1) + k − 1
+    let u = 3 * (n - 1);
+    let mut a = vec![vec![0.0; u]; u];
+    let mut b = vec![0.0; u];
+    for p in g {
+        let y = sub(p.xyz, black);
+        // interpolation weights
+        let mut idx: Vec<(usize, usize, f64)> = Vec::with_capacity(6);
+        for c in 0..3 {
+            let x = p.device[c].clamp(0.0, 1.0) * (n - 1) as f64;
+            let j = (x as usize).min(n - 2);
+            let f = x - j as f64;
+            for (k, wt) in [(j, 1.0 - f), (j + 1, f)] {
+                if k > 0 && wt != 0.0 {
+                    idx.push((c, c * (n - 1) + k - 1, wt));
+                }
+            }
+        }
+        for r in 0..3 {
+            let w = weight(p.xyz[r], white[r]);
+            for &(c1, i1, w1) in &idx {
+                let g1 = m[c1][r] * w1;
+                b[i1] += w * g1 * y[r];
+                for &(c2, i2, w2) in &idx {
+                    a[i1][i2] += w * g1 * m[c2][r] * w2;
+                }
+            }
+        }
+    }
+    // smoothness: λ Σ (τ_{k−1} − 2τ_k + τ_{k+1})², scaled to the data's size
+    let trace: f64 = (0..u).map(|i| a[i][i]).sum::<f64>() / u as f64;
+    let lambda = 1e-2 * trace;
+    for c in 0..3 {
+        for k in 1..n - 1 {
+            let terms = [(k - 1, 1.0), (k, -2.0), (k + 1, 1.0)];
+            for &(k1, w1) in &terms {
+                for &(k2, w2) in &terms {
+                    if k1 > 0 && k2 > 0 {
+                        a[c * (n - 1) + k1 - 1][c * (n - 1) + k2 - 1] += lambda * w1 * w2;
+                    }
+                }
+            }
+        }
+    }
+    let x = solve_dense(a, b)?;
+    let mut tables: [Vec<f64>; 3] = Default::default();
+    let mut m2 = m;
+    for c in 0..3 {
+        let mut t = vec![0.0; n];
+        for k in 1..n {
+            t[k] = x[c * (n - 1) + k - 1].max(t[k - 1]);
+        }
+        let s = t[n - 1];
+        if !(s > 0.0) {
+            return None;
+        }
+        for v in &mut t {
+            *v /= s;
+        }
+        for r in 0..3 {
+            m2[c][r] *= s;
+        }
+        tables[c] = t;
+    }
+    Some((tables, m2))
 }

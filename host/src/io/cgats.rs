@@ -150,11 +150,15 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
             }
             State::Header => match tok[0].as_str() {
                 "NUMBER_OF_FIELDS" => {
-                    let v = tok.get(1).ok_or_else(|| bad(source, n, "NUMBER_OF_FIELDS without a value"))?;
+                    let v = tok
+                        .get(1)
+                        .ok_or_else(|| bad(source, n, "NUMBER_OF_FIELDS without a value"))?;
                     n_fields = Some((count(v, source, n, "NUMBER_OF_FIELDS")?, n));
                 }
                 "NUMBER_OF_SETS" => {
-                    let v = tok.get(1).ok_or_else(|| bad(source, n, "NUMBER_OF_SETS without a value"))?;
+                    let v = tok
+                        .get(1)
+                        .ok_or_else(|| bad(source, n, "NUMBER_OF_SETS without a value"))?;
                     n_sets = Some((count(v, source, n, "NUMBER_OF_SETS")?, n));
                 }
                 "BEGIN_DATA_FORMAT" => {
@@ -247,8 +251,16 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
             last.max(1),
             "no BEGIN_DATA: the table has no data",
         )),
-        State::Block(name) => Err(bad(source, last, format!("BEGIN_{name} without END_{name}"))),
-        State::Format => Err(bad(source, last, "BEGIN_DATA_FORMAT without END_DATA_FORMAT")),
+        State::Block(name) => Err(bad(
+            source,
+            last,
+            format!("BEGIN_{name} without END_{name}"),
+        )),
+        State::Format => Err(bad(
+            source,
+            last,
+            "BEGIN_DATA_FORMAT without END_DATA_FORMAT",
+        )),
         State::Data => Err(bad(source, last, "BEGIN_DATA without END_DATA")),
     }
 }
@@ -464,7 +476,11 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
     if let Some(i) = &info.instrument {
         let _ = writeln!(s, "TARGET_INSTRUMENT \"{}\"", q(i));
     }
-    let white = if info.absolute { white_patch(meas) } else { None };
+    let white = if info.absolute {
+        white_patch(meas)
+    } else {
+        None
+    };
     let scale = match white {
         Some(w) if w[1] > 0.0 => {
             let _ = writeln!(
