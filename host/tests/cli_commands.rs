@@ -102,6 +102,8 @@ fn table1_beside_the_paper() {
         );
         // the reduction error is far below the x̄ fit error, as the paper says (§6.2)
         assert!(ours[2] < 0.01 * ours[1], "{ours:?}");
+        // ... and below the error of fitting the reflectance itself
+        assert!(ours[2] < ours[0], "{ours:?}");
         assert!(ours[0] > 0.0 && ours[0] < 1e-3, "{ours:?}");
     }
     let (code, out, _) = specpoly(&["table1", "colorchecker#blue"]);

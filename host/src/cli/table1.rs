@@ -24,6 +24,14 @@ use std::fmt::Write as _;
 
 /// Arguments of `specpoly table1`.
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Error measure (the paper does not state one): the mean squared error \
+over a 10 nm grid in each span, ends included (the reflectance: at its own samples in the span). \
+Columns: the reflectance's cubic fit; the cubic fit of the CIE 1964 x-bar (core::paper::cmf_fit); \
+the exact degree-6 product of the two cubics against its reduction to a cubic (eq. 6). \
+The paper's reflectance was a green shingle, which we do not have; the default is \
+colorchecker#foliage."
+)]
 pub struct Table1Args {
     /// The reflectance (the paper used a green shingle, which we do not have).
     #[arg(default_value = "colorchecker#foliage", value_name = "SPECTRUM")]
