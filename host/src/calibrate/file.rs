@@ -394,6 +394,12 @@ pub fn load_display(path: &Path) -> Result<Display> {
 
 /// The current time, UTC, ISO 8601 (`2026-11-22T21:40:39Z`).
 pub fn now_utc() -> String {
+    let [y, m, d, h, min, s] = utc_parts();
+    format!("{y:04}-{m:02}-{d:02}T{h:02}:{min:02}:{s:02}Z")
+}
+
+/// The current time, UTC: year, month, day, hour, minute, second.
+pub fn utc_parts() -> [i64; 6] {
     let secs = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs() as i64)
@@ -409,10 +415,5 @@ pub fn now_utc() -> String {
     let d = doy - (153 * mp + 2) / 5 + 1;
     let m = if mp < 10 { mp + 3 } else { mp - 9 };
     let y = yoe + era * 400 + i64::from(m <= 2);
-    format!(
-        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem % 3600 / 60,
-        rem % 60
-    )
+    [y, m, d, rem / 3600, rem % 3600 / 60, rem % 60]
 }

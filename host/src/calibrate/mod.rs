@@ -4,6 +4,7 @@
 pub mod display;
 pub mod file;
 pub mod fit;
+pub mod icc;
 pub mod instrument;
 pub mod measurement;
 pub mod patches;

@@ -1,22 +1,407 @@
-//! `specpoly calibrate` (being written; the owner replaces this file).
+//! `specpoly calibrate`: fit Cowan's model to measurements, show, predict, verify, export ICC,
+//! and (`run`) measure a display. See docs/calibration.md.
 
+use crate::calibrate::file::{self, Calibration, TransferKind};
+use crate::calibrate::fit::{self, FitOptions, MatrixFit};
+use crate::calibrate::measurement::Measurement;
+use crate::calibrate::{icc, verify};
 use crate::error::{CliError, Result};
+use crate::io::cgats::{self, Ti3};
+use std::io::{BufRead, Write};
+use std::path::{Path, PathBuf};
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
 pub enum CalibrateCommand {
-    /// Fit a calibration from ArgyllCMS .ti3 measurements.
-    Fit {},
+    /// Fit a calibration (Cowan's model) from a CGATS .ti3 (ArgyllCMS, DisplayCAL, `run`).
+    Fit(FitArgs),
+    /// Print a calibration's primaries, white, black and curves.
+    Show(ShowArgs),
+    /// Predict XYZ for device RGB triples (0–1) read from stdin, one per line.
+    Predict(PredictArgs),
+    /// ΔE00 of a calibration's predictions against measured patches of a .ti3.
+    Verify(VerifyArgs),
+    /// Export an ICC v4 matrix/TRC display profile.
+    Icc(IccArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
     Run(crate::calibrate::run::RunArgs),
+}
+
+/// `calibrate fit`.
+#[derive(Debug, clap::Args)]
+pub struct FitArgs {
+    /// The measurements (CGATS .ti3 with RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z).
+    #[arg(long)]
+    pub ti3: PathBuf,
+    /// The calibration file to write (TOML).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The transfer curve the model uses (both are fitted and stored).
+    #[arg(long, value_enum, default_value_t = TransferKind::Table)]
+    pub transfer: TransferKind,
+    /// How the matrix is found.
+    #[arg(long, value_enum, default_value_t = MatrixFit::LeastSquares)]
+    pub matrix: MatrixFit,
+    /// Points of each transfer table (2–64).
+    #[arg(long, default_value_t = 64)]
+    pub table_points: usize,
+    /// Hold out every other patch that is not black, white or a single-channel ramp step,
+    /// and report ΔE00 on them (stored in the file's [fit.verification]).
+    #[arg(long)]
+    pub hold_out: bool,
+}
+
+/// `calibrate show`.
+#[derive(Debug, clap::Args)]
+pub struct ShowArgs {
+    /// The calibration file.
+    pub calibration: PathBuf,
+    /// JSON instead of text (keys in docs/calibration.md).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `calibrate predict`.
+#[derive(Debug, clap::Args)]
+pub struct PredictArgs {
+    /// The calibration file.
+    #[arg(long)]
+    pub calibration: PathBuf,
+}
+
+/// `calibrate verify`.
+#[derive(Debug, clap::Args)]
+pub struct VerifyArgs {
+    /// The calibration file.
+    #[arg(long)]
+    pub calibration: PathBuf,
+    /// The measured patches.
+    #[arg(long)]
+    pub ti3: PathBuf,
+}
+
+/// `calibrate icc`.
+#[derive(Debug, clap::Args)]
+pub struct IccArgs {
+    /// The calibration file.
+    pub calibration: PathBuf,
+    /// The profile to write.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The profile's description (`desc`); default: the calibration file's name.
+    #[arg(long)]
+    pub description: Option<String>,
 }
 
 /// Runs `specpoly calibrate`.
 pub fn run(c: CalibrateCommand) -> Result<()> {
     match c {
+        CalibrateCommand::Fit(a) => fit_cmd(&a),
+        CalibrateCommand::Show(a) => show(&a),
+        CalibrateCommand::Predict(a) => predict(&a),
+        CalibrateCommand::Verify(a) => verify_cmd(&a),
+        CalibrateCommand::Icc(a) => icc_cmd(&a),
         CalibrateCommand::Run(a) => crate::calibrate::run::run_cli(&a),
-        CalibrateCommand::Fit {} => Err(CliError::usage(
-            "`calibrate fit` is not available in this build yet",
-        )),
     }
+}
+
+/// Writes text to stdout; a closed pipe ends quietly.
+fn print(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::io("stdout", e)),
+        _ => Ok(()),
+    }
+}
+
+/// Reads a .ti3 file.
+pub fn read_ti3_file(path: &Path) -> Result<Ti3> {
+    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    cgats::read_ti3(&text, &path.display().to_string())
+}
+
+fn fit_cmd(a: &FitArgs) -> Result<()> {
+    let ti3 = read_ti3_file(&a.ti3)?;
+    let (meas, absolute) = ti3.best_units();
+    let (fit_set, verify_set): (Vec<Measurement>, Vec<Measurement>) = if a.hold_out {
+        let mut k = 0;
+        let (mut f, mut v) = (Vec::new(), Vec::new());
+        for m in meas {
+            if fit::is_ramp(&m) {
+                f.push(m);
+            } else {
+                if k % 2 == 0 {
+                    f.push(m)
+                } else {
+                    v.push(m)
+                }
+                k += 1;
+            }
+        }
+        (f, v)
+    } else {
+        (meas, Vec::new())
+    };
+    let opts = FitOptions {
+        transfer: a.transfer,
+        matrix: a.matrix,
+        table_points: a.table_points,
+        absolute,
+        ..Default::default()
+    };
+    let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
+        .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
+    let (_, prov) = cal.report_mut();
+    prov.source = a.ti3.display().to_string();
+    prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
+    prov.instrument = ti3
+        .keyword("TARGET_INSTRUMENT")
+        .unwrap_or_default()
+        .to_string();
+    if ti3.normalized {
+        prov.notes.push(match ti3.white_cdm2 {
+            Some(w) => format!(
+                "the source is normalised to white Y = 100 (NORMALIZED_TO_Y_100); scaled to cd/m² with LUMINANCE_XYZ_CDM2 (white Y = {:.3} cd/m²)",
+                w[1]
+            ),
+            None => "the source is normalised to white Y = 100 and gives no absolute luminance: units are relative".into(),
+        });
+    }
+    if ti3.video_lut_active() {
+        prov.notes.push(format!(
+            "measured through a video-LUT calibration (the source's CAL table, {} entries): this model holds only while that LUT is loaded",
+            ti3.video_lut.as_ref().map_or(0, Vec::len)
+        ));
+    }
+    cal.save(&a.output)?;
+    let d = cal.data();
+    let mut s = format!(
+        "fitted {} patches from {} → {}\n",
+        fit_set.len(),
+        a.ti3.display(),
+        a.output.display()
+    );
+    s.push_str(&format!(
+        "fit ΔE00: mean {:.3}, p95 {:.3}, max {:.3}\n",
+        d.fit.residual.mean, d.fit.residual.p95, d.fit.residual.max
+    ));
+    if let Some(v) = d.fit.verification {
+        s.push_str(&format!(
+            "held-out ΔE00 ({} patches): mean {:.3}, p95 {:.3}, max {:.3}\n",
+            v.patches, v.mean, v.p95, v.max
+        ));
+    }
+    if let (Some(de), Some(pc)) = (
+        d.fit.additivity_delta_e00,
+        d.fit.additivity_luminance_percent,
+    ) {
+        s.push_str(&format!(
+            "additivity (R+G+B−2·black vs white): ΔE00 {de:.3}, luminance {pc:+.2} %\n"
+        ));
+    }
+    for n in &d.provenance.notes {
+        s.push_str(&format!("note: {n}\n"));
+    }
+    print(&s)
+}
+
+/// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
+pub fn show_json(cal: &Calibration) -> serde_json::Value {
+    let d = cal.data();
+    let prim = |p: &file::Primary| serde_json::json!({"x": p.x, "y": p.y, "Y": p.luminance});
+    let xyy = |v: [f64; 3]| {
+        let s = v[0] + v[1] + v[2];
+        serde_json::json!({"X": v[0], "Y": v[1], "Z": v[2], "x": v[0] / s, "y": v[1] / s})
+    };
+    serde_json::json!({
+        "format": d.format,
+        "version": d.version,
+        "units": d.units,
+        "primaries": {
+            "red": prim(&d.primaries.red),
+            "green": prim(&d.primaries.green),
+            "blue": prim(&d.primaries.blue),
+        },
+        "white": xyy(d.white),
+        "black": xyy(d.black),
+        "contrast": d.white[1] / d.black[1].max(f64::MIN_POSITIVE),
+        "transfer": d.transfer.kind,
+        "gamma": d.transfer.gamma,
+        "matrix": d.fit.matrix,
+        "fit": d.fit,
+        "provenance": d.provenance,
+    })
+}
+
+fn show(a: &ShowArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    if a.json {
+        let v = show_json(&cal);
+        let s = serde_json::to_string_pretty(&v)
+            .map_err(|e| CliError::data(format!("cannot print JSON: {e}")))?;
+        return print(&(s + "\n"));
+    }
+    let d = cal.data();
+    let u = if cal.absolute() { "cd/m²" } else { "relative" };
+    let mut s = format!("{}  (units: {u})\n", a.calibration.display());
+    s.push_str("          x        y        Y\n");
+    for (n, p) in ["red", "green", "blue"].iter().zip(d.primaries.array()) {
+        s.push_str(&format!(
+            "{n:<6} {:8.4} {:8.4} {:10.4}\n",
+            p.x, p.y, p.luminance
+        ));
+    }
+    for (n, v) in [("white", d.white), ("black", d.black)] {
+        let t = v[0] + v[1] + v[2];
+        s.push_str(&format!(
+            "{n:<6} {:8.4} {:8.4} {:10.4}\n",
+            v[0] / t,
+            v[1] / t,
+            v[1]
+        ));
+    }
+    s.push_str(&format!(
+        "gamma  R {:.3}  G {:.3}  B {:.3}  (model uses the {:?} curve)\n",
+        d.transfer.gamma[0], d.transfer.gamma[1], d.transfer.gamma[2], d.transfer.kind
+    ));
+    s.push_str(&format!(
+        "matrix {}; fit ΔE00 mean {:.3}, max {:.3} over {} patches\n",
+        d.fit.matrix, d.fit.residual.mean, d.fit.residual.max, d.fit.residual.patches
+    ));
+    if let Some(v) = d.fit.verification {
+        s.push_str(&format!(
+            "held-out ΔE00 mean {:.3}, p95 {:.3}, max {:.3} over {} patches\n",
+            v.mean, v.p95, v.max, v.patches
+        ));
+    }
+    s.push_str(&format!(
+        "source {} (fitted {})\n",
+        d.provenance.source, d.provenance.created
+    ));
+    print(&s)
+}
+
+/// Parses one line of `predict` input: three numbers in `[0, 1]`.
+pub fn parse_rgb(line: &str, n: usize) -> Result<[f64; 3]> {
+    let parts: Vec<&str> = line
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .filter(|s| !s.is_empty())
+        .collect();
+    if parts.len() != 3 {
+        return Err(CliError::data(format!(
+            "stdin:{n}: expected three device values R G B in 0–1, found {} values",
+            parts.len()
+        )));
+    }
+    let mut v = [0.0; 3];
+    for (k, p) in parts.iter().enumerate() {
+        v[k] = match p.parse::<f64>() {
+            Ok(x) if (0.0..=1.0).contains(&x) => x,
+            Ok(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is outside 0–1"))),
+            Err(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is not a number"))),
+        };
+    }
+    Ok(v)
+}
+
+fn predict(a: &PredictArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let stdin = std::io::stdin();
+    let mut out = String::new();
+    for (i, line) in stdin.lock().lines().enumerate() {
+        let line = line.map_err(|e| CliError::io("stdin", e))?;
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let rgb = parse_rgb(t, i + 1)?;
+        let x = cal.predict(rgb);
+        out.push_str(&format!("{:.6} {:.6} {:.6}\n", x[0], x[1], x[2]));
+    }
+    print(&out)
+}
+
+/// The .ti3's measurements in the calibration's units: absolute if both can be; otherwise
+/// relative ones scaled by the calibration's white (see docs/calibration.md).
+pub fn measurements_for(cal: &Calibration, ti3: &Ti3) -> Result<Vec<Measurement>> {
+    let (m, abs) = ti3.best_units();
+    let k = match (cal.absolute(), abs) {
+        (true, true) | (false, false) => 1.0,
+        // relative (white Y = 100) → the calibration's cd/m²
+        (true, false) => cal.data().white[1] / 100.0,
+        // absolute → relative: the file's own white patch to Y = 100
+        (false, true) => {
+            let w = cgats::white_patch(&m).ok_or_else(|| {
+                CliError::data(
+                    "the .ti3 is absolute, the calibration relative, and the .ti3 has no white patch to normalise by",
+                )
+            })?;
+            100.0 / w[1]
+        }
+    };
+    Ok(m.into_iter()
+        .map(|p| Measurement {
+            device: p.device,
+            xyz: p.xyz.map(|v| v * k),
+        })
+        .collect())
+}
+
+fn verify_cmd(a: &VerifyArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let ti3 = read_ti3_file(&a.ti3)?;
+    let m = measurements_for(&cal, &ti3)?;
+    let de = verify::delta_e(&cal, &m);
+    let s = verify::stats(&de);
+    let pf = |t: (f64, f64)| {
+        if verify::passes(&s, t) {
+            "pass"
+        } else {
+            "FAIL"
+        }
+    };
+    let worst = de
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(i, _)| i)
+        .unwrap_or(0);
+    let w = &m[worst];
+    let text = format!(
+        "{} patches of {} against {}\nΔE00 mean {:.3}  p95 {:.3}  max {:.3} (line {}: RGB {:.4} {:.4} {:.4})\nnominal     (mean ≤ {}, max ≤ {}): {}\nrecommended (mean ≤ {}, max ≤ {}): {}\n",
+        s.patches,
+        a.ti3.display(),
+        a.calibration.display(),
+        s.mean,
+        s.p95,
+        s.max,
+        ti3.lines[worst],
+        w.device[0],
+        w.device[1],
+        w.device[2],
+        verify::NOMINAL.0,
+        verify::NOMINAL.1,
+        pf(verify::NOMINAL),
+        verify::RECOMMENDED.0,
+        verify::RECOMMENDED.1,
+        pf(verify::RECOMMENDED),
+    );
+    print(&text)
+}
+
+fn icc_cmd(a: &IccArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let desc = a.description.clone().unwrap_or_else(|| {
+        a.calibration
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "specpoly display".into())
+    });
+    let bytes = icc::profile(&cal, &desc)?;
+    crate::io::atomic::write(&a.output, &bytes)?;
+    print(&format!(
+        "wrote {} ({} bytes, ICC v4.4 matrix/TRC display profile)\n",
+        a.output.display(),
+        bytes.len()
+    ))
 }
