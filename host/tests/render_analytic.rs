@@ -16,13 +16,17 @@ use specpoly::repr::Repr;
 use std::path::PathBuf;
 
 fn data(rel: &str) -> String {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../data").join(rel);
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../data")
+        .join(rel);
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
 /// `(wavelengths, column)` of a CSV.
 fn column(text: &str, name: &str) -> (Vec<f64>, Vec<f64>) {
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let k = header.iter().position(|h| h.trim() == name).unwrap();
     let (mut w, mut v) = (Vec::new(), Vec::new());
@@ -69,7 +73,10 @@ material = "paint"
 
 #[test]
 fn centre_pixel_matches_a_hand_derived_1nm_sum() {
-    let refl = column(&data("reflectances/colorchecker_babelcolor_average.csv"), "orange");
+    let refl = column(
+        &data("reflectances/colorchecker_babelcolor_average.csv"),
+        "orange",
+    );
     let light = column(&data("illuminants/FL2.csv"), "relative_power");
     let cmf_text = data("cmf/cie1931_2deg_1nm.csv");
     let cmf: Vec<(Vec<f64>, Vec<f64>)> = ["x_bar", "y_bar", "z_bar"]

@@ -71,7 +71,9 @@ fn renders_a_scene_file_deterministically() {
     assert_eq!(png_size(&pa), (24, 16));
     for mode in ["rgb", "paper", "sampled:16", "reference"] {
         let o = specpoly(
-            &["render", "s.toml", "--mode", mode, "--size", "8x6", "-o", "m.png"],
+            &[
+                "render", "s.toml", "--mode", mode, "--size", "8x6", "-o", "m.png",
+            ],
             dir.path(),
         );
         assert!(o.status.success(), "{mode}: {}", stderr(&o));
@@ -83,7 +85,15 @@ fn renders_a_scene_file_deterministically() {
 fn builtin_scene_and_compare() {
     let dir = tempfile::tempdir().unwrap();
     let o = specpoly(
-        &["render", "interreflection", "--size", "32x24", "--compare", "-o", "c.png"],
+        &[
+            "render",
+            "interreflection",
+            "--size",
+            "32x24",
+            "--compare",
+            "-o",
+            "c.png",
+        ],
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
@@ -98,7 +108,11 @@ fn builtin_scene_and_compare() {
 fn fails(scene: &str, code: i32, needle: &str) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("s.toml"), scene).unwrap();
-    std::fs::write(dir.path().join("bad.csv"), "wavelength_nm,v\n400,0.5\n410,oops\n").unwrap();
+    std::fs::write(
+        dir.path().join("bad.csv"),
+        "wavelength_nm,v\n400,0.5\n410,oops\n",
+    )
+    .unwrap();
     std::fs::write(dir.path().join("out.png"), b"previous").unwrap();
     let o = specpoly(&["render", "s.toml", "-o", "out.png"], dir.path());
     let err = stderr(&o);
@@ -106,7 +120,10 @@ fn fails(scene: &str, code: i32, needle: &str) {
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
     assert!(err.contains(needle), "`{needle}` not in: {err}");
     // the old output is untouched and no temporary file is left
-    assert_eq!(std::fs::read(dir.path().join("out.png")).unwrap(), b"previous");
+    assert_eq!(
+        std::fs::read(dir.path().join("out.png")).unwrap(),
+        b"previous"
+    );
     let left: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -155,11 +172,33 @@ fn unknown_key() {
 fn usage_errors() {
     let dir = tempfile::tempdir().unwrap();
     for (args, needle) in [
-        (vec!["render", "nosuchscene", "-o", "x.png"], "unknown scene `nosuchscene`"),
-        (vec!["render", "example1", "--mode", "cmyk", "-o", "x.png"], "unknown representation"),
-        (vec!["render", "example1", "--size", "12", "-o", "x.png"], "--size"),
-        (vec!["render", "example1", "--gamut", "squash", "-o", "x.png"], "--gamut"),
-        (vec!["render", "example1", "--display", "nope.toml", "-o", "x.png"], "--display"),
+        (
+            vec!["render", "nosuchscene", "-o", "x.png"],
+            "unknown scene `nosuchscene`",
+        ),
+        (
+            vec!["render", "example1", "--mode", "cmyk", "-o", "x.png"],
+            "unknown representation",
+        ),
+        (
+            vec!["render", "example1", "--size", "12", "-o", "x.png"],
+            "--size",
+        ),
+        (
+            vec!["render", "example1", "--gamut", "squash", "-o", "x.png"],
+            "--gamut",
+        ),
+        (
+            vec![
+                "render",
+                "example1",
+                "--display",
+                "nope.toml",
+                "-o",
+                "x.png",
+            ],
+            "--display",
+        ),
     ] {
         let o = specpoly(&args, dir.path());
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
@@ -178,7 +217,16 @@ fn display_file() {
     )
     .unwrap();
     let o = specpoly(
-        &["render", "s.toml", "--display", "d.toml", "--gamut", "desaturate", "-o", "d.png"],
+        &[
+            "render",
+            "s.toml",
+            "--display",
+            "d.toml",
+            "--gamut",
+            "desaturate",
+            "-o",
+            "d.png",
+        ],
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));

@@ -105,6 +105,14 @@ pub struct RenderSection {
     /// Adapt the first light's white to the display white (Bradford) before display.
     #[serde(default = "yes")]
     pub white_balance: bool,
+    /// Rays whose path weight (the product of the largest values of the reflectances and
+    /// filters along it) falls below this are not traced (adaptive tree depth; 0 disables).
+    #[serde(default = "default_cutoff")]
+    pub cutoff: f32,
+}
+
+fn default_cutoff() -> f32 {
+    1e-3
 }
 
 fn default_size() -> u32 {
@@ -133,6 +141,7 @@ impl Default for RenderSection {
             observer: default_observer(),
             exposure: 1.0,
             white_balance: true,
+            cutoff: default_cutoff(),
         }
     }
 }
@@ -480,6 +489,11 @@ impl SceneFile {
         if !(r.exposure.is_finite() && r.exposure > 0.0) {
             return Err(CliError::data(format!(
                 "{source}: render.exposure must be positive"
+            )));
+        }
+        if !(r.cutoff.is_finite() && r.cutoff >= 0.0) {
+            return Err(CliError::data(format!(
+                "{source}: render.cutoff must be ≥ 0"
             )));
         }
         let c = &self.camera;

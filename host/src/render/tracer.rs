@@ -23,17 +23,60 @@
 //! the transmitted share along the mirror direction.
 
 use super::geometry::{Camera, Ray, Shape, EPS, V3};
-use super::scene::{Material, Scene};
+use super::scene::{Material, Object, Scene};
 use specpoly_core::{Observer, Shade, Tabulated, Xyz};
+
+/// One coefficient of a material (a reflectance or filter) in representation `T`.
+#[derive(Clone, Copy, Debug)]
+struct Coef<T> {
+    /// The value.
+    value: T,
+    /// `Some(k)` when the spectrum is flat: products with it are scalings, and
+    /// `xyz(T·k) = k·xyz(T)`.
+    flat: Option<f32>,
+    /// Its largest value over 380–780 nm (bounds a path's weight).
+    max: f32,
+}
+
+impl<T: Shade> Coef<T> {
+    /// `path · self`.
+    #[inline]
+    fn times(&self, path: &T) -> T {
+        match self.flat {
+            Some(k) => path.scale(k),
+            None => path.mul(&self.value),
+        }
+    }
+
+    /// `path · self`, with `None` the path of weight one.
+    #[inline]
+    fn after(&self, path: Option<&T>) -> T {
+        match path {
+            Some(p) => self.times(p),
+            None => self.value,
+        }
+    }
+
+    /// `xyz(path · self)` under `light`; `prod` is `path · self` if already formed, and
+    /// `path_xyz` caches `xyz(path)` for flat coefficients.
+    #[inline]
+    fn xyz(&self, path: &T, prod: Option<&T>, path_xyz: &mut Option<Xyz>, light: &T::Light) -> Xyz {
+        match (self.flat, prod) {
+            (Some(k), _) => path_xyz.get_or_insert_with(|| path.xyz(light)).scale(k),
+            (None, Some(p)) => p.xyz(light),
+            (None, None) => self.times(path).xyz(light),
+        }
+    }
+}
 
 /// A material with its spectra in representation `T`.
 #[derive(Clone, Copy, Debug)]
 struct Mat<T> {
-    diffuse: Option<T>,
-    specular: Option<T>,
+    diffuse: Option<Coef<T>>,
+    specular: Option<Coef<T>>,
     phong: f32,
-    mirror: Option<T>,
-    transmission: Option<T>,
+    mirror: Option<Coef<T>>,
+    transmission: Option<Coef<T>>,
     ior: f32,
 }
 
@@ -48,7 +91,7 @@ struct LightT<T: Shade> {
 /// and the first-hit XYZ of every material under every light tabulated.
 pub struct Compiled<T: Shade> {
     mats: Vec<Mat<T>>,
-    objects: Vec<(Shape, usize, Option<(usize, f32)>)>,
+    objects: Vec<Object>,
     lights: Vec<LightT<T>>,
     ambient: T::Light,
     ambient_k: f32,
@@ -63,6 +106,7 @@ pub struct Compiled<T: Shade> {
     height: u32,
     samples: u32,
     max_depth: u32,
+    cutoff: f32,
 }
 
 fn light_of<T: Shade>(observer: Observer, t: Tabulated<'_>, layout: T::Layout) -> T::Light {
@@ -94,22 +138,45 @@ impl<T: Shade> Compiled<T> {
                 .map(|n| T::from_reflectance(&n.tabulated(), reference))
                 .transpose()
         };
+        let coef =
+            |n: &Option<crate::spectra::Named>| -> Result<Option<Coef<T>>, specpoly_core::Error> {
+                let Some(v) = conv(n)? else {
+                    return Ok(None);
+                };
+                let named = n.as_ref().map(|n| n.tabulated());
+                let samples: Vec<f64> = named
+                    .map(|t| (380..=780).map(|nm| t.at(nm as f64)).collect())
+                    .unwrap_or_default();
+                let max = samples.iter().copied().fold(0.0f64, f64::max) as f32;
+                let flat = match named {
+                    Some(t) if t.values().iter().all(|v| *v == t.values()[0]) => {
+                        Some(t.values()[0])
+                    }
+                    _ => None,
+                };
+                Ok(Some(Coef {
+                    value: v,
+                    flat,
+                    max,
+                }))
+            };
         let mats = scene
             .materials
             .iter()
             .map(|m: &Material| {
                 Ok(Mat {
-                    diffuse: conv(&m.diffuse)?,
-                    specular: conv(&m.specular)?,
+                    diffuse: coef(&m.diffuse)?,
+                    specular: coef(&m.specular)?,
                     phong: m.phong,
-                    mirror: conv(&m.mirror)?,
-                    transmission: conv(&m.transmission)?,
+                    mirror: coef(&m.mirror)?,
+                    transmission: coef(&m.transmission)?,
                     ior: m.ior,
                 })
             })
             .collect::<Result<Vec<_>, specpoly_core::Error>>()?;
         let background = conv(&scene.background)?;
         let xyz_or_zero = |v: &Option<T>, l: &T::Light| v.map(|v| v.xyz(l)).unwrap_or_default();
+        let coef_xyz = |c: &Option<Coef<T>>, l: &T::Light| xyz_or_zero(&c.map(|c| c.value), l);
         let first = mats
             .iter()
             .map(|m| {
@@ -117,8 +184,8 @@ impl<T: Shade> Compiled<T> {
                     .iter()
                     .map(|l| {
                         (
-                            xyz_or_zero(&m.diffuse, &l.light),
-                            xyz_or_zero(&m.specular, &l.light),
+                            coef_xyz(&m.diffuse, &l.light),
+                            coef_xyz(&m.specular, &l.light),
                         )
                     })
                     .collect()
@@ -127,15 +194,11 @@ impl<T: Shade> Compiled<T> {
         let ambient_k = scene.ambient.intensity;
         let first_ambient = mats
             .iter()
-            .map(|m| xyz_or_zero(&m.diffuse, &ambient).scale(ambient_k))
+            .map(|m| coef_xyz(&m.diffuse, &ambient).scale(ambient_k))
             .collect();
         let background_xyz = xyz_or_zero(&background, &ambient);
         Ok(Self {
-            objects: scene
-                .objects
-                .iter()
-                .map(|o| (o.shape, o.material, o.checker))
-                .collect(),
+            objects: scene.objects.clone(),
             mats,
             lights,
             ambient,
@@ -149,6 +212,7 @@ impl<T: Shade> Compiled<T> {
             height: scene.render.height,
             samples: scene.render.samples,
             max_depth: scene.render.max_depth,
+            cutoff: scene.render.cutoff,
         })
     }
 
@@ -167,16 +231,16 @@ impl<T: Shade> Compiled<T> {
     fn nearest(&self, ray: &Ray) -> Option<(f32, V3, usize)> {
         let mut best: Option<(f32, V3, usize)> = None;
         let mut t_max = f32::INFINITY;
-        for (i, (shape, _, _)) in self.objects.iter().enumerate() {
-            if let Some(h) = shape.intersect(ray, t_max) {
+        for (i, o) in self.objects.iter().enumerate() {
+            if let Some(h) = o.shape.intersect(ray, t_max) {
                 t_max = h.t;
                 best = Some((h.t, h.normal, i));
             }
         }
         best.map(|(t, n, i)| {
-            let (shape, m, checker) = &self.objects[i];
-            let mut m = *m;
-            if let (Some((m2, size)), Shape::Plane { normal, .. }) = (checker, shape) {
+            let o = &self.objects[i];
+            let mut m = o.material;
+            if let (Some((m2, size)), Shape::Plane { normal, .. }) = (o.checker, o.shape) {
                 let p = ray.at(t);
                 // two axes spanning the plane
                 let a = if normal.x.abs() < 0.9 {
@@ -189,7 +253,7 @@ impl<T: Shade> Compiled<T> {
                 let cu = (p.dot(u) / size).floor() as i64;
                 let cv = (p.dot(v) / size).floor() as i64;
                 if (cu + cv).rem_euclid(2) == 1 {
-                    m = *m2;
+                    m = m2;
                 }
             }
             (t, n, m)
@@ -202,24 +266,25 @@ impl<T: Shade> Compiled<T> {
     fn shadow(&self, p: V3, dir: V3, dist: f32) -> Option<Option<T>> {
         let ray = Ray { origin: p, dir };
         let mut filter: Option<T> = None;
-        for (shape, m, _) in &self.objects {
-            let k = shape.crossings(&ray, dist);
+        for o in &self.objects {
+            let k = o.shape.crossings(&ray, dist);
             if k == 0 {
                 continue;
             }
-            let f = self.mats[*m].transmission?;
+            let f = self.mats[o.material].transmission?;
             for _ in 0..k {
                 filter = Some(match filter {
-                    Some(acc) => acc.mul(&f),
-                    None => f,
+                    Some(acc) => f.times(&acc),
+                    None => f.value,
                 });
             }
         }
         Some(filter)
     }
 
-    /// Adds to `out` the light arriving along `ray` with throughput `tp` (`None` = 1).
-    fn trace(&self, ray: &Ray, tp: Option<&T>, depth: u32, out: &mut Xyz) {
+    /// Adds to `out` the light arriving along `ray` with throughput `tp` (`None` = 1) whose
+    /// largest value is at most `weight`.
+    fn trace(&self, ray: &Ray, tp: Option<&T>, weight: f32, depth: u32, out: &mut Xyz) {
         let Some((t, normal, mi)) = self.nearest(ray) else {
             *out = *out
                 + match (tp, &self.background) {
@@ -238,22 +303,23 @@ impl<T: Shade> Compiled<T> {
         let lift = p + n * EPS * 4.0;
 
         if m.diffuse.is_some() || m.specular.is_some() {
-            // T·D and T·S, formed once for all lights (deeper hits only)
-            let mut td: Option<(Option<T>, Option<T>)> = None;
             let mut acc = Xyz::default();
-            if let Some(tp) = tp {
-                let pair = (
-                    m.diffuse.map(|d| tp.mul(&d)),
-                    m.specular.map(|s| tp.mul(&s)),
-                );
-                if self.ambient_k > 0.0 {
-                    if let Some(d) = &pair.0 {
-                        acc = acc + d.xyz(&self.ambient).scale(self.ambient_k);
-                    }
+            // deeper hits: T·D and T·S (spectral coefficients only), formed once for all lights
+            let td = match (tp, &m.diffuse) {
+                (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
+                _ => None,
+            };
+            let ts = match (tp, &m.specular) {
+                (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
+                _ => None,
+            };
+            match (tp, &m.diffuse) {
+                (None, _) => acc = acc + self.first_ambient[mi],
+                (Some(tp), Some(d)) if self.ambient_k > 0.0 => {
+                    let x = d.xyz(tp, td.as_ref(), &mut None, &self.ambient);
+                    acc = acc + x.scale(self.ambient_k);
                 }
-                td = Some(pair);
-            } else {
-                acc = acc + self.first_ambient[mi];
+                _ => {}
             }
             for (li, l) in self.lights.iter().enumerate() {
                 let to = l.position - p;
@@ -270,45 +336,43 @@ impl<T: Shade> Compiled<T> {
                     continue;
                 };
                 let a = l.intensity * cos;
-                let b = if m.specular.is_some() {
-                    let r = (-ldir).reflect(n);
-                    let rv = r.dot(v);
-                    if rv > 0.0 {
-                        l.intensity * rv.powf(m.phong)
-                    } else {
-                        0.0
+                let b = match &m.specular {
+                    Some(_) => {
+                        let rv = (-ldir).reflect(n).dot(v);
+                        if rv > 0.0 {
+                            l.intensity * rv.powf(m.phong)
+                        } else {
+                            0.0
+                        }
                     }
-                } else {
-                    0.0
+                    None => 0.0,
                 };
-                match (filter, &td) {
+                match (filter, tp) {
                     (None, None) => {
                         let (xd, xs) = self.first[mi][li];
                         acc = acc + xd.scale(a) + xs.scale(b);
                     }
-                    (None, Some((d, s))) => {
-                        if let Some(d) = d {
-                            acc = acc + d.xyz(&l.light).scale(a);
+                    (None, Some(tp)) => {
+                        let mut tp_xyz = None;
+                        if let Some(d) = &m.diffuse {
+                            acc = acc + d.xyz(tp, td.as_ref(), &mut tp_xyz, &l.light).scale(a);
                         }
-                        if let (Some(s), true) = (s, b > 0.0) {
-                            acc = acc + s.xyz(&l.light).scale(b);
+                        if let (Some(s), true) = (&m.specular, b > 0.0) {
+                            acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, &l.light).scale(b);
                         }
                     }
                     (Some(f), _) => {
-                        let f = match tp {
+                        // the light arrives through filters: path · F · (a·D + b·S)
+                        let path = match tp {
                             Some(tp) => tp.mul(&f),
                             None => f,
                         };
-                        let mut local: Option<T> = m.diffuse.map(|d| d.scale(a));
-                        if let (Some(s), true) = (&m.specular, b > 0.0) {
-                            let s = s.scale(b);
-                            local = Some(match local {
-                                Some(l) => l.add(&s),
-                                None => s,
-                            });
+                        let mut path_xyz = None;
+                        if let Some(d) = &m.diffuse {
+                            acc = acc + d.xyz(&path, None, &mut path_xyz, &l.light).scale(a);
                         }
-                        if let Some(local) = local {
-                            acc = acc + f.mul(&local).xyz(&l.light);
+                        if let (Some(s), true) = (&m.specular, b > 0.0) {
+                            acc = acc + s.xyz(&path, None, &mut path_xyz, &l.light).scale(b);
                         }
                     }
                 }
@@ -319,37 +383,33 @@ impl<T: Shade> Compiled<T> {
         if depth >= self.max_depth {
             return;
         }
-        let next = |w: &T| -> T {
-            match tp {
-                Some(tp) => tp.mul(w),
-                None => *w,
-            }
-        };
         if let Some(mirror) = &m.mirror {
-            let r = Ray {
-                origin: lift,
-                dir: ray.dir.reflect(n),
-            };
-            self.trace(&r, Some(&next(mirror)), depth + 1, out);
+            let w = weight * mirror.max;
+            if w >= self.cutoff {
+                let r = Ray {
+                    origin: lift,
+                    dir: ray.dir.reflect(n),
+                };
+                self.trace(&r, Some(&mirror.after(tp)), w, depth + 1, out);
+            }
         }
         if let Some(filter) = &m.transmission {
-            let eta = if entering { 1.0 / m.ior } else { m.ior };
-            let through = next(filter);
-            match ray.dir.refract(n, eta) {
-                Some(d) => {
-                    let r = Ray {
+            let w = weight * filter.max;
+            if w >= self.cutoff {
+                let eta = if entering { 1.0 / m.ior } else { m.ior };
+                let through = filter.after(tp);
+                let r = match ray.dir.refract(n, eta) {
+                    Some(d) => Ray {
                         origin: p - n * EPS * 4.0,
                         dir: d,
-                    };
-                    self.trace(&r, Some(&through), depth + 1, out);
-                }
-                None => {
-                    let r = Ray {
+                    },
+                    // total internal reflection
+                    None => Ray {
                         origin: lift,
                         dir: ray.dir.reflect(n),
-                    };
-                    self.trace(&r, Some(&through), depth + 1, out);
-                }
+                    },
+                };
+                self.trace(&r, Some(&through), w, depth + 1, out);
             }
         }
     }
@@ -364,7 +424,7 @@ impl<T: Shade> Compiled<T> {
                 let u = (x as f32 + (sx as f32 + 0.5) / n as f32) / self.width as f32;
                 let v = (y as f32 + (sy as f32 + 0.5) / n as f32) / self.height as f32;
                 let ray = self.camera.ray(u, v, aspect);
-                self.trace(&ray, None, 0, &mut sum);
+                self.trace(&ray, None, 1.0, 0, &mut sum);
             }
         }
         sum.scale(1.0 / (n * n) as f32)
