@@ -61,7 +61,9 @@ fn main() -> ! {
     let Some(p) = cortex_m::Peripherals::take() else {
         hprintln!("selftest: no peripherals");
         debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        loop {
+            cortex_m::asm::wfi();
+        }
     };
     let mut counter = Counter::new(p.SYST);
     let mut c = Controller::new(u16::MAX);

@@ -28,6 +28,11 @@ impl Link<Box<dyn serialport::SerialPort>> {
     }
 }
 
+/// EIO (a pseudo-terminal whose other end has gone) and a broken pipe mean the device left.
+fn is_hang_up(e: &std::io::Error) -> bool {
+    e.kind() == ErrorKind::BrokenPipe || e.raw_os_error() == Some(5)
+}
+
 fn clip(s: &str, n: usize) -> String {
     s.chars().take(n).collect()
 }
@@ -78,6 +83,19 @@ impl<P: Read + Write> Link<P> {
         }
     }
 
+    fn io_error(&self, source: std::io::Error) -> LedError {
+        if is_hang_up(&source) {
+            LedError::Closed {
+                port: self.name.clone(),
+            }
+        } else {
+            LedError::Io {
+                port: self.name.clone(),
+                source,
+            }
+        }
+    }
+
     /// Writes `command` and a newline, and reads the reply line (without its newline).
     pub fn exchange(&mut self, command: &str) -> Result<String, LedError> {
         if command.len() > MAX_LINE {
@@ -92,18 +110,14 @@ impl<P: Read + Write> Link<P> {
     /// As [`Self::exchange`] without the host's length check, to test the controller's own
     /// limits.
     pub fn exchange_unchecked(&mut self, command: &str) -> Result<String, LedError> {
-        let io = |source| LedError::Io {
-            port: self.name.clone(),
-            source,
-        };
         let mut out = Vec::with_capacity(command.len() + 1);
         out.extend_from_slice(command.as_bytes());
         out.push(b'\n');
-        self.port.write_all(&out).map_err(io)?;
-        self.port.flush().map_err(|source| LedError::Io {
-            port: self.name.clone(),
-            source,
-        })?;
+        // no flush: on a tty it is tcdrain, which only waits for the bytes to leave, and
+        // reports a hang-up as an opaque "flush failed"
+        if let Err(e) = self.port.write_all(&out) {
+            return Err(self.io_error(e));
+        }
         let deadline = Instant::now() + self.timeout;
         let mut chunk = [0u8; 256];
         loop {
@@ -135,18 +149,7 @@ impl<P: Read + Write> Link<P> {
                 Ok(n) => self.pending.extend_from_slice(&chunk[..n]),
                 Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock) => {}
                 Err(e) if e.kind() == ErrorKind::Interrupted => {}
-                Err(e) if e.raw_os_error() == Some(5) => {
-                    // EIO: the other end of a pseudo-terminal has gone
-                    return Err(LedError::Closed {
-                        port: self.name.clone(),
-                    });
-                }
-                Err(source) => {
-                    return Err(LedError::Io {
-                        port: self.name.clone(),
-                        source,
-                    })
-                }
+                Err(e) => return Err(self.io_error(e)),
             }
         }
     }

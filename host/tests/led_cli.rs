@@ -1,0 +1,288 @@
+//! `specpoly led` against a fake controller on a pseudo-terminal: the happy path with
+//! `--check`, and every way a device can fail — a malformed reply, another protocol version, a
+//! silent device, a device that goes away, no such port — each a one-line error, exit code 1,
+//! no panic. (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
+
+use serialport::{SerialPort, TTYPort};
+use specpoly::led::Model;
+use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
+use specpoly_protocol::{Command, CurveSummary, LineReader, Reply, StateReport, MAX_LINE};
+use std::io::{ErrorKind, Read, Write};
+use std::process::Output;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+#[derive(Clone, Copy)]
+enum Behaviour {
+    /// Answers like the firmware (the host model, sRGB primaries, linear curves).
+    Faithful,
+    /// Answers like the firmware but with every duty off by 100 ticks.
+    Wrong,
+    /// Answers every line with garbage.
+    Garbage,
+    /// Speaks protocol 2.
+    Version2,
+    /// Never answers.
+    Silent,
+    /// Answers `hello`, then unplugs.
+    Unplug,
+}
+
+struct Fake {
+    path: String,
+    stop: Arc<AtomicBool>,
+    thread: Option<JoinHandle<()>>,
+    _slave: TTYPort,
+}
+
+impl Drop for Fake {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::SeqCst);
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+fn fake(b: Behaviour) -> Fake {
+    let (master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
+    // a clone with close-on-exec, so the `specpoly` child does not keep the pty up
+    let mut master = master.try_clone_native().expect("clone the master");
+    master
+        .set_timeout(Duration::from_millis(20))
+        .expect("master timeout");
+    let path = slave.name().expect("the slave's name");
+    let stop = Arc::new(AtomicBool::new(false));
+    let s = stop.clone();
+    let thread = std::thread::spawn(move || serve(master, b, s));
+    Fake {
+        path,
+        stop,
+        thread: Some(thread),
+        _slave: slave,
+    }
+}
+
+fn srgb_model() -> Model {
+    let srgb = Display::srgb();
+    let (xy, lum) = srgb.primaries();
+    let t = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
+    Model {
+        display: Display::from_primaries(xy, lum, Xyz::default(), t).unwrap(),
+        map: GamutMap::Clip,
+        observer: Observer::Cie1931,
+        max: 1000,
+    }
+}
+
+fn answer(b: Behaviour, model: &Model, line: &str) -> String {
+    let reply = match (b, Command::parse(line)) {
+        (Behaviour::Garbage, _) => return "bonjour".into(),
+        (Behaviour::Version2, _) => {
+            return "ok hello specpoly-led protocol=2 max_line=1024 max=1000".into()
+        }
+        (_, Err(f)) => Reply::Error(f),
+        (_, Ok(Command::Hello)) => Reply::hello(model.max),
+        (_, Ok(Command::State)) => {
+            let (xy, lum) = model.display.primaries();
+            Reply::State(StateReport {
+                protocol: 1,
+                primaries: [0, 1, 2].map(|i| [xy[i][0], xy[i][1], lum[i]]),
+                trc: [CurveSummary::Linear; 3],
+                map: model.map,
+                observer: model.observer,
+                duty: [0; 3],
+                max: model.max,
+            })
+        }
+        (_, Ok(Command::Xyz(v))) => {
+            let mut c = model.colour(v);
+            if matches!(b, Behaviour::Wrong) {
+                c.duty = c.duty.map(|d| d.saturating_add(100));
+            }
+            Reply::Colour(c)
+        }
+        (
+            _,
+            Ok(Command::Reflect {
+                illuminant,
+                product,
+                ..
+            }),
+        ) => Reply::Colour(model.colour(model.reflectance_xyz(illuminant, &product))),
+        (_, Ok(_)) => Reply::Done("cal"),
+    };
+    let mut s = String::new();
+    reply.write(&mut s).unwrap();
+    s
+}
+
+fn serve(mut port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
+    let model = srgb_model();
+    let mut lines = LineReader::<MAX_LINE>::new();
+    while !stop.load(Ordering::SeqCst) {
+        let mut buf = [0u8; 256];
+        let n = match port.read(&mut buf) {
+            Ok(n) => n,
+            Err(e) if e.kind() == ErrorKind::TimedOut => continue,
+            Err(_) => {
+                std::thread::sleep(Duration::from_millis(10));
+                continue;
+            }
+        };
+        for byte in &buf[..n] {
+            let Some(line) = lines.push(*byte) else {
+                continue;
+            };
+            let Ok(line) = line.map(str::to_owned) else {
+                continue;
+            };
+            if matches!(b, Behaviour::Silent) {
+                continue;
+            }
+            let out = answer(b, &model, &line);
+            let _ = port.write_all(out.as_bytes());
+            let _ = port.write_all(b"\r\n");
+            let _ = port.flush();
+            if matches!(b, Behaviour::Unplug) && line == "hello" {
+                // dropping the only master hangs the pty up
+                return;
+            }
+        }
+    }
+}
+
+fn specpoly(args: &[&str]) -> Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_specpoly"))
+        .args(args)
+        .output()
+        .expect("run specpoly")
+}
+
+/// Exit code 1, one line on stderr containing `needle`, no panic.
+fn fails_cleanly(out: &Output, needle: &str) {
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "stderr: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(err.starts_with("specpoly: error: "), "{err}");
+    assert!(err.contains(needle), "`{needle}` in: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn a_faithful_device_passes_the_check() {
+    let f = fake(Behaviour::Faithful);
+    let out = specpoly(&["led", "--port", &f.path, "--check", "xyz", "20", "21", "22"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let first = stdout.lines().next().unwrap_or_default();
+    let expected = srgb_model().colour(Xyz::new(20.0, 21.0, 22.0));
+    assert_eq!(Reply::parse(first), Ok(Reply::Colour(expected)), "{stdout}");
+    assert!(stdout.contains("check: the host agrees"), "{stdout}");
+
+    let out = specpoly(&[
+        "led",
+        "--port",
+        &f.path,
+        "--check",
+        "refl",
+        "--repr",
+        "paper",
+        "--illuminant",
+        "FL11",
+        "colorchecker#red",
+        "colorchecker#green",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn a_device_that_disagrees_fails_the_check() {
+    let f = fake(Behaviour::Wrong);
+    let out = specpoly(&["led", "--port", &f.path, "--check", "xyz", "20", "21", "22"]);
+    fails_cleanly(&out, "disagrees with the host");
+}
+
+#[test]
+fn a_malformed_reply_is_a_clear_error() {
+    let f = fake(Behaviour::Garbage);
+    let out = specpoly(&["led", "--port", &f.path, "state"]);
+    fails_cleanly(&out, "unreadable reply to `hello`");
+}
+
+#[test]
+fn another_protocol_version_is_refused() {
+    let f = fake(Behaviour::Version2);
+    let out = specpoly(&["led", "--port", &f.path, "state"]);
+    fails_cleanly(&out, "protocol 2");
+}
+
+#[test]
+fn a_silent_device_times_out() {
+    let f = fake(Behaviour::Silent);
+    let out = specpoly(&["led", "--port", &f.path, "--timeout-ms", "300", "hello"]);
+    fails_cleanly(&out, "no reply to `hello` within 300 ms");
+}
+
+#[test]
+fn a_device_that_goes_away_is_a_clear_error() {
+    let f = fake(Behaviour::Unplug);
+    let out = specpoly(&[
+        "led",
+        "--port",
+        &f.path,
+        "--timeout-ms",
+        "2000",
+        "xyz",
+        "1",
+        "2",
+        "3",
+    ]);
+    fails_cleanly(&out, "the device closed the connection");
+}
+
+#[test]
+fn no_such_port_and_bad_arguments() {
+    let out = specpoly(&["led", "--port", "/dev/no-such-port", "state"]);
+    fails_cleanly(&out, "/dev/no-such-port: cannot open the serial port");
+    // usage errors come before the port is touched: exit code 2
+    for args in [
+        &[
+            "led",
+            "--port",
+            "/dev/null",
+            "--primaries",
+            "1,2,3",
+            "state",
+        ][..],
+        &["led", "--port", "/dev/null", "--trc", "cubic", "state"],
+        &[
+            "led",
+            "--port",
+            "/dev/null",
+            "refl",
+            "--illuminant",
+            "D99",
+            "colorchecker#red",
+        ],
+        &["led", "--port", "/dev/null", "xyy", "0.3", "0", "5"],
+    ] {
+        let out = specpoly(args);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
