@@ -164,7 +164,12 @@ impl<const N: usize> Shade for Sampled<N> {
                     lanes[l] += a[l] * b[l];
                 }
             }
-            let tail: f32 = wc.remainder().iter().zip(vc.remainder()).map(|(a, b)| a * b).sum();
+            let tail: f32 = wc
+                .remainder()
+                .iter()
+                .zip(vc.remainder())
+                .map(|(a, b)| a * b)
+                .sum();
             *o = lanes.iter().sum::<f32>() + tail;
         }
         Xyz::from_array(out)
