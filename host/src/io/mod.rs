@@ -3,3 +3,4 @@
 pub mod atomic;
 pub mod cgats;
 pub mod csv;
+pub mod stdout;
