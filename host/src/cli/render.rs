@@ -2,7 +2,7 @@
 //! [--gamut clip|desaturate] [--compare] -o OUT.png`
 //!
 //! Renders a built-in scene or a scene file with the spectral Whitted ray tracer and writes a PNG
-//! encoded for the display. `--compare` renders `rgb`, `paper`, `poly` and the 1 nm reference,
+//! encoded for the display. `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` and the 1 nm reference,
 //! writes `rgb | poly | reference | ΔE00 rgb | ΔE00 poly` side by side, and prints the ΔE00
 //! statistics of each mode against the reference.
 
@@ -37,7 +37,7 @@ pub struct RenderArgs {
     /// Rays per pixel along each axis, overriding the scene's.
     #[arg(long, value_name = "N")]
     pub samples: Option<u32>,
-    /// Render rgb, paper, poly and the reference; write them side by side with ΔE00 heat maps.
+    /// Render rgb, paper, poly, sampled:81 and the reference; write rgb, poly, reference and ΔE00 heat maps side by side.
     #[arg(long)]
     pub compare: bool,
     /// Output PNG.
@@ -142,8 +142,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
 
 fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Result<()> {
     let (w, h) = (scene.render.width, scene.render.height);
-    let modes = [Repr::Rgb, Repr::Paper, Repr::DEFAULT];
-    let pb = progress_bar(4, "compare");
+    let modes = [Repr::Rgb, Repr::Paper, Repr::DEFAULT, Repr::Sampled(81)];
+    let pb = progress_bar(1 + modes.len() as u64, "compare");
     let t0 = Instant::now();
     let reference = render::render(scene, Repr::Exact, None)?;
     let t_ref = t0.elapsed().as_secs_f64();
@@ -183,12 +183,12 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         scene.render.samples * scene.render.samples
     );
     println!(
-        "{:<8} {:>8} {:>8} {:>8} {:>9}",
+        "{:<11} {:>8} {:>8} {:>8} {:>9}",
         "mode", "mean", "95th", "max", "time (s)"
     );
     for (m, _, s, _, secs) in &rows {
         println!(
-            "{:<8} {:>8.3} {:>8.3} {:>8.3} {:>9.2}",
+            "{:<11} {:>8.3} {:>8.3} {:>8.3} {:>9.2}",
             m.to_string(),
             s.mean,
             s.p95,
