@@ -416,7 +416,18 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     let long = format!("xyz 1 2 {}", "9".repeat(3000));
     assert_eq!(link.exchange_unchecked(&long).unwrap(), "err too-long");
     assert_eq!(link.exchange("xyz 1\u{7f} 2 3").unwrap(), "err bad-byte");
-    assert!(matches!(link.send("state").unwrap(), Reply::State(_)));
+    // a measured curve (the deepest stack path), then the state
+    assert_eq!(
+        link.send("trc b table 0 0.02 0.1 0.3 0.6 1").unwrap(),
+        Reply::Done("trc")
+    );
+    match link.send("state").unwrap() {
+        Reply::State(s) => {
+            assert_eq!(s.trc[2], specpoly_protocol::CurveSummary::Table(6));
+            assert_eq!(s.map, GamutMap::Desaturate);
+        }
+        other => panic!("{other:?}"),
+    }
 
     // the CLI itself, with its own --check, against the same device
     drop(link);
