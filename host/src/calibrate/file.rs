@@ -376,7 +376,12 @@ fn one_line(e: &toml::de::Error) -> String {
     let lines: Vec<&str> = s
         .lines()
         .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('|') && !l.chars().all(|c| c == '^'))
+        .filter(|l| {
+            let gutter = l.split('|').next().unwrap_or("");
+            !l.is_empty()
+                && !(l.contains('|') && gutter.trim().chars().all(|c| c.is_ascii_digit()))
+                && !l.chars().all(|c| c == '^' || c.is_whitespace())
+        })
         .collect();
     lines.join("; ")
 }
