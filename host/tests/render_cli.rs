@@ -231,3 +231,46 @@ fn display_file() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn calibration_file_from_the_calibration_workflow() {
+    let dir = tempfile::tempdir().unwrap();
+    let ti3 = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3");
+    let o = specpoly(
+        &[
+            "calibrate",
+            "fit",
+            "--ti3",
+            ti3.to_str().unwrap(),
+            "-o",
+            "acer.toml",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = specpoly(
+        &[
+            "render",
+            "example1",
+            "--size",
+            "16x12",
+            "--display",
+            "acer.toml",
+            "-o",
+            "a.png",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = specpoly(
+        &["render", "example1", "--size", "16x12", "-o", "s.png"],
+        dir.path(),
+    );
+    assert!(s.status.success(), "{}", stderr(&s));
+    // a different display gives different device values
+    assert_ne!(
+        std::fs::read(dir.path().join("a.png")).unwrap(),
+        std::fs::read(dir.path().join("s.png")).unwrap()
+    );
+}

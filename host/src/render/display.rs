@@ -8,7 +8,9 @@
 //! black = [0.2, 0.21, 0.25]          # optional: XYZ (cd/m²) at zero drive
 //! ```
 //!
-//! The calibration workflow (`specpoly calibrate`) measures these numbers.
+//! A calibration file written by `specpoly calibrate` (`format = "specpoly-calibration"`, see
+//! docs/calibration.md) is also accepted: its fitted display model is used
+//! ([`crate::calibrate::file::load_display`]).
 
 use crate::error::{CliError, Result};
 use serde::Deserialize;
@@ -43,6 +45,13 @@ pub fn load(spec: &str) -> Result<Display> {
         )));
     }
     let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let is_calibration = text
+        .parse::<toml::Table>()
+        .map(|t| t.contains_key("format"))
+        .unwrap_or(false);
+    if is_calibration {
+        return crate::calibrate::file::load_display(path);
+    }
     parse(&text, spec)
 }
 

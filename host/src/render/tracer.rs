@@ -26,6 +26,9 @@ use super::geometry::{Camera, Ray, Shape, EPS, V3};
 use super::scene::{Material, Object, Scene};
 use specpoly_core::{Observer, Shade, Tabulated, Xyz};
 
+/// Phong lobes `(R·V)ⁿ` below this are dropped.
+const PHONG_MIN: f32 = 1e-6;
+
 /// One coefficient of a material (a reflectance or filter) in representation `T`.
 #[derive(Clone, Copy, Debug)]
 struct Coef<T> {
@@ -339,8 +342,10 @@ impl<T: Shade> Compiled<T> {
                 let b = match &m.specular {
                     Some(_) => {
                         let rv = (-ldir).reflect(n).dot(v);
-                        if rv > 0.0 {
-                            l.intensity * rv.powf(m.phong)
+                        let lobe = if rv > 0.0 { rv.powf(m.phong) } else { 0.0 };
+                        // below 10⁻⁶ of the light the highlight is dropped (< 10⁻⁴ in Y)
+                        if lobe > PHONG_MIN {
+                            l.intensity * lobe
                         } else {
                             0.0
                         }
@@ -359,6 +364,12 @@ impl<T: Shade> Compiled<T> {
                         }
                         if let (Some(s), true) = (&m.specular, b > 0.0) {
                             acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, &l.light).scale(b);
+                        }
+                    }
+                    (Some(f), _) if b == 0.0 && td.is_some() => {
+                        // diffuse only, T·D already formed: (T·D)·F
+                        if let Some(td) = &td {
+                            acc = acc + td.mul(&f).xyz(&l.light).scale(a);
                         }
                     }
                     (Some(f), _) => {
