@@ -378,9 +378,9 @@ fn one_line(e: &toml::de::Error) -> String {
         .map(str::trim)
         .filter(|l| {
             let gutter = l.split('|').next().unwrap_or("");
-            !l.is_empty()
-                && !(l.contains('|') && gutter.trim().chars().all(|c| c.is_ascii_digit()))
-                && !l.chars().all(|c| c == '^' || c.is_whitespace())
+            let numbered = l.contains('|') && gutter.trim().chars().all(|c| c.is_ascii_digit());
+            let caret = l.chars().all(|c| c == '^' || c.is_whitespace());
+            !l.is_empty() && !numbered && !caret
         })
         .collect();
     lines.join("; ")

@@ -496,7 +496,7 @@ fn refit_tables(
             t[k] = x[c * (n - 1) + k - 1].max(t[k - 1]);
         }
         let s = t[n - 1];
-        if !(s > 0.0) {
+        if s.is_nan() || s <= 0.0 {
             return None;
         }
         for v in &mut t {

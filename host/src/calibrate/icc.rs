@@ -153,7 +153,7 @@ pub fn profile(cal: &Calibration, description: &str) -> Result<Vec<u8>> {
     // M' = M diag(1 + k)
     let m1 = [0, 1, 2].map(|r| [0, 1, 2].map(|c| m[r][c] * (1.0 + k[c])));
     let w = [0, 1, 2].map(|r| m1[r][0] + m1[r][1] + m1[r][2]);
-    if !(w[1] > 0.0) {
+    if w[1].is_nan() || w[1] <= 0.0 {
         return Err(CliError::data("the calibration's white has no luminance"));
     }
     let chad = bradford(w.map(|v| v / w[1]), D50);
