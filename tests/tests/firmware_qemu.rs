@@ -451,6 +451,36 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     .expect("the led command line parses");
     specpoly::cli::run(cli).expect("specpoly led --check agrees with the firmware");
 
+    // a calibration file from `specpoly calibrate fit` (64-point measured curves)
+    let dir = tempfile::tempdir().unwrap();
+    let toml = dir.path().join("acer.toml");
+    let ti3 = repo().join("data/ti3/acer-xb271hu-unit1_dispread_2068.ti3");
+    let fit = specpoly::cli::Cli::try_parse_from::<[&std::ffi::OsStr; 7], _>([
+        "specpoly".as_ref(),
+        "calibrate".as_ref(),
+        "fit".as_ref(),
+        "--ti3".as_ref(),
+        ti3.as_os_str(),
+        "-o".as_ref(),
+        toml.as_os_str(),
+    ])
+    .expect("the calibrate command line parses");
+    specpoly::cli::run(fit).expect("calibrate fit");
+    let cli = specpoly::cli::Cli::try_parse_from([
+        "specpoly".as_ref(),
+        "led".as_ref(),
+        "--port".as_ref(),
+        emu.pty.as_ref(),
+        "--calibration".as_ref(),
+        toml.as_os_str(),
+        "--check".as_ref(),
+        "refl".as_ref(),
+        "colorchecker#red".as_ref(),
+        "colorchecker#blue".as_ref(),
+    ] as [&std::ffi::OsStr; 10])
+    .expect("the led command line parses");
+    specpoly::cli::run(cli).expect("specpoly led --calibration --check agrees with the firmware");
+
     // duties are also reported through semihosting, with the stack's high-water mark
     std::thread::sleep(Duration::from_millis(200));
     let log = emu.log();

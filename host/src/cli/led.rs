@@ -4,8 +4,9 @@
 //! the controller's reply line is printed. `--check` also computes the answer on the host with
 //! the same core ([`crate::led::Model`]) and fails if the device disagrees.
 //!
-//! The LED's calibration is given on the command line (`--primaries`): a calibration-file
-//! loader from `specpoly calibrate` can feed the same `cal` command once it exists.
+//! The LED's calibration comes from a calibration file written by `specpoly calibrate`
+//! (`--calibration`: its primaries and transfer curves; the controller's model has no black
+//! offset, an LED's black being zero) or from the command line (`--primaries`, `--trc`).
 
 use crate::error::{CliError, Result};
 use crate::led::{Link, Model};
@@ -24,6 +25,10 @@ pub struct LedArgs {
     /// How long to wait for each reply, in milliseconds.
     #[arg(long, default_value_t = 3000)]
     pub timeout_ms: u64,
+    /// A calibration file from `specpoly calibrate` (TOML): sends its primaries and its
+    /// per-channel transfer curves.
+    #[arg(long, conflicts_with_all = ["primaries", "trc"])]
+    pub calibration: Option<std::path::PathBuf>,
     /// The LED's primaries: `xr,yr,Yr,xg,yg,Yg,xb,yb,Yb` (chromaticities and luminances at
     /// full drive, e.g. from a spectroradiometer).
     #[arg(long, allow_hyphen_values = true)]
@@ -130,6 +135,38 @@ pub fn primaries_command(s: &str) -> Result<Command> {
         .map_err(|f| CliError::usage(format!("--primaries: {f} (number {:?})", f.at)))
 }
 
+/// The `cal` and three `trc` lines of a calibration file.
+pub fn calibration_lines(path: &std::path::Path) -> Result<Vec<String>> {
+    let display = crate::calibrate::file::load_display(path)?;
+    let (xy, luminance) = display.primaries();
+    let mut lines = vec![line_of(&Command::Calibrate { xy, luminance })];
+    for (channels, curve) in [Channels::Red, Channels::Green, Channels::Blue]
+        .into_iter()
+        .zip(display.transfer().iter())
+    {
+        lines.push(line_of(&Command::Transfer {
+            channels,
+            curve: curve.clone(),
+        }));
+    }
+    for l in &lines {
+        // the controller's own checks (ranges, line length), before anything is sent
+        if l.len() > specpoly_protocol::MAX_LINE {
+            return Err(CliError::data(format!(
+                "{}: a curve does not fit one protocol line",
+                path.display()
+            )));
+        }
+        Command::parse(l).map_err(|f| {
+            CliError::data(format!(
+                "{}: not a usable LED calibration: {f}",
+                path.display()
+            ))
+        })?;
+    }
+    Ok(lines)
+}
+
 /// The `trc rgb …` command from `--trc`.
 pub fn trc_command(s: &str) -> Result<Command> {
     let curve = match s.split_once(':') {
@@ -187,8 +224,15 @@ pub fn refl_line(repr: &str, illuminant: &str, names: &[String]) -> Result<Strin
     Ok(line)
 }
 
-/// Checks a colour reply against the host's computation from the controller's `state`.
-fn check(link: &mut Link<Box<dyn serialport::SerialPort>>, sent: &str, got: &Reply) -> Result<()> {
+/// Checks a colour reply against the host's computation from the controller's `state`, with
+/// the transfer curves of `curves` (a calibration file just sent) when `state` only names
+/// their size (tables).
+fn check(
+    link: &mut Link<Box<dyn serialport::SerialPort>>,
+    sent: &str,
+    got: &Reply,
+    curves: Option<[Transfer; 3]>,
+) -> Result<()> {
     let Reply::Colour(dev) = got else {
         return Ok(());
     };
@@ -201,9 +245,31 @@ fn check(link: &mut Link<Box<dyn serialport::SerialPort>>, sent: &str, got: &Rep
             )))
         }
     };
-    let model = Model::from_state(&state)
-        .map_err(|e| CliError::data(format!("the controller's calibration: {e}")))?
-        .ok_or_else(|| CliError::data("--check cannot model a tabulated transfer curve"))?;
+    let calibration_err = |e| CliError::data(format!("the controller's calibration: {e}"));
+    let model = match (Model::from_state(&state).map_err(calibration_err)?, curves) {
+        (Some(m), _) => m,
+        (None, Some(t)) => {
+            let xy = state.primaries.map(|p| [p[0], p[1]]);
+            let lum = state.primaries.map(|p| p[2]);
+            Model {
+                display: specpoly_core::Display::from_primaries(
+                    xy,
+                    lum,
+                    specpoly_core::Xyz::default(),
+                    t,
+                )
+                .map_err(calibration_err)?,
+                map: state.map,
+                observer: state.observer,
+                max: state.max,
+            }
+        }
+        (None, None) => {
+            return Err(CliError::data(
+                "--check needs the tabulated curves: give them with --calibration",
+            ))
+        }
+    };
     let target = match Command::parse(sent) {
         Ok(Command::Xyz(v)) => v,
         Ok(Command::Xyy(v)) => v.to_xyz(),
@@ -233,6 +299,9 @@ fn check(link: &mut Link<Box<dyn serialport::SerialPort>>, sent: &str, got: &Rep
 pub fn run(args: &LedArgs) -> Result<()> {
     // build every line first: usage errors before touching the device
     let mut settings = Vec::new();
+    if let Some(path) = &args.calibration {
+        settings.extend(calibration_lines(path)?);
+    }
     if let Some(p) = &args.primaries {
         settings.push(line_of(&primaries_command(p)?));
     }
@@ -286,7 +355,15 @@ pub fn run(args: &LedArgs) -> Result<()> {
     let reply = link.send(&action).map_err(dev_err)?;
     println!("{}", reply_line(&reply));
     if args.check {
-        check(&mut link, &action, &reply)?;
+        let curves = match &args.calibration {
+            Some(path) => Some(
+                crate::calibrate::file::load_display(path)?
+                    .transfer()
+                    .clone(),
+            ),
+            None => None,
+        };
+        check(&mut link, &action, &reply, curves)?;
     }
     Ok(())
 }
