@@ -573,7 +573,7 @@ mod tests {
         assert!(e.to_string().starts_with("f:7: NUMBER_OF_SETS is 2"), "{e}");
         let e = read_ti3(&good.replace("FIELDS 7", "FIELDS 6"), "f").unwrap_err();
         assert!(e.to_string().starts_with("f:3: NUMBER_OF_FIELDS"), "{e}");
-        let e = read_ti3(&good.replace(" XYZ_Z", ""), "f").unwrap_err();
+        let e = read_ti3(&good.replace(" XYZ_Z", " XYZ_W"), "f").unwrap_err();
         assert!(e.to_string().contains("XYZ_Z"), "{e}");
         let e = read_ti3(&good.replace("BEGIN_DATA\n", ""), "f").unwrap_err();
         assert!(e.to_string().starts_with("f:"), "{e}");
