@@ -24,7 +24,7 @@
 
 use super::geometry::{Camera, Ray, Shape, EPS, V3};
 use super::scene::{Material, Object, Scene};
-use specpoly_core::{Observer, Shade, Tabulated, Xyz};
+use specpoly_core::{Shade, Xyz};
 
 /// Phong lobes `(R·V)ⁿ` below this are dropped.
 const PHONG_MIN: f32 = 1e-6;
@@ -112,10 +112,6 @@ pub struct Compiled<T: Shade> {
     cutoff: f32,
 }
 
-fn light_of<T: Shade>(observer: Observer, t: Tabulated<'_>, layout: T::Layout) -> T::Light {
-    T::light(observer, &t, layout)
-}
-
 impl<T: Shade> Compiled<T> {
     /// Converts `scene` to representation `T` with `layout`. Reflectances are converted under the
     /// first point light (for RGB: each reflectance's exact colour under that light, the best an
@@ -128,10 +124,10 @@ impl<T: Shade> Compiled<T> {
             .map(|l| LightT {
                 position: l.position,
                 intensity: l.intensity,
-                light: light_of::<T>(obs, l.spd.tabulated(), layout),
+                light: T::light(obs, &l.spd.tabulated(), layout),
             })
             .collect();
-        let ambient = light_of::<T>(obs, scene.ambient.spd.tabulated(), layout);
+        let ambient = T::light(obs, &scene.ambient.spd.tabulated(), layout);
         let reference = match lights.first() {
             Some(l) => &l.light,
             None => &ambient,
