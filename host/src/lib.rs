@@ -5,14 +5,21 @@
 //! The library target exists so tests and benchmarks can call the same code as the binary.
 #![forbid(unsafe_code)]
 
+pub mod accuracy;
 pub mod calibrate;
 pub mod cli;
 pub mod colour;
 pub mod data;
 pub mod error;
+pub mod figures;
+pub mod fit_report;
 pub mod io;
 pub mod led;
+pub mod measurement;
 pub mod plot;
 pub mod render;
 pub mod repr;
-pub mod spectra;
+pub mod size;
+pub mod spectrum_names;
+pub mod stats;
+pub mod table1;

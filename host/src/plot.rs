@@ -91,6 +91,32 @@ const MARGIN_R: f64 = 30.0;
 const MARGIN_T: f64 = 50.0;
 const MARGIN_B: f64 = 70.0;
 
+/// The plot box in pixels (`pl`eft, `pr` right, `pt` top, `pb` bottom) and the data ranges it
+/// shows.
+#[derive(Clone, Copy, Debug)]
+struct PlotBox {
+    pl: f64,
+    pr: f64,
+    pt: f64,
+    pb: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+impl PlotBox {
+    /// Pixel column of data `x`.
+    fn px(&self, x: f64) -> f64 {
+        self.pl + (x - self.x0) / (self.x1 - self.x0) * (self.pr - self.pl)
+    }
+
+    /// Pixel row of data `y`.
+    fn py(&self, y: f64) -> f64 {
+        self.pb - (y - self.y0) / (self.y1 - self.y0) * (self.pb - self.pt)
+    }
+}
+
 /// "Nice" tick step for a range (1, 2 or 5 × 10ⁿ, about 5–10 ticks).
 fn tick_step(span: f64) -> f64 {
     let raw = span / 6.0;
@@ -144,35 +170,61 @@ impl Figure {
         ((lo / step).floor() * step, (hi * 1.02 / step).ceil() * step)
     }
 
-    fn prims(&self) -> Vec<Prim> {
+    /// The plot box and the mapping from data to pixels.
+    fn plot_box(&self) -> PlotBox {
         let (w, h) = (self.width as f64, self.height as f64);
         let (x0, x1) = self.x_range;
         let (y0, y1) = self.y_range();
-        let (pl, pr, pt, pb) = (MARGIN_L, w - MARGIN_R, MARGIN_T, h - MARGIN_B);
-        let px = move |x: f64| pl + (x - x0) / (x1 - x0) * (pr - pl);
-        let py = move |y: f64| pb - (y - y0) / (y1 - y0) * (pb - pt);
-        let black = [0, 0, 0];
-        let grey = [150, 150, 150];
+        PlotBox {
+            pl: MARGIN_L,
+            pr: w - MARGIN_R,
+            pt: MARGIN_T,
+            pb: h - MARGIN_B,
+            x0,
+            x1,
+            y0,
+            y1,
+        }
+    }
+
+    fn prims(&self) -> Vec<Prim> {
+        let p = self.plot_box();
         let mut v = Vec::new();
+        self.axes(&p, &mut v);
+        self.markers_and_series(&p, &mut v);
+        self.legend(&p, &mut v);
+        v
+    }
+
+    /// Frame, ticks, axis labels and title.
+    fn axes(&self, p: &PlotBox, v: &mut Vec<Prim>) {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let black = [0, 0, 0];
         // frame
         v.push(Prim::Line {
-            pts: vec![(pl, pt), (pr, pt), (pr, pb), (pl, pb), (pl, pt)],
+            pts: vec![
+                (p.pl, p.pt),
+                (p.pr, p.pt),
+                (p.pr, p.pb),
+                (p.pl, p.pb),
+                (p.pl, p.pt),
+            ],
             width: 1.0,
             colour: black,
             dash: None,
         });
         // ticks
-        let xs = tick_step(x1 - x0);
-        let mut t = (x0 / xs).ceil() * xs;
-        while t <= x1 + 1e-9 {
+        let xs = tick_step(p.x1 - p.x0);
+        let mut t = (p.x0 / xs).ceil() * xs;
+        while t <= p.x1 + 1e-9 {
             v.push(Prim::Line {
-                pts: vec![(px(t), pb), (px(t), pb + 6.0)],
+                pts: vec![(p.px(t), p.pb), (p.px(t), p.pb + 6.0)],
                 width: 1.0,
                 colour: black,
                 dash: None,
             });
             v.push(Prim::Text {
-                at: (px(t), pb + 24.0),
+                at: (p.px(t), p.pb + 24.0),
                 size: 14.0,
                 anchor: Anchor::Middle,
                 vertical: false,
@@ -180,17 +232,17 @@ impl Figure {
             });
             t += xs;
         }
-        let ys = tick_step(y1 - y0);
-        let mut t = (y0 / ys).ceil() * ys;
-        while t <= y1 + 1e-9 {
+        let ys = tick_step(p.y1 - p.y0);
+        let mut t = (p.y0 / ys).ceil() * ys;
+        while t <= p.y1 + 1e-9 {
             v.push(Prim::Line {
-                pts: vec![(pl - 6.0, py(t)), (pl, py(t))],
+                pts: vec![(p.pl - 6.0, p.py(t)), (p.pl, p.py(t))],
                 width: 1.0,
                 colour: black,
                 dash: None,
             });
             v.push(Prim::Text {
-                at: (pl - 10.0, py(t) + 5.0),
+                at: (p.pl - 10.0, p.py(t) + 5.0),
                 size: 14.0,
                 anchor: Anchor::End,
                 vertical: false,
@@ -200,14 +252,14 @@ impl Figure {
         }
         // labels
         v.push(Prim::Text {
-            at: (0.5 * (pl + pr), h - 20.0),
+            at: (0.5 * (p.pl + p.pr), h - 20.0),
             size: 16.0,
             anchor: Anchor::Middle,
             vertical: false,
             s: self.x_label.clone(),
         });
         v.push(Prim::Text {
-            at: (20.0, 0.5 * (pt + pb)),
+            at: (20.0, 0.5 * (p.pt + p.pb)),
             size: 16.0,
             anchor: Anchor::Middle,
             vertical: true,
@@ -225,25 +277,31 @@ impl Figure {
             vertical: false,
             s: self.title.clone(),
         });
+    }
+
+    /// Span markers (dashed grey) and the series, clipped to the plot box.
+    fn markers_and_series(&self, p: &PlotBox, v: &mut Vec<Prim>) {
+        let grey = [150, 150, 150];
         // markers
         for &m in &self.markers {
             v.push(Prim::Line {
-                pts: vec![(px(m), pt), (px(m), pb)],
+                pts: vec![(p.px(m), p.pt), (p.px(m), p.pb)],
                 width: 1.0,
                 colour: grey,
                 dash: Some(6.0),
             });
         }
         // series, clipped to the plot box
-        let inside =
-            |(x, y): (f64, f64)| x >= pl - 0.5 && x <= pr + 0.5 && y >= pt - 0.5 && y <= pb + 0.5;
+        let inside = |(x, y): (f64, f64)| {
+            x >= p.pl - 0.5 && x <= p.pr + 0.5 && y >= p.pt - 0.5 && y <= p.pb + 0.5
+        };
         for s in &self.series {
             let pts: Vec<(f64, f64)> = s
                 .points
                 .iter()
                 .filter(|(x, y)| x.is_finite() && y.is_finite())
-                .map(|&(x, y)| (px(x), py(y).clamp(pt, pb)))
-                .filter(|p| inside(*p))
+                .map(|&(x, y)| (p.px(x), p.py(y).clamp(p.pt, p.pb)))
+                .filter(|q| inside(*q))
                 .collect();
             match s.style {
                 Style::Line { width, dash } => v.push(Prim::Line {
@@ -259,6 +317,10 @@ impl Figure {
                 })),
             }
         }
+    }
+
+    /// The legend, in the corner of the plot box that hides the fewest data points.
+    fn legend(&self, p: &PlotBox, v: &mut Vec<Prim>) {
         // legend: in the corner of the plot box that hides the fewest data points
         let labels = self.series.iter().filter(|s| s.label.is_some()).count();
         let widest = self
@@ -269,17 +331,17 @@ impl Figure {
             .fold(0.0, f64::max);
         let (bw, bh) = (38.0 + widest + 12.0, 20.0 * labels as f64 + 10.0);
         let corners = [
-            (pr - 8.0 - bw, pt + 8.0),
-            (pl + 8.0, pt + 8.0),
-            (pr - 8.0 - bw, pb - 8.0 - bh),
-            (pl + 8.0, pb - 8.0 - bh),
+            (p.pr - 8.0 - bw, p.pt + 8.0),
+            (p.pl + 8.0, p.pt + 8.0),
+            (p.pr - 8.0 - bw, p.pb - 8.0 - bh),
+            (p.pl + 8.0, p.pb - 8.0 - bh),
         ];
         let hidden = |(x, y): (f64, f64)| {
             self.series
                 .iter()
                 .flat_map(|s| s.points.iter())
                 .filter(|&&(a, b)| {
-                    let (u, v) = (px(a), py(b));
+                    let (u, v) = (p.px(a), p.py(b));
                     u >= x && u <= x + bw && v >= y && v <= y + bh
                 })
                 .count()
@@ -320,7 +382,6 @@ impl Figure {
             });
             ly += 20.0;
         }
-        v
     }
 
     /// The figure as an SVG document.

@@ -15,8 +15,8 @@
 //! This is a small reader and writer of our own: the one CGATS crate on crates.io is
 //! GPL-3.0, which this project's licence cannot take.
 
-use crate::calibrate::measurement::Measurement;
 use crate::error::{CliError, Result};
+use crate::measurement::Measurement;
 
 /// One CGATS table.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -517,6 +517,12 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
     }
     let _ = writeln!(s, "END_DATA");
     s
+}
+
+/// Reads a .ti3 file.
+pub fn read_ti3_file(path: &std::path::Path) -> Result<Ti3> {
+    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    read_ti3(&text, &path.display().to_string())
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 //! `specpoly-core`, so `specpoly led --check` (and the QEMU tests) can verify the device.
 
 pub mod error;
+pub mod lines;
 pub mod link;
 pub mod model;
 
