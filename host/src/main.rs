@@ -6,7 +6,10 @@ use clap::Parser;
 fn main() {
     let cli = specpoly::cli::Cli::parse();
     if let Err(e) = specpoly::cli::run(cli) {
-        eprintln!("specpoly: error: {e}");
+        eprintln!(
+            "specpoly: error: {}",
+            specpoly::io::escape::one_line(&e.to_string())
+        );
         std::process::exit(e.exit_code());
     }
 }

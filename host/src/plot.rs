@@ -144,6 +144,26 @@ fn text_width(s: &str, size: f64) -> f64 {
     (s.chars().count() * 8 * text_scale(size)) as f64
 }
 
+/// The multiples of `step` in `[lo, hi]` (with a tolerance of 10⁻⁹ steps), at most
+/// [`MAX_TICKS`]: counted by index, so a range tiny against its magnitude or against the
+/// tolerance cannot loop for ever.
+fn ticks(lo: f64, hi: f64, step: f64) -> impl Iterator<Item = f64> {
+    let (first, last) = if step > 0.0 && (lo / step).is_finite() && (hi / step).is_finite() {
+        ((lo / step).ceil(), (hi / step + 1e-9).floor())
+    } else {
+        (0.0, -1.0)
+    };
+    let n = if last >= first {
+        ((last - first) as usize + 1).min(MAX_TICKS)
+    } else {
+        0
+    };
+    (0..n).map(move |i| (first + i as f64) * step)
+}
+
+/// The most ticks on one axis (`tick_step` aims at 5–10).
+const MAX_TICKS: usize = 40;
+
 fn fmt_tick(v: f64, step: f64) -> String {
     let dec = (-step.log10().floor()).max(0.0) as usize;
     format!("{v:.dec$}")
@@ -215,8 +235,7 @@ impl Figure {
         });
         // ticks
         let xs = tick_step(p.x1 - p.x0);
-        let mut t = (p.x0 / xs).ceil() * xs;
-        while t <= p.x1 + 1e-9 {
+        for t in ticks(p.x0, p.x1, xs) {
             v.push(Prim::Line {
                 pts: vec![(p.px(t), p.pb), (p.px(t), p.pb + 6.0)],
                 width: 1.0,
@@ -230,11 +249,9 @@ impl Figure {
                 vertical: false,
                 s: fmt_tick(t, xs),
             });
-            t += xs;
         }
         let ys = tick_step(p.y1 - p.y0);
-        let mut t = (p.y0 / ys).ceil() * ys;
-        while t <= p.y1 + 1e-9 {
+        for t in ticks(p.y0, p.y1, ys) {
             v.push(Prim::Line {
                 pts: vec![(p.pl - 6.0, p.py(t)), (p.pl, p.py(t))],
                 width: 1.0,
@@ -248,7 +265,6 @@ impl Figure {
                 vertical: false,
                 s: fmt_tick(t, ys),
             });
-            t += ys;
         }
         // labels
         v.push(Prim::Text {

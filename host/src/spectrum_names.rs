@@ -49,7 +49,7 @@ impl Named {
 pub fn load_table(base: &str) -> Result<(String, Table)> {
     let path = std::path::Path::new(base);
     if path.exists() {
-        let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+        let text = crate::io::read::text(std::path::Path::new(path))?;
         return Ok((base.to_string(), csv::parse(&text, base)?));
     }
     if let Some(t) = TABLES.iter().find(|t| t.name.eq_ignore_ascii_case(base)) {

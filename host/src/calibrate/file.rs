@@ -378,7 +378,7 @@ fn one_line(e: &toml::de::Error) -> String {
 
 /// Loads a calibration file.
 pub fn load(path: &Path) -> Result<Calibration> {
-    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let text = crate::io::read::text(std::path::Path::new(path))?;
     Calibration::from_toml(&text, &path.display().to_string())
 }
 

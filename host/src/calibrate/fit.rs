@@ -256,7 +256,12 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
     Ok(cal)
 }
 
-/// A usage error for a bad table size, a data error for a measurement that is not finite.
+/// The largest |X|, |Y| or |Z| accepted from an instrument (cd/m²): a hundred times the
+/// brightest HDR display; beyond it the fit's squares would overflow and no display shows it.
+pub const MAX_READING: f64 = 1e6;
+
+/// A usage error for a bad table size, a data error for a measurement that is not finite or
+/// beyond [`MAX_READING`].
 fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
     if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
         return Err(CliError::usage(format!(
@@ -272,6 +277,18 @@ fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
         return Err(CliError::data(format!(
             "measurement {} is not finite",
             i + 1
+        )));
+    }
+    if let Some(i) = meas
+        .iter()
+        .position(|m| m.xyz.iter().any(|v| v.abs() > MAX_READING))
+    {
+        return Err(CliError::data(format!(
+            "measurement {}: XYZ {:.4e} {:.4e} {:.4e} is beyond ±{MAX_READING:e} cd/m² (not a display reading)",
+            i + 1,
+            meas[i].xyz[0],
+            meas[i].xyz[1],
+            meas[i].xyz[2]
         )));
     }
     Ok(())
@@ -329,7 +346,8 @@ fn curves(
         t[0] = 0.0;
         t[n - 1] = 1.0;
         for i in 1..n {
-            t[i] = t[i].clamp(t[i - 1], 1.0);
+            // max/min rather than clamp: a NaN from degenerate data must not panic
+            t[i] = t[i].max(t[i - 1]).min(1.0);
         }
         tables[c] = t;
         let inner: Vec<usize> = (0..x.len())

@@ -31,6 +31,9 @@ pub fn run(a: &AccuracyArgs) -> Result<()> {
     }
     let doc = crate::accuracy::report()?;
     crate::io::atomic::write(&a.output, doc.as_bytes())?;
-    eprintln!("wrote {}", a.output.display());
+    eprintln!(
+        "wrote {}",
+        crate::io::escape::one_line(&a.output.display().to_string())
+    );
     Ok(())
 }

@@ -24,8 +24,8 @@ pub struct LedArgs {
     /// Serial port of the controller (e.g. /dev/ttyUSB0, or the /dev/pts/N QEMU prints).
     #[arg(long)]
     pub port: String,
-    /// How long to wait for each reply, in milliseconds.
-    #[arg(long, default_value_t = 3000)]
+    /// How long to wait for each reply, in milliseconds (1 to 86 400 000, a day).
+    #[arg(long, default_value_t = 3000, value_parser = clap::value_parser!(u64).range(1..=86_400_000))]
     pub timeout_ms: u64,
     /// A calibration file from `specpoly calibrate` (TOML): sends its primaries and its
     /// per-channel transfer curves.

@@ -70,6 +70,9 @@ pub fn run(a: &PlotArgs) -> Result<()> {
             .map_err(|e| CliError::data(format!("PNG encoding: {e}")))?,
     };
     crate::io::atomic::write(&a.output, &bytes)?;
-    eprintln!("wrote {}", a.output.display());
+    eprintln!(
+        "wrote {}",
+        crate::io::escape::one_line(&a.output.display().to_string())
+    );
     Ok(())
 }

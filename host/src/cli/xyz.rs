@@ -102,6 +102,9 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
         .collect())
 }
 
+/// The widest name column printed (characters).
+const NAME_COLUMN: usize = 48;
+
 /// Runs `specpoly xyz`.
 pub fn run(a: &XyzArgs) -> Result<()> {
     let rows = compute(a)?;
@@ -109,7 +112,13 @@ pub fn run(a: &XyzArgs) -> Result<()> {
         return print_json(&rows);
     }
     let mut o = String::new();
-    let w = rows.iter().map(|r| r.name.len()).max().unwrap_or(4).max(4);
+    // names longer than NAME_COLUMN overflow their column rather than widen every row
+    let w = rows
+        .iter()
+        .map(|r| r.name.chars().count())
+        .max()
+        .unwrap_or(4)
+        .clamp(4, NAME_COLUMN);
     let _ = writeln!(
         o,
         "# illuminant {}, CIE {} observer, repr {}; Lab against the illuminant's white (Y = 100)",

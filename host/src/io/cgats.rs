@@ -521,7 +521,7 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
 
 /// Reads a .ti3 file.
 pub fn read_ti3_file(path: &std::path::Path) -> Result<Ti3> {
-    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let text = crate::io::read::text(std::path::Path::new(path))?;
     read_ti3(&text, &path.display().to_string())
 }
 

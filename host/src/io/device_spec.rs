@@ -86,14 +86,14 @@ impl<'a> DeviceSpec<'a> {
         Ok(x)
     }
 
-    /// A duration in seconds, finite and > 0.
+    /// A duration in seconds, > 0 and at most [`MAX_SECONDS`] (a day: longer waits are typos).
     pub fn seconds(&self, key: &str, value: &str) -> Result<Duration> {
         value
             .parse::<f64>()
             .ok()
-            .filter(|s| s.is_finite() && *s > 0.0)
-            .map(Duration::from_secs_f64)
-            .ok_or_else(|| self.bad(key, value, "expected seconds > 0"))
+            .filter(|s| *s > 0.0 && *s <= MAX_SECONDS)
+            .and_then(|s| Duration::try_from_secs_f64(s).ok())
+            .ok_or_else(|| self.bad(key, value, "expected seconds in (0, 86400]"))
     }
 
     /// An integer of type `T`.
@@ -103,6 +103,9 @@ impl<'a> DeviceSpec<'a> {
             .map_err(|_| self.bad(key, value, "not a whole number in range"))
     }
 }
+
+/// The longest wait or timeout a device option accepts (s).
+pub const MAX_SECONDS: f64 = 86_400.0;
 
 #[cfg(test)]
 mod tests {
@@ -122,6 +125,8 @@ mod tests {
         assert_eq!(w.options, vec![("wait", "5")]);
         assert!(w.seconds("wait", "0").is_err());
         assert!(w.seconds("wait", "inf").is_err());
+        assert!(w.seconds("wait", "1e20").is_err());
+        assert!(w.seconds("wait", "NaN").is_err());
         assert_eq!(
             w.seconds("wait", "1.5").unwrap(),
             Duration::from_millis(1500)

@@ -5,5 +5,7 @@ pub mod atomic;
 pub mod cgats;
 pub mod csv;
 pub mod device_spec;
+pub mod escape;
 pub mod progress;
+pub mod read;
 pub mod stdout;

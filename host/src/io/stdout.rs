@@ -1,4 +1,5 @@
-//! Printing a command's whole output at once. A closed pipe (`specpoly … | head`) is not an
+//! Printing a command's whole output at once, with control characters from user data escaped
+//! ([`crate::io::escape::control`]). A closed pipe (`specpoly … | head`) is not an
 //! error: the reader has what it wanted, so the command ends quietly instead of panicking.
 
 use crate::error::{CliError, Result};
@@ -6,6 +7,7 @@ use std::io::Write;
 
 /// Writes `text` to stdout; a broken pipe counts as success.
 pub fn print(text: &str) -> Result<()> {
+    let text = crate::io::escape::control(text);
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::io("stdout", e)),

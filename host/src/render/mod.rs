@@ -6,6 +6,7 @@
 //! scene.toml ─resolve─▶ Scene (tabulated spectra) ─Compiled<T>─▶ XYZ image ─Display─▶ PNG
 //! ```
 
+pub mod budget;
 pub mod builtin;
 pub mod geometry;
 pub mod output;
@@ -42,7 +43,7 @@ pub fn load(spec: &str) -> Result<Scene> {
     let path = std::path::Path::new(spec);
     let looks_like_file = spec.ends_with(".toml") || spec.contains('/');
     if path.exists() && (looks_like_file || builtin::find(spec).is_none()) {
-        let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+        let text = crate::io::read::text(std::path::Path::new(path))?;
         return SceneFile::parse(&text, spec)?.resolve(spec);
     }
     if let Some(b) = builtin::find(spec) {

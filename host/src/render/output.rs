@@ -98,7 +98,7 @@ pub fn load(spec: &str) -> Result<Display> {
             "--display `{spec}`: not `sRGB` and no such file"
         )));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let text = crate::io::read::text(std::path::Path::new(path))?;
     let is_calibration = text
         .parse::<toml::Table>()
         .map(|t| t.contains_key("format"))

@@ -470,6 +470,7 @@ impl SceneFile {
         let observer = self.check_render(source)?;
         let camera = self.camera(source)?;
         let materials = self.materials(source)?;
+        super::budget::check(&self.render, &materials, source)?;
         let objects = self.objects(source)?;
         let (lights, ambient, background) = self.lights(source)?;
         Ok(Scene {

@@ -1,0 +1,46 @@
+//! Reading input files safely: only regular files (a path naming a device such as `/dev/zero`,
+//! a FIFO or a directory is refused before it is opened, so nothing blocks or reads forever), and
+//! at most [`MAX_INPUT_BYTES`] (the largest spectral table, scene or measurement file we expect
+//! is a few megabytes; the limit bounds memory, it is not a format rule).
+
+use crate::error::{CliError, Result};
+use std::io::Read;
+use std::path::Path;
+
+/// The largest input file read (64 MiB).
+pub const MAX_INPUT_BYTES: u64 = 64 << 20;
+
+/// The bytes of the regular file `path`, at most [`MAX_INPUT_BYTES`].
+pub fn bytes(path: &Path) -> Result<Vec<u8>> {
+    let meta = std::fs::metadata(path).map_err(|e| CliError::io(path, e))?;
+    if !meta.is_file() {
+        return Err(CliError::data(format!(
+            "{}: not a regular file (give a file, not a device, pipe or folder)",
+            path.display()
+        )));
+    }
+    let file = std::fs::File::open(path).map_err(|e| CliError::io(path, e))?;
+    let mut buf = Vec::new();
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut buf)
+        .map_err(|e| CliError::io(path, e))?;
+    if buf.len() as u64 > MAX_INPUT_BYTES {
+        return Err(CliError::data(format!(
+            "{}: larger than {} MiB; not an input file this tool reads",
+            path.display(),
+            MAX_INPUT_BYTES >> 20
+        )));
+    }
+    Ok(buf)
+}
+
+/// The UTF-8 text of the regular file `path`, at most [`MAX_INPUT_BYTES`].
+pub fn text(path: &Path) -> Result<String> {
+    String::from_utf8(bytes(path)?).map_err(|e| {
+        CliError::data(format!(
+            "{}: not UTF-8 text (invalid byte at offset {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
