@@ -42,6 +42,20 @@ pub struct Row {
     pub paper: [f64; 3],
 }
 
+impl Row {
+    /// Ours and the paper's, side by side: reflectance, paper, x̄, paper, reduced, paper.
+    pub fn cells(&self) -> [f64; 6] {
+        [
+            self.reflectance,
+            self.paper[0],
+            self.xbar,
+            self.paper[1],
+            self.reduced,
+            self.paper[2],
+        ]
+    }
+}
+
 /// Computes the table for one spectrum.
 pub fn compute(spec: &str) -> Result<(String, Vec<Row>)> {
     let mut v = spectrum_names::resolve(spec)?;

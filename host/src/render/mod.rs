@@ -46,7 +46,7 @@ pub fn load(spec: &str) -> Result<Scene> {
         return SceneFile::parse(&text, spec)?.resolve(spec);
     }
     if let Some(b) = builtin::find(spec) {
-        return SceneFile::parse(b.toml, b.name)?.resolve(b.name);
+        return SceneFile::parse(b.text, b.name)?.resolve(b.name);
     }
     if looks_like_file {
         return Err(CliError::usage(format!("{spec}: no such scene file")));
