@@ -627,17 +627,13 @@ fn table1_section(w: &mut String) -> Result<()> {
          |---|---:|---:|---:|---:|---:|---:|"
     );
     for r in &rows {
+        let cells = r.cells().map(|v| format!("{v:.3e}"));
         let _ = writeln!(
             w,
-            "| {}–{} nm | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} |",
+            "| {}–{} nm | {} |",
             r.span_nm[0],
             r.span_nm[1],
-            r.reflectance,
-            r.paper[0],
-            r.xbar,
-            r.paper[1],
-            r.reduced,
-            r.paper[2]
+            cells.join(" | ")
         );
     }
     let _ = writeln!(

@@ -15,7 +15,7 @@
 
 use crate::repr::{Repr, Visitor};
 use specpoly_core::{
-    delta_e2000, exact_xyz, Error, Lab, Observer, Shade, Spectrum, Tabulated, Xyz, PAPER_BREAKS,
+    delta_e2000, exact_xyz, Error, Lab, Observer, PaperSpectrum, Shade, Tabulated, Xyz,
 };
 
 /// A computed colour: XYZ and the white it is relative to (both with the white's `Y = 100`).
@@ -84,8 +84,8 @@ pub struct Chains<'a> {
 
 impl Visitor for Chains<'_> {
     type Output = Result<Vec<Colour>, Error>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output {
-        let light = T::light(self.observer, &self.light, layout);
+    fn visit<T: Shade>(self) -> Self::Output {
+        let light = T::light(self.observer, &self.light);
         let white = white(self.observer, &self.light);
         let reps = self
             .spectra
@@ -140,7 +140,7 @@ pub fn paper_path(
     let white = white(observer, light);
     let reps = spectra
         .iter()
-        .map(|r| Spectrum::<2, 4>::fit(PAPER_BREAKS, r))
+        .map(PaperSpectrum::fit)
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(chains
         .iter()

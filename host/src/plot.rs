@@ -400,17 +400,8 @@ impl Figure {
         }
     }
 
-    /// The figure as an SVG document.
-    pub fn svg(&self) -> String {
-        let mut o = String::new();
-        let _ = writeln!(
-            o,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#,
-            w = self.width,
-            h = self.height
-        );
-        let _ = writeln!(o, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        let rgb = |c: [u8; 3]| format!("rgb({},{},{})", c[0], c[1], c[2]);
+    /// Draws every primitive on `surface`.
+    fn draw(&self, surface: &mut impl Surface) {
         for p in self.prims() {
             match p {
                 Prim::Line {
@@ -418,110 +409,39 @@ impl Figure {
                     width,
                     colour,
                     dash,
-                } => {
-                    if pts.len() < 2 {
-                        continue;
-                    }
-                    let d: Vec<String> =
-                        pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
-                    let dash = dash
-                        .map(|l| format!(r#" stroke-dasharray="{l:.1},{:.1}""#, l * 0.7))
-                        .unwrap_or_default();
-                    let _ = writeln!(
-                        o,
-                        r#"<polyline fill="none" stroke="{}" stroke-width="{width}" stroke-linejoin="round"{dash} points="{}"/>"#,
-                        rgb(colour),
-                        d.join(" ")
-                    );
-                }
-                Prim::Dot { c, r, colour } => {
-                    let _ = writeln!(
-                        o,
-                        r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
-                        c.0,
-                        c.1,
-                        rgb(colour)
-                    );
-                }
-                Prim::Box { lo, hi } => {
-                    let _ = writeln!(
-                        o,
-                        r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="white" stroke="rgb(150,150,150)"/>"#,
-                        lo.0,
-                        lo.1,
-                        hi.0 - lo.0,
-                        hi.1 - lo.1
-                    );
-                }
+                } => surface.draw_line(&pts, width, colour, dash),
+                Prim::Dot { c, r, colour } => surface.draw_dot(c, r, colour),
+                Prim::Box { lo, hi } => surface.draw_box(lo, hi),
                 Prim::Text {
                     at,
                     size,
                     anchor,
                     vertical,
                     s,
-                } => {
-                    let a = match anchor {
-                        Anchor::Start => "start",
-                        Anchor::Middle => "middle",
-                        Anchor::End => "end",
-                    };
-                    let rot = if vertical {
-                        format!(r#" transform="rotate(-90 {:.1} {:.1})""#, at.0, at.1)
-                    } else {
-                        String::new()
-                    };
-                    let _ = writeln!(
-                        o,
-                        r#"<text x="{:.1}" y="{:.1}" font-size="{size}" text-anchor="{a}"{rot}>{}</text>"#,
-                        at.0,
-                        at.1,
-                        xml_escape(&s)
-                    );
-                }
+                } => surface.draw_text(at, size, anchor, vertical, &s),
             }
         }
-        o.push_str("</svg>\n");
-        o
+    }
+
+    /// The figure as an SVG document.
+    pub fn svg(&self) -> String {
+        let mut o = Svg(String::new());
+        let _ = writeln!(
+            o.0,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#,
+            w = self.width,
+            h = self.height
+        );
+        let _ = writeln!(o.0, r#"<rect width="100%" height="100%" fill="white"/>"#);
+        self.draw(&mut o);
+        o.0.push_str("</svg>\n");
+        o.0
     }
 
     /// The figure as RGB pixels (row-major, 3 bytes per pixel).
     pub fn rgb_pixels(&self) -> Vec<u8> {
         let mut c = Canvas::new(self.width as usize, self.height as usize);
-        for p in self.prims() {
-            match p {
-                Prim::Line {
-                    pts,
-                    width,
-                    colour,
-                    dash,
-                } => c.polyline(&pts, width, colour, dash),
-                Prim::Dot { c: at, r, colour } => c.dot(at, r, colour),
-                Prim::Box { lo, hi } => {
-                    let (x0, y0, x1, y1) = c.region(lo, hi);
-                    for y in y0..=y1 {
-                        for x in x0..=x1 {
-                            c.cover(x, y, 1.0);
-                        }
-                    }
-                    c.flush([255, 255, 255]);
-                    let edge = vec![
-                        (lo.0, lo.1),
-                        (hi.0, lo.1),
-                        (hi.0, hi.1),
-                        (lo.0, hi.1),
-                        (lo.0, lo.1),
-                    ];
-                    c.polyline(&edge, 1.0, [150, 150, 150], None);
-                }
-                Prim::Text {
-                    at,
-                    size,
-                    anchor,
-                    vertical,
-                    s,
-                } => c.text(at, size, anchor, vertical, &s),
-            }
-        }
+        self.draw(&mut c);
         c.to_rgb8()
     }
 
@@ -750,6 +670,116 @@ fn glyph(c: char) -> [u8; 8] {
         _ => '?',
     };
     font8x8::legacy::BASIC_LEGACY[c as usize]
+}
+
+/// Where a figure's primitives are drawn: the SVG writer and the PNG canvas.
+trait Surface {
+    /// A polyline (dashed when `dash` gives the dash length).
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>);
+    /// A filled disc.
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]);
+    /// A white box with a grey border (the legend's background).
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64));
+    /// Text at `at` (the baseline), `size` px, anchored by `anchor`, rotated when `vertical`.
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str);
+}
+
+/// An SVG document being written.
+struct Svg(String);
+
+fn svg_rgb(c: [u8; 3]) -> String {
+    format!("rgb({},{},{})", c[0], c[1], c[2])
+}
+
+impl Surface for Svg {
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
+        if pts.len() < 2 {
+            return;
+        }
+        let d: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let dash = dash
+            .map(|l| format!(r#" stroke-dasharray="{l:.1},{:.1}""#, l * 0.7))
+            .unwrap_or_default();
+        let _ = writeln!(
+            self.0,
+            r#"<polyline fill="none" stroke="{}" stroke-width="{width}" stroke-linejoin="round"{dash} points="{}"/>"#,
+            svg_rgb(colour),
+            d.join(" ")
+        );
+    }
+
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
+        let _ = writeln!(
+            self.0,
+            r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
+            c.0,
+            c.1,
+            svg_rgb(colour)
+        );
+    }
+
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
+        let _ = writeln!(
+            self.0,
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="white" stroke="rgb(150,150,150)"/>"#,
+            lo.0,
+            lo.1,
+            hi.0 - lo.0,
+            hi.1 - lo.1
+        );
+    }
+
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
+        let a = match anchor {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        };
+        let rot = if vertical {
+            format!(r#" transform="rotate(-90 {:.1} {:.1})""#, at.0, at.1)
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            self.0,
+            r#"<text x="{:.1}" y="{:.1}" font-size="{size}" text-anchor="{a}"{rot}>{}</text>"#,
+            at.0,
+            at.1,
+            xml_escape(s)
+        );
+    }
+}
+
+impl Surface for Canvas {
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
+        self.polyline(pts, width, colour, dash);
+    }
+
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
+        self.dot(c, r, colour);
+    }
+
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
+        let (x0, y0, x1, y1) = self.region(lo, hi);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                self.cover(x, y, 1.0);
+            }
+        }
+        self.flush([255, 255, 255]);
+        let edge = [
+            (lo.0, lo.1),
+            (hi.0, lo.1),
+            (hi.0, hi.1),
+            (lo.0, hi.1),
+            (lo.0, lo.1),
+        ];
+        self.polyline(&edge, 1.0, [150, 150, 150], None);
+    }
+
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
+        self.text(at, size, anchor, vertical, s);
+    }
 }
 
 #[cfg(test)]

@@ -12,7 +12,7 @@
 
 use crate::error::{CliError, Result};
 use specpoly_core::{
-    Breaks, Rgb, Sampled, Shade, Spectrum, DEFAULT_COEFFS, DEFAULT_SPANS, PAPER_BREAKS,
+    Layout, Paper, Rgb, Sampled, Shade, Spectrum, Uniform, DEFAULT_COEFFS, DEFAULT_SPANS,
 };
 use std::fmt;
 use std::str::FromStr;
@@ -137,12 +137,12 @@ impl FromStr for Repr {
     }
 }
 
-/// Generic code run for one representation: `visit::<T>(layout)`.
+/// Generic code run for one representation: `visit::<T>()`.
 pub trait Visitor {
     /// What the visit returns.
     type Output;
-    /// Runs with the representation's type `T` and layout.
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output;
+    /// Runs with the representation's type `T`.
+    fn visit<T: Shade>(self) -> Self::Output;
 }
 
 /// Generic code over the polynomial representations only (`poly`, `paper`, `poly:SxD`), for
@@ -150,8 +150,8 @@ pub trait Visitor {
 pub trait PolyVisitor {
     /// What the visit returns.
     type Output;
-    /// Runs with `Spectrum<S, C>` on `breaks`.
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output;
+    /// Runs with `Spectrum<S, C, L>` (breakpoints `L::BREAKS`).
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output;
 }
 
 /// Adapts a [`Visitor`] to a [`PolyVisitor`], so one table serves both dispatches.
@@ -159,8 +159,8 @@ struct AsShade<V>(V);
 
 impl<V: Visitor> PolyVisitor for AsShade<V> {
     type Output = V::Output;
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> V::Output {
-        self.0.visit::<Spectrum<S, C>>(breaks)
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> V::Output {
+        self.0.visit::<Spectrum<S, C, L>>()
     }
 }
 
@@ -185,7 +185,7 @@ macro_rules! representations {
 
         fn sampled<V: Visitor>(n: usize, v: V) -> Option<V::Output> {
             match n {
-                $($n => Some(v.visit::<Sampled<$n>>(())),)*
+                $($n => Some(v.visit::<Sampled<$n>>()),)*
                 _ => None,
             }
         }
@@ -193,7 +193,7 @@ macro_rules! representations {
     (@degrees [$($c:literal),*]) => { [$($c - 1),*] };
     (@coeffs $s:literal, $coeffs:expr, $v:expr, [$($c:literal),*]) => {
         match $coeffs {
-            $($c => Some($v.visit::<$s, $c>(Breaks::<$s>::uniform())),)*
+            $($c => Some($v.visit::<$s, $c, Uniform>()),)*
             _ => None,
         }
     };
@@ -216,7 +216,7 @@ pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, command: &str, v: V) -> Result<
 /// and for layouts outside the list (which [`Repr::from_str`] refuses).
 fn poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
     match repr {
-        Repr::Paper => Some(v.visit::<2, 4>(PAPER_BREAKS)),
+        Repr::Paper => Some(v.visit::<2, 4, Paper>()),
         Repr::Poly { spans, coeffs } => uniform_poly(spans, coeffs, v),
         Repr::Sampled(_) | Repr::Rgb | Repr::Exact => None,
     }
@@ -229,8 +229,8 @@ fn poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
 /// outside the list could reach the panic.
 pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
     let out = match repr {
-        Repr::Rgb => Some(v.visit::<Rgb>(())),
-        Repr::Exact => Some(v.visit::<Sampled<401>>(())),
+        Repr::Rgb => Some(v.visit::<Rgb>()),
+        Repr::Exact => Some(v.visit::<Sampled<401>>()),
         Repr::Sampled(n) => sampled(n, v),
         Repr::Poly { .. } | Repr::Paper => poly(repr, AsShade(v)),
     };

@@ -1,8 +1,8 @@
 //! `specpoly led`: drive the RGB-LED controller firmware over a serial port.
 //!
 //! Settings given as options are sent first (`cal`, `trc`, `map`, `observer`), then the action;
-//! the controller's reply line is printed. `--check` also computes the answer on the host with
-//! the same core ([`crate::led::Model`]) and fails if the device disagrees.
+//! the controller's reply line is printed. `--check` also computes the answer on the host in f64
+//! ([`crate::led::check`]) and fails if the device disagrees.
 //!
 //! The LED's calibration comes from a calibration file written by `specpoly calibrate`
 //! (`--calibration`: its primaries and transfer curves; the controller's model has no black
@@ -12,7 +12,7 @@ use crate::cli::args::{self, Curve, Gamut};
 use crate::error::{CliError, Result};
 use crate::io::stdout::print;
 use crate::led::lines::{self, line, reply_line, Preset};
-use crate::led::{Link, Model};
+use crate::led::{Link, Oracle};
 use specpoly_core::{Illuminant, Observer, Transfer};
 use specpoly_protocol::number::write_f32;
 use specpoly_protocol::{Channels, Command, Reply};
@@ -45,8 +45,8 @@ pub struct LedArgs {
     /// feature `observer-1964`).
     #[arg(long, value_name = "1931|1964", value_parser = args::observer)]
     pub observer: Option<Observer>,
-    /// Recompute the answer on the host and fail unless the controller agrees (XYZ within
-    /// 1e-3, duties within 1 tick).
+    /// Recompute the answer on the host (an independent f64 computation) and fail unless the
+    /// controller agrees within the tolerance table of `specpoly::led::check`.
     #[arg(long)]
     pub check: bool,
     /// What to show or ask.
@@ -121,54 +121,28 @@ fn check(
             )))
         }
     };
-    let calibration_err = |e| CliError::data(format!("the controller's calibration: {e}"));
-    let model = match (Model::from_state(&state).map_err(calibration_err)?, curves) {
-        (Some(m), _) => m,
-        (None, Some(t)) => {
-            let xy = state.primaries.map(|p| [p[0], p[1]]);
-            let lum = state.primaries.map(|p| p[2]);
-            Model {
-                display: specpoly_core::Display::from_primaries(
-                    xy,
-                    lum,
-                    specpoly_core::Xyz::default(),
-                    t,
-                )
-                .map_err(calibration_err)?,
-                map: state.map,
-                observer: state.observer,
-                max: state.max,
-            }
-        }
-        (None, None) => {
-            return Err(CliError::data(
-                "--check needs the tabulated curves: give them with --calibration",
+    let oracle = Oracle::from_state(&state, curves.as_ref()).ok_or_else(|| {
+        CliError::data("--check needs the tabulated curves: give them with --calibration")
+    })?;
+    let Ok(cmd) = Command::parse(sent) else {
+        return Ok(());
+    };
+    if oracle.target(&cmd).is_none() {
+        return Ok(());
+    }
+    match oracle.verify(&cmd, dev) {
+        Ok(a) => {
+            let mut s = String::new();
+            let _ = write_f32(&mut s, a.xyz() as f32);
+            print(&format!(
+                "check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})\n",
+                a.duty
             ))
         }
-    };
-    let target = match Command::parse(sent) {
-        Ok(Command::Xyz(v)) => v,
-        Ok(Command::Xyy(v)) => v.to_xyz(),
-        Ok(Command::Reflect {
-            illuminant,
-            product,
-            ..
-        }) => model.reflectance_xyz(illuminant, &product),
-        _ => return Ok(()),
-    };
-    let host = model.colour(target);
-    let (dxyz, dduty, same_gamut) = Model::compare(dev, &host);
-    let mut s = String::new();
-    let _ = write_f32(&mut s, dxyz);
-    if dxyz > 1e-3 || dduty > 1 || !same_gamut {
-        return Err(CliError::data(format!(
-            "the controller disagrees with the host: |ΔXYZ| = {s}, |Δduty| = {dduty}, gamut {}; host: {}",
-            if same_gamut { "same" } else { "differs" },
-            reply_line(&Reply::Colour(host))
-        )));
+        Err(d) => Err(CliError::data(format!(
+            "the controller disagrees with the host: {d}"
+        ))),
     }
-    println!("check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {dduty})");
-    Ok(())
 }
 
 /// Runs `specpoly led`.

@@ -1,7 +1,7 @@
 //! `specpoly table1`: prints the paper's Table 1 on our data ([`crate::table1`]).
 
-use crate::cli::args::print_json;
 use crate::error::Result;
+use crate::io::stdout::print_json;
 use crate::table1::compute;
 use std::fmt::Write as _;
 
@@ -50,17 +50,9 @@ pub fn run(a: &Table1Args) -> Result<()> {
         "span", "reflectance", "(paper)", "x", "(paper)", "reduced", "(paper)"
     );
     for (i, r) in rows.iter().enumerate() {
-        let _ = writeln!(
-            o,
-            "{:<12} {:>13.6e} {:>13.6e} {:>13.6e} {:>13.6e} {:>13.6e} {:>13.6e}",
-            format!("{} {}-{}", ["one", "two"][i], r.span_nm[0], r.span_nm[1]),
-            r.reflectance,
-            r.paper[0],
-            r.xbar,
-            r.paper[1],
-            r.reduced,
-            r.paper[2]
-        );
+        let cells = r.cells().map(|v| format!("{v:>13.6e}"));
+        let span = format!("{} {}-{}", ["one", "two"][i], r.span_nm[0], r.span_nm[1]);
+        let _ = writeln!(o, "{span:<12} {}", cells.join(" "));
     }
     crate::io::stdout::print(&o)
 }

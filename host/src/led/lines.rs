@@ -4,7 +4,7 @@
 
 use crate::error::{CliError, Result};
 use crate::spectrum_names;
-use specpoly_core::{Breaks, DefaultSpectrum, Illuminant, PaperSpectrum, PAPER_BREAKS};
+use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum};
 use specpoly_protocol::number::parse_f32;
 use specpoly_protocol::{write_reflect, Channels, Command, Reflectance, Reply, MAX_FACTORS};
 
@@ -104,12 +104,8 @@ pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<
         let t = n.tabulated();
         let fit_err = |e| CliError::data(format!("{}: cannot fit: {e}", n.short()));
         factors.push(match preset {
-            Preset::Paper => {
-                Reflectance::Paper(PaperSpectrum::fit(PAPER_BREAKS, &t).map_err(fit_err)?)
-            }
-            Preset::Poly => {
-                Reflectance::Default(DefaultSpectrum::fit(Breaks::uniform(), &t).map_err(fit_err)?)
-            }
+            Preset::Paper => Reflectance::Paper(PaperSpectrum::fit(&t).map_err(fit_err)?),
+            Preset::Poly => Reflectance::Default(DefaultSpectrum::fit(&t).map_err(fit_err)?),
         });
     }
     let mut line = String::new();

@@ -47,7 +47,7 @@ pub fn load(spec: &str) -> Result<Scene> {
         return SceneFile::parse(&text, spec)?.resolve(spec);
     }
     if let Some(b) = builtin::find(spec) {
-        return SceneFile::parse(b.toml, b.name)?.resolve(b.name);
+        return SceneFile::parse(b.text, b.name)?.resolve(b.name);
     }
     if looks_like_file {
         return Err(CliError::usage(format!("{spec}: no such scene file")));
@@ -68,8 +68,8 @@ struct RenderVisit<'a> {
 
 impl Visitor for RenderVisit<'_> {
     type Output = Result<Image>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Result<Image> {
-        let c = Compiled::<T>::new(self.scene, layout)
+    fn visit<T: Shade>(self) -> Result<Image> {
+        let c = Compiled::<T>::new(self.scene)
             .map_err(|e| CliError::data(format!("converting the scene's spectra: {e}")))?;
         Ok(render_compiled(&c, self.progress))
     }
