@@ -30,6 +30,7 @@ pub mod fit_report;
 pub mod io;
 pub mod led;
 pub mod measurement;
+pub mod plausible;
 pub mod plot;
 pub mod render;
 pub mod repr;

@@ -222,3 +222,31 @@ fn devices_and_fifos_are_not_read_as_input() {
     assert_ne!(r.code, 0);
     assert!(!r.stderr.contains("panicked"));
 }
+
+#[test]
+fn implausible_reflectances_are_refused_with_a_hint() {
+    let dir = tempfile::tempdir().unwrap();
+    let percent = dir.path().join("percent.csv");
+    std::fs::write(&percent, csv("grey", "45")).unwrap();
+    fails(&specpoly(&["xyz", s(&percent)]), 1, "--scale 0.01");
+    // the hint works: percent data scaled by 0.01 equals the same data in 0–1
+    let r = specpoly(&["xyz", s(&percent), "--scale", "0.01", "--json"]);
+    let unit = dir.path().join("unit.csv");
+    std::fs::write(&unit, csv("grey", "0.45")).unwrap();
+    let q = specpoly(&["xyz", s(&unit), "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let y = |t: &str| -> f64 {
+        let v: serde_json::Value = serde_json::from_str(t).unwrap();
+        v[0]["Y"].as_f64().unwrap()
+    };
+    assert!((y(&r.stdout) - y(&q.stdout)).abs() < 1e-4);
+    let negative = dir.path().join("neg.csv");
+    std::fs::write(&negative, csv("neg", "-0.3")).unwrap();
+    fails(&specpoly(&["xyz", s(&negative)]), 1, "negative");
+    fails(&specpoly(&["xyz", "D65"]), 1, "--illuminant");
+    let huge = dir.path().join("huge.csv");
+    std::fs::write(&huge, csv("huge", "3e38")).unwrap();
+    let r = specpoly(&["xyz", s(&huge)]);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    assert!(!r.stdout.contains("inf") && !r.stdout.to_lowercase().contains("nan"));
+}

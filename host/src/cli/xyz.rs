@@ -31,6 +31,9 @@ pub struct XyzArgs {
     /// Print JSON: a list of {name, X, Y, Z, x, y, L, a, b}.
     #[arg(long)]
     pub json: bool,
+    /// Multiply every reflectance by FACTOR first (0.01 for data in percent).
+    #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
+    pub scale: f64,
 }
 
 /// One printed result.
@@ -79,7 +82,13 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
         observer,
     } = &a.colorimetry;
     let light = spectrum_names::light(illuminant)?;
-    let named: Vec<Named> = spectrum_names::resolve_all(&a.spectra)?;
+    let named: Vec<Named> = spectrum_names::resolve_all(&a.spectra)?
+        .into_iter()
+        .map(|n| crate::plausible::scaled(n, a.scale))
+        .collect::<Result<_>>()?;
+    for n in &named {
+        crate::plausible::reflectance(n)?;
+    }
     let tabs: Vec<Tabulated<'_>> = named.iter().map(Named::tabulated).collect();
     let (chains, names): (Vec<Vec<usize>>, Vec<String>) = if a.product {
         let name = named
@@ -96,6 +105,9 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
     };
     let colours = colour::chains(a.repr, *observer, &light.tabulated(), &tabs, &chains)
         .map_err(|e| CliError::data(format!("{}: {e}", a.repr)))?;
+    for (n, c) in names.iter().zip(&colours) {
+        crate::plausible::finite(n, &c.xyz)?;
+    }
     Ok(names
         .into_iter()
         .zip(&colours)
