@@ -11,7 +11,7 @@
 //! No chromatic adaptation: under illuminant A a white paper is shown as A's colour.
 //! Out-of-gamut targets are mapped with [`GamutMap`] and the reply says so.
 
-use crate::{led::duty_of, lights};
+use crate::{led::duty_of, lights, settings::Settings};
 use specpoly_core::{
     display::SRGB_PRIMARIES, Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
@@ -127,7 +127,37 @@ impl Controller {
                 let xyz = self.reflectance_xyz(illuminant, &product);
                 Reply::Colour(self.colour(xyz))
             }
+            // answered with the flash by `store::handle`; a controller alone has no storage
+            Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
         }
+    }
+
+    /// The settings `save` keeps: calibration, curves, gamut map, observer.
+    pub fn settings(&self) -> Settings {
+        Settings {
+            xy: self.xy,
+            luminance: self.luminance,
+            trc: self.display.transfer().clone(),
+            map: self.map,
+            observer: self.observer,
+        }
+    }
+
+    /// Applies loaded settings and re-drives the last colour; refuses (and changes nothing)
+    /// primaries that span no colour space or an observer this build lacks.
+    pub fn apply(&mut self, s: &Settings) -> Result<(), ErrorCode> {
+        if !lights::has_observer(s.observer) {
+            return Err(ErrorCode::UnknownName);
+        }
+        let d = Display::from_primaries(s.xy, s.luminance, Xyz::default(), s.trc.clone())
+            .map_err(|_| ErrorCode::Singular)?;
+        self.xy = s.xy;
+        self.luminance = s.luminance;
+        self.display = d;
+        self.map = s.map;
+        self.observer = s.observer;
+        self.colour(self.target);
+        Ok(())
     }
 
     /// XYZ (perfect white `Y = 100`) of a reflectance under a built-in light, with the current
@@ -262,6 +292,31 @@ mod tests {
             Reply::Colour(r) => assert!((r.xyz.y - 25.0).abs() < 1e-3, "{r:?}"),
             other => panic!("{other:?}"),
         }
+    }
+
+    #[test]
+    fn settings_apply_to_another_controller() {
+        let mut a = Controller::new(1000);
+        for l in [
+            "cal 0.7 0.29 2 0.17 0.7 7 0.135 0.04 1",
+            "trc g gamma 2.2",
+            "map desaturate",
+        ] {
+            assert!(matches!(run(&mut a, l), Reply::Done(_)), "{l}");
+        }
+        let mut b = Controller::new(1000);
+        run(&mut b, "xyz 20 20 20");
+        b.apply(&a.settings()).unwrap();
+        run(&mut a, "xyz 20 20 20");
+        assert_eq!(a.duty(), b.duty(), "re-driven with the loaded calibration");
+        assert_eq!(run(&mut a, "state"), run(&mut b, "state"));
+        let mut bad = a.settings();
+        bad.xy = [[0.3, 0.3]; 3];
+        assert_eq!(b.apply(&bad), Err(ErrorCode::Singular));
+        assert_eq!(
+            run(&mut b, "save"),
+            Reply::Error(Fault::new(ErrorCode::Storage))
+        );
     }
 
     #[test]

@@ -1,14 +1,21 @@
-//! The RGB-LED colour controller on QEMU mps2-an386: wiring only. Lines from UART0 go through
-//! the shared protocol parser to the [`Controller`]; its reply goes back on the UART and its
-//! duties to the LED, and (QEMU has no PWM) to semihosting: `duty R G B max=M stack=BYTES`.
+//! The RGB-LED colour controller on QEMU mps2-an386: wiring only. At start the settings saved
+//! in flash are loaded (or the defaults kept, with the reason logged). Lines from UART0 go
+//! through the shared protocol parser to the [`Controller`] (`save`/`load` to the settings
+//! [`Store`]); the reply goes back on the UART and the duties to the LED, and (QEMU has no PWM)
+//! to the defmt log: `duty R G B max=M stack=BYTES`.
 #![no_std]
 #![no_main]
 
 use core::fmt::Write as _;
 use cortex_m_rt::{entry, exception};
-use cortex_m_semihosting::hprintln;
 use heapless::String;
-use specpoly_firmware::board::{host_line, pwm::ReportedPwm, stack, uart::Uart};
+use specpoly_firmware::board::{
+    flash::{RamFlash, PAGE, PAGES},
+    pwm::ReportedPwm,
+    stack,
+    uart::Uart,
+};
+use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
 use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE, MAX_REPLY};
 
@@ -37,9 +44,22 @@ fn main() -> ! {
         Err(_) => panic!("PWM stand-in"),
     };
     let mut controller = Controller::new(led.max());
+    let mut buffer = Buffer::new();
+    let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
+        // whole pages, at least two, by the constants
+        panic!("settings range");
+    };
+    match store.load(&mut buffer) {
+        Ok(s) => match controller.apply(&s) {
+            Ok(()) => defmt::info!("settings loaded from flash"),
+            Err(_) => defmt::warn!("saved settings not applicable: defaults used"),
+        },
+        Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
+        Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
+    }
     let mut lines = LineReader::<MAX_LINE>::new();
     let mut out: String<MAX_REPLY> = String::new();
-    hprintln!("specpoly-led ready");
+    defmt::info!("specpoly-led ready");
     loop {
         let Some(byte) = uart.read() else {
             cortex_m::asm::wfi();
@@ -50,7 +70,7 @@ fn main() -> ! {
         };
         let reply = match line {
             Ok(l) if l.trim_ascii().is_empty() => continue,
-            Ok(l) => controller.handle(Command::parse(l)),
+            Ok(l) => store::handle(&mut controller, &mut store, &mut buffer, Command::parse(l)),
             Err(f) => Reply::Error(f),
         };
         out.clear();
@@ -63,15 +83,13 @@ fn main() -> ! {
         uart.write_byte(b'\n');
         let duty = controller.duty();
         if led.set(duty).is_ok() {
-            host_line(
-                &["duty"],
-                &[
-                    (" ", duty[0] as i64),
-                    (" ", duty[1] as i64),
-                    (" ", duty[2] as i64),
-                    (" max=", led.max() as i64),
-                    (" stack=", stack::high_water() as i64),
-                ],
+            defmt::info!(
+                "duty {=u16} {=u16} {=u16} max={=u16} stack={=usize}",
+                duty[0],
+                duty[1],
+                duty[2],
+                led.max(),
+                stack::high_water()
             );
         }
     }
