@@ -15,8 +15,8 @@
 
 use crate::repr::{Repr, Visitor};
 use specpoly_core::{
-    delta_e2000, exact_xyz, Breaks, Error, Lab, Observer, Shade, Spectrum, Tabulated, Xyz,
-    DEFAULT_COEFFS, DEFAULT_SPANS, PAPER_BREAKS,
+    delta_e2000, exact_xyz, Error, Lab, Layout, Observer, Paper, PaperSpectrum, Shade, Tabulated,
+    Uniform, Xyz, DEFAULT_COEFFS, DEFAULT_SPANS,
 };
 
 /// A computed colour: XYZ and the white it is relative to (both with the white's `Y = 100`).
@@ -85,8 +85,8 @@ pub struct Chains<'a> {
 
 impl Visitor for Chains<'_> {
     type Output = Result<Vec<Colour>, Error>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output {
-        let light = T::light(self.observer, &self.light, layout);
+    fn visit<T: Shade>(self) -> Self::Output {
+        let light = T::light(self.observer, &self.light);
         let white = white(self.observer, &self.light);
         let reps = self
             .spectra
@@ -141,7 +141,7 @@ pub fn paper_path(
     let white = white(observer, light);
     let reps = spectra
         .iter()
-        .map(|r| Spectrum::<2, 4>::fit(PAPER_BREAKS, r))
+        .map(PaperSpectrum::fit)
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(chains
         .iter()
@@ -163,18 +163,18 @@ pub fn paper_path(
 pub trait PolyVisitor {
     /// What the visit returns.
     type Output;
-    /// Runs with `Spectrum<S, C>` on `breaks`.
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output;
+    /// Runs with `Spectrum<S, C, L>`.
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output;
 }
 
 macro_rules! poly_by_coeffs {
     ($s:literal, $c:expr, $v:expr) => {
         match $c {
-            2 => $v.visit::<$s, 2>(Breaks::<$s>::uniform()),
-            3 => $v.visit::<$s, 3>(Breaks::<$s>::uniform()),
-            4 => $v.visit::<$s, 4>(Breaks::<$s>::uniform()),
-            5 => $v.visit::<$s, 5>(Breaks::<$s>::uniform()),
-            _ => $v.visit::<$s, 6>(Breaks::<$s>::uniform()),
+            2 => $v.visit::<$s, 2, Uniform>(),
+            3 => $v.visit::<$s, 3, Uniform>(),
+            4 => $v.visit::<$s, 4, Uniform>(),
+            5 => $v.visit::<$s, 5, Uniform>(),
+            _ => $v.visit::<$s, 6, Uniform>(),
         }
     };
 }
@@ -183,11 +183,11 @@ macro_rules! poly_by_coeffs {
 /// RGB, exact). Supports what [`Repr`]'s parser accepts.
 pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
     Some(match repr {
-        Repr::Paper => v.visit::<2, 4>(PAPER_BREAKS),
+        Repr::Paper => v.visit::<2, 4, Paper>(),
         Repr::Poly {
             spans: DEFAULT_SPANS,
             coeffs: DEFAULT_COEFFS,
-        } => v.visit::<DEFAULT_SPANS, DEFAULT_COEFFS>(Breaks::uniform()),
+        } => v.visit::<DEFAULT_SPANS, DEFAULT_COEFFS, Uniform>(),
         Repr::Poly { spans, coeffs } => match spans {
             1 => poly_by_coeffs!(1, coeffs, v),
             2 => poly_by_coeffs!(2, coeffs, v),

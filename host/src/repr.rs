@@ -12,8 +12,7 @@
 
 use crate::error::{CliError, Result};
 use specpoly_core::{
-    Breaks, DefaultSpectrum, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, DEFAULT_COEFFS,
-    DEFAULT_SPANS, PAPER_BREAKS,
+    DefaultSpectrum, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, DEFAULT_COEFFS, DEFAULT_SPANS,
 };
 use std::fmt;
 use std::str::FromStr;
@@ -131,22 +130,22 @@ impl FromStr for Repr {
     }
 }
 
-/// Generic code run for one representation: `visit::<T>(layout)`.
+/// Generic code run for one representation: `visit::<T>()`.
 pub trait Visitor {
     /// What the visit returns.
     type Output;
-    /// Runs with the representation's type `T` and layout.
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output;
+    /// Runs with the representation's type `T`.
+    fn visit<T: Shade>(self) -> Self::Output;
 }
 
 macro_rules! by_coeffs {
     ($s:literal, $c:expr, $v:expr) => {
         match $c {
-            2 => $v.visit::<Spectrum<$s, 2>>(Breaks::<$s>::uniform()),
-            3 => $v.visit::<Spectrum<$s, 3>>(Breaks::<$s>::uniform()),
-            4 => $v.visit::<Spectrum<$s, 4>>(Breaks::<$s>::uniform()),
-            5 => $v.visit::<Spectrum<$s, 5>>(Breaks::<$s>::uniform()),
-            _ => $v.visit::<Spectrum<$s, 6>>(Breaks::<$s>::uniform()),
+            2 => $v.visit::<Spectrum<$s, 2>>(),
+            3 => $v.visit::<Spectrum<$s, 3>>(),
+            4 => $v.visit::<Spectrum<$s, 4>>(),
+            5 => $v.visit::<Spectrum<$s, 5>>(),
+            _ => $v.visit::<Spectrum<$s, 6>>(),
         }
     };
 }
@@ -154,8 +153,8 @@ macro_rules! by_coeffs {
 macro_rules! by_n {
     ($n:expr, $v:expr; $($lit:literal),*) => {
         match $n {
-            $($lit => $v.visit::<Sampled<$lit>>(()),)*
-            _ => $v.visit::<Sampled<401>>(()),
+            $($lit => $v.visit::<Sampled<$lit>>(),)*
+            _ => $v.visit::<Sampled<401>>(),
         }
     };
 }
@@ -163,8 +162,8 @@ macro_rules! by_n {
 /// Runs `v` with the type of `repr` (which [`Repr::from_str`] has validated).
 pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
     match repr {
-        Repr::Paper => v.visit::<PaperSpectrum>(PAPER_BREAKS),
-        r if r == Repr::DEFAULT => v.visit::<DefaultSpectrum>(Breaks::uniform()),
+        Repr::Paper => v.visit::<PaperSpectrum>(),
+        r if r == Repr::DEFAULT => v.visit::<DefaultSpectrum>(),
         Repr::Poly { spans, coeffs } => match spans {
             1 => by_coeffs!(1, coeffs, v),
             2 => by_coeffs!(2, coeffs, v),
@@ -178,8 +177,8 @@ pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
         Repr::Sampled(n) => {
             by_n!(n, v; 3, 4, 5, 8, 9, 11, 16, 21, 24, 32, 41, 48, 64, 81, 101, 201)
         }
-        Repr::Rgb => v.visit::<Rgb>(()),
-        Repr::Exact => v.visit::<Sampled<401>>(()),
+        Repr::Rgb => v.visit::<Rgb>(),
+        Repr::Exact => v.visit::<Sampled<401>>(),
     }
 }
 

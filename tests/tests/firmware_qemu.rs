@@ -3,7 +3,8 @@
 //! - its host-side unit tests (controller, LED driver with embedded-hal-mock, light tables);
 //! - the on-target self-test (semihosting exit code), with the flash and RAM budgets;
 //! - end to end: the host's `specpoly led` code ↔ QEMU's UART on a pseudo-terminal ↔ firmware,
-//!   whose XYZ and duties must match the host's own computation with the same core;
+//!   whose every colour reply must agree with the host's independent f64 computation within
+//!   the one tolerance table `specpoly::led::check::TOLERANCES` (which `led --check` uses too);
 //! - the `fast-math` build (micromath): its colour error against the libm build, in ΔE00.
 //!
 //! The firmware logs through defmt (semihosting under QEMU): QEMU's standard output carries
@@ -12,7 +13,7 @@
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both);
 //! without them these tests fail with a message saying so. They never skip.
 
-use specpoly::led::{Link, Model};
+use specpoly::led::{Link, Oracle};
 use specpoly_core::{delta_e2000, Display, GamutMap, Illuminant, Lab, Observer, Transfer, Xyz};
 use specpoly_protocol::{Command, Gamut, Reply};
 use std::io::{BufRead, BufReader, Read};
@@ -385,25 +386,14 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     let max = link.hello().expect("hello");
     assert_eq!(max, u16::MAX);
 
-    // the host's own computation, kept in step with every setting sent
+    // the settings sent, for the host's f64 reference
     let xy = [[0.70, 0.29], [0.17, 0.70], [0.135, 0.04]];
     let lum = [2.5, 7.25, 1.0];
-    let mut model = Model {
-        display: Display::from_primaries(
-            xy,
-            lum,
-            Xyz::default(),
-            [
-                Transfer::Gamma(2.2),
-                Transfer::Gamma(2.2),
-                Transfer::Gamma(2.2),
-            ],
-        )
-        .unwrap(),
-        map: GamutMap::Clip,
-        observer: Observer::Cie1931,
-        max,
-    };
+    let gamma = [
+        Transfer::Gamma(2.2),
+        Transfer::Gamma(2.2),
+        Transfer::Gamma(2.2),
+    ];
     assert_eq!(
         link.send("cal 0.7 0.29 2.5 0.17 0.7 7.25 0.135 0.04 1")
             .unwrap(),
@@ -449,7 +439,7 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
 
     let mut out_of_gamut = 0;
     for map in [GamutMap::Clip, GamutMap::Desaturate] {
-        model.map = map;
+        let oracle = Oracle::new(xy, lum, gamma.clone(), map, Observer::Cie1931, max);
         let m = if map == GamutMap::Clip {
             "clip"
         } else {
@@ -458,22 +448,10 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
         assert_eq!(link.send(&format!("map {m}")).unwrap(), Reply::Done("map"));
         for line in &lines {
             let dev = colour(link.send(line).unwrap());
-            let target = match Command::parse(line).unwrap() {
-                Command::Xyz(v) => v,
-                Command::Xyy(v) => v.to_xyz(),
-                Command::Reflect {
-                    illuminant,
-                    product,
-                    ..
-                } => model.reflectance_xyz(illuminant, &product),
-                other => panic!("{other:?}"),
-            };
-            let host = model.colour(target);
-            let (dxyz, dduty, same_gamut) = Model::compare(&dev, &host);
-            assert!(
-                dxyz <= 1e-4 * (1.0 + target.y.abs()) && dduty <= 1 && same_gamut,
-                "{line:.60}: device {dev:?} host {host:?}"
-            );
+            let cmd = Command::parse(line).unwrap();
+            if let Err(e) = oracle.verify(&cmd, &dev) {
+                panic!("{line:.60}: {e}; device {dev:?}");
+            }
             if dev.gamut != Gamut::In {
                 out_of_gamut += 1;
                 assert_eq!(dev.gamut, Gamut::Out(map));
@@ -847,6 +825,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     };
     let hello = ask(&mut serial, "hello\n", "ok");
     let reply = ask(&mut serial, "xyz 20 20 20\n", "ok");
+    let state = ask(&mut serial, "state\n", "ok");
     let save = ask(&mut serial, "save\n", "err");
     // TIM3 at 0x4000_0400: ARR at +0x2C, CCR1–CCR3 at +0x34…+0x3C (RM0368 §13.4)
     let arr = ask(&mut monitor, "xp /1wx 0x4000042c\n", "000000004000042c:");
@@ -880,21 +859,12 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         dev.duty.map(u32::from).to_vec(),
         "CCR1–3 hold the duties"
     );
-    // the host's own model of the default LED agrees with the board's reply
-    let host = Model {
-        display: specpoly_firmware_default_linear(),
-        map: GamutMap::Clip,
-        observer: Observer::Cie1931,
-        max,
+    // the reply agrees with the host's independent f64 computation for the board's state
+    let Ok(Reply::State(st)) = Reply::parse(state.trim()) else {
+        panic!("state: {state:?}");
+    };
+    let oracle = Oracle::from_state(&st, None).expect("an oracle for the board's state");
+    if let Err(e) = oracle.verify(&Command::Xyz(Xyz::new(20.0, 20.0, 20.0)), &dev) {
+        panic!("board reply {dev:?}: {e}");
     }
-    .colour(Xyz::new(20.0, 20.0, 20.0));
-    let (_, dduty, same) = Model::compare(&dev, &host);
-    assert!(dduty <= 1 && same, "board {dev:?} host {host:?}");
-}
-
-/// The controller's default LED: Rec. 709 primaries, D65 white, linear curves.
-fn specpoly_firmware_default_linear() -> Display {
-    let (xy, lum) = Display::srgb().primaries();
-    let linear = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
-    Display::from_primaries(xy, lum, Xyz::default(), linear).unwrap()
 }

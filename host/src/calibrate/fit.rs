@@ -171,27 +171,10 @@ fn fit_gamma(v: &[f64], l: &[f64]) -> f64 {
     0.5 * (a + b)
 }
 
-/// Solves the 3×3 system `A x = b` (Cramer's rule, f64); `None` if singular.
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(a);
-    let scale = a.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
-    if !d.is_finite() || d.abs() <= 1e-14 * scale.powi(3) {
-        return None;
-    }
-    let mut x = [0.0; 3];
-    for (c, xc) in x.iter_mut().enumerate() {
-        let mut m = a;
-        for r in 0..3 {
-            m[r][c] = b[r];
-        }
-        *xc = det(m) / d;
-    }
-    Some(x)
+/// Solves the 3×3 system `A x = b` (f64, [`specpoly_core::solve`]); `None` if singular.
+fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    specpoly_core::solve::solve(a.as_flattened_mut(), &mut b).ok()?;
+    Some(b)
 }
 
 /// Fits the model to measurements (device values 0–1, XYZ in cd/m² or relative — say which in
@@ -403,32 +386,11 @@ fn lsq_matrix(
     Some([0, 1, 2].map(|c| [rows[0][c], rows[1][c], rows[2][c]]))
 }
 
-/// Solves a dense symmetric system by Gaussian elimination with partial pivoting.
-fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    for c in 0..n {
-        let p = (c..n).max_by(|i, j| a[*i][c].abs().total_cmp(&a[*j][c].abs()))?;
-        if a[p][c].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            if f != 0.0 {
-                for k in c..n {
-                    a[r][k] -= f * a[c][k];
-                }
-                b[r] -= f * b[c];
-            }
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+/// Solves a dense system (rows of `a`) with the core's Gaussian elimination
+/// ([`specpoly_core::solve`]); `None` if singular or not finite.
+fn solve_dense(a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    specpoly_core::solve::solve(&mut a.concat(), &mut b).ok()?;
+    b.iter().all(|v| v.is_finite()).then_some(b)
 }
 
 /// Given `M` (as columns: `m[channel][xyz]`), the `n`-point tables that minimise the weighted squared XYZ error over all

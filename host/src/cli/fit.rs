@@ -9,7 +9,7 @@ use crate::error::{CliError, Result};
 use crate::repr::Repr;
 use crate::spectra::{self, Named};
 use serde::Serialize;
-use specpoly_core::{Breaks, Observer, Spectrum, Tabulated};
+use specpoly_core::{Layout, Observer, Spectrum, Tabulated};
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly fit`.
@@ -68,8 +68,9 @@ struct FitOne<'a> {
 
 impl PolyVisitor for FitOne<'_> {
     type Output = Result<Vec<SpanFit>, specpoly_core::Error>;
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output {
-        let p = Spectrum::<S, C>::fit(breaks, &self.data)?;
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output {
+        let breaks = L::BREAKS;
+        let p = Spectrum::<S, C, L>::fit(&self.data)?;
         let e = p.fit_errors(&self.data);
         Ok((0..S)
             .map(|s| {

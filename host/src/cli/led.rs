@@ -1,17 +1,17 @@
 //! `specpoly led`: drive the RGB-LED controller firmware over a serial port.
 //!
 //! Settings given as options are sent first (`cal`, `trc`, `map`, `observer`), then the action;
-//! the controller's reply line is printed. `--check` also computes the answer on the host with
-//! the same core ([`crate::led::Model`]) and fails if the device disagrees.
+//! the controller's reply line is printed. `--check` also computes the answer on the host in f64
+//! ([`crate::led::check`]) and fails if the device disagrees.
 //!
 //! The LED's calibration comes from a calibration file written by `specpoly calibrate`
 //! (`--calibration`: its primaries and transfer curves; the controller's model has no black
 //! offset, an LED's black being zero) or from the command line (`--primaries`, `--trc`).
 
 use crate::error::{CliError, Result};
-use crate::led::{Link, Model};
+use crate::led::{Link, Oracle};
 use crate::spectra;
-use specpoly_core::{Breaks, DefaultSpectrum, Illuminant, PaperSpectrum, Transfer, PAPER_BREAKS};
+use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum, Transfer};
 use specpoly_protocol::number::{parse_f32, write_f32};
 use specpoly_protocol::{write_reflect, Channels, Command, Reflectance, Reply, MAX_FACTORS};
 use std::time::Duration;
@@ -43,8 +43,8 @@ pub struct LedArgs {
     /// feature `observer-1964`).
     #[arg(long)]
     pub observer: Option<String>,
-    /// Recompute the answer on the host and fail unless the controller agrees (XYZ within
-    /// 1e-3, duties within 1 tick).
+    /// Recompute the answer on the host (an independent f64 computation) and fail unless the
+    /// controller agrees within the tolerance table of `specpoly::led::check`.
     #[arg(long)]
     pub check: bool,
     /// What to show or ask.
@@ -207,10 +207,8 @@ pub fn refl_line(repr: &str, illuminant: &str, names: &[String]) -> Result<Strin
         let t = n.tabulated();
         let fit_err = |e| CliError::data(format!("{}: cannot fit: {e}", n.short()));
         factors.push(match repr {
-            "paper" => Reflectance::Paper(PaperSpectrum::fit(PAPER_BREAKS, &t).map_err(fit_err)?),
-            "poly" | "default" => {
-                Reflectance::Default(DefaultSpectrum::fit(Breaks::uniform(), &t).map_err(fit_err)?)
-            }
+            "paper" => Reflectance::Paper(PaperSpectrum::fit(&t).map_err(fit_err)?),
+            "poly" | "default" => Reflectance::Default(DefaultSpectrum::fit(&t).map_err(fit_err)?),
             other => {
                 return Err(CliError::usage(format!(
                     "--repr: `{other}` is not poly or paper (the controller's presets)"
@@ -245,54 +243,29 @@ fn check(
             )))
         }
     };
-    let calibration_err = |e| CliError::data(format!("the controller's calibration: {e}"));
-    let model = match (Model::from_state(&state).map_err(calibration_err)?, curves) {
-        (Some(m), _) => m,
-        (None, Some(t)) => {
-            let xy = state.primaries.map(|p| [p[0], p[1]]);
-            let lum = state.primaries.map(|p| p[2]);
-            Model {
-                display: specpoly_core::Display::from_primaries(
-                    xy,
-                    lum,
-                    specpoly_core::Xyz::default(),
-                    t,
-                )
-                .map_err(calibration_err)?,
-                map: state.map,
-                observer: state.observer,
-                max: state.max,
-            }
-        }
-        (None, None) => {
-            return Err(CliError::data(
-                "--check needs the tabulated curves: give them with --calibration",
-            ))
-        }
+    let oracle = Oracle::from_state(&state, curves.as_ref()).ok_or_else(|| {
+        CliError::data("--check needs the tabulated curves: give them with --calibration")
+    })?;
+    let Ok(cmd) = Command::parse(sent) else {
+        return Ok(());
     };
-    let target = match Command::parse(sent) {
-        Ok(Command::Xyz(v)) => v,
-        Ok(Command::Xyy(v)) => v.to_xyz(),
-        Ok(Command::Reflect {
-            illuminant,
-            product,
-            ..
-        }) => model.reflectance_xyz(illuminant, &product),
-        _ => return Ok(()),
-    };
-    let host = model.colour(target);
-    let (dxyz, dduty, same_gamut) = Model::compare(dev, &host);
-    let mut s = String::new();
-    let _ = write_f32(&mut s, dxyz);
-    if dxyz > 1e-3 || dduty > 1 || !same_gamut {
-        return Err(CliError::data(format!(
-            "the controller disagrees with the host: |ΔXYZ| = {s}, |Δduty| = {dduty}, gamut {}; host: {}",
-            if same_gamut { "same" } else { "differs" },
-            reply_line(&Reply::Colour(host))
-        )));
+    if oracle.target(&cmd).is_none() {
+        return Ok(());
     }
-    println!("check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {dduty})");
-    Ok(())
+    match oracle.verify(&cmd, dev) {
+        Ok(a) => {
+            let mut s = String::new();
+            let _ = write_f32(&mut s, a.xyz() as f32);
+            println!(
+                "check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})",
+                a.duty
+            );
+            Ok(())
+        }
+        Err(d) => Err(CliError::data(format!(
+            "the controller disagrees with the host: {d}"
+        ))),
+    }
 }
 
 /// Runs `specpoly led`.

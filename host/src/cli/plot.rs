@@ -14,7 +14,7 @@ use crate::error::{CliError, Result};
 use crate::plot::{Figure, Series, Style};
 use crate::repr::Repr;
 use crate::spectra::{self, Named};
-use specpoly_core::{Breaks, Spectrum};
+use specpoly_core::{Breaks, Layout, Spectrum};
 use std::path::PathBuf;
 
 /// Arguments of `specpoly plot`.
@@ -74,9 +74,10 @@ fn span_curves<const S: usize>(
 
 impl PolyVisitor for Build<'_> {
     type Output = Result<(Vec<Series>, Vec<f64>)>;
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output {
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output {
+        let breaks = L::BREAKS;
         let fit = |n: &Named| {
-            Spectrum::<S, C>::fit(breaks, &n.tabulated())
+            Spectrum::<S, C, L>::fit(&n.tabulated())
                 .map_err(|e| CliError::data(format!("{}: {e}", n.name)))
         };
         let markers: Vec<f64> = breaks

@@ -19,7 +19,7 @@
 use crate::error::{CliError, Result};
 use crate::spectra;
 use serde::Serialize;
-use specpoly_core::{paper::cmf_fit, Observer, PaperSpectrum, Spectrum, PAPER_BREAKS};
+use specpoly_core::{paper::cmf_fit, Observer, Paper, PaperSpectrum, Spectrum, PAPER_BREAKS};
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly table1`.
@@ -73,11 +73,10 @@ pub fn compute(spec: &str) -> Result<(String, Vec<Row>)> {
     }
     let n = v.remove(0);
     let data = n.tabulated();
-    let r = PaperSpectrum::fit(PAPER_BREAKS, &data)
-        .map_err(|e| CliError::data(format!("{}: {e}", n.name)))?;
+    let r = PaperSpectrum::fit(&data).map_err(|e| CliError::data(format!("{}: {e}", n.name)))?;
     let observer = Observer::Cie1964;
-    let [xbar, _, _] = cmf_fit::<2, 4>(observer, PAPER_BREAKS);
-    let exact: Spectrum<2, 7> = r.mul_exact::<7>(&xbar);
+    let [xbar, _, _] = cmf_fit::<2, 4, Paper>(observer);
+    let exact: Spectrum<2, 7, Paper> = r.mul_exact::<7>(&xbar);
     let reduced = r.mul(&xbar);
     let mse = |pts: &mut dyn Iterator<Item = (f64, f64)>| {
         let (mut s, mut k) = (0.0, 0usize);

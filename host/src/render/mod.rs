@@ -63,8 +63,8 @@ struct RenderVisit<'a> {
 
 impl Visitor for RenderVisit<'_> {
     type Output = Result<Image>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Result<Image> {
-        let c = Compiled::<T>::new(self.scene, layout)
+    fn visit<T: Shade>(self) -> Result<Image> {
+        let c = Compiled::<T>::new(self.scene)
             .map_err(|e| CliError::data(format!("converting the scene's spectra: {e}")))?;
         Ok(render_compiled(&c, self.progress))
     }
