@@ -6,9 +6,7 @@
 #![no_std]
 #![no_main]
 
-use core::fmt::Write as _;
 use cortex_m_rt::{entry, exception};
-use heapless::String;
 use specpoly_firmware::board::{
     flash::{RamFlash, PAGE, PAGES},
     pwm::ReportedPwm,
@@ -17,13 +15,19 @@ use specpoly_firmware::board::{
 };
 use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
-use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE, MAX_REPLY};
+use specpoly_protocol::{Fault, LineReader, Reply, MAX_LINE};
 
 /// SysTick period: the core sleeps in `wfi` and wakes on a UART byte or after 1 ms at most.
 const TICK: u32 = 25_000;
 
 #[entry]
 fn main() -> ! {
+    // The large state lives in statics sized by their types, not in `main`'s frame
+    // (cortex-m-rt makes each a `&'static mut`): the line being read, the reply, the
+    // store's work buffer and the controller (its calibrated display).
+    static mut LINES: LineReader<MAX_LINE> = LineReader::new();
+    static mut BUFFER: Buffer = Buffer::new();
+    static mut CONTROLLER: Option<Controller> = None;
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
@@ -43,22 +47,17 @@ fn main() -> ! {
         // equal, non-zero maxima by construction
         Err(_) => panic!("PWM stand-in"),
     };
-    let mut controller = Controller::new(led.max());
-    let mut buffer = Buffer::new();
+    let controller = Controller::init(CONTROLLER, led.max());
+    let (lines, buffer) = (LINES, BUFFER);
     let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
         // whole pages, at least two, by the constants
         panic!("settings range");
     };
-    match store.load(&mut buffer) {
-        Ok(s) => match controller.apply(&s) {
-            Ok(()) => defmt::info!("settings loaded from flash"),
-            Err(_) => defmt::warn!("saved settings not applicable: defaults used"),
-        },
+    match store::restore(controller, &mut store, buffer) {
+        Ok(()) => defmt::info!("settings loaded from flash"),
         Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
         Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
     }
-    let mut lines = LineReader::<MAX_LINE>::new();
-    let mut out: String<MAX_REPLY> = String::new();
     defmt::info!("specpoly-led ready");
     loop {
         let Some(byte) = uart.read() else {
@@ -68,19 +67,9 @@ fn main() -> ! {
         let Some(line) = lines.push(byte) else {
             continue;
         };
-        let reply = match line {
-            Ok(l) if l.trim_ascii().is_empty() => continue,
-            Ok(l) => store::handle(&mut controller, &mut store, &mut buffer, Command::parse(l)),
-            Err(f) => Reply::Error(f),
-        };
-        out.clear();
-        if reply.write(&mut out).is_err() {
-            // a reply longer than MAX_REPLY (bounded by the protocol's tests): say so
-            out.clear();
-            let _ = out.push_str("err too-long");
+        if !answer(line, controller, &mut store, buffer, &mut uart) {
+            continue;
         }
-        let _ = uart.write_str(&out);
-        uart.write_byte(b'\n');
         let duty = controller.duty();
         if led.set(duty).is_ok() {
             defmt::info!(
@@ -93,6 +82,29 @@ fn main() -> ! {
             );
         }
     }
+}
+
+/// Answers one line (or its fault) on the UART; `false` for an empty line, which gets no
+/// reply. The reply is written straight to the UART (no reply buffer: at most `MAX_REPLY`
+/// bytes, the protocol's tests bound it). Not inlined: the parsed command and the reply live
+/// only while a line is answered, not in `main`'s frame for ever.
+#[inline(never)]
+fn answer(
+    line: Result<&str, Fault>,
+    controller: &mut Controller,
+    store: &mut Store<Blocking<RamFlash>>,
+    buffer: &mut Buffer,
+    uart: &mut Uart,
+) -> bool {
+    let reply = match line {
+        Ok(l) if l.trim_ascii().is_empty() => return false,
+        Ok(l) => store::handle(controller, store, buffer, l),
+        Err(f) => Reply::Error(f),
+    };
+    // the UART never refuses a byte
+    let _ = reply.write(uart);
+    uart.write_byte(b'\n');
+    true
 }
 
 #[exception]

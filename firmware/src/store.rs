@@ -1,4 +1,4 @@
-//! Settings kept in flash across resets: one [`Settings`] record in a `sequential-storage` map
+//! Settings kept in flash across resets: one settings record ([`crate::settings`]) in a `sequential-storage` map
 //! (key [`KEY`]) over any `embedded-storage` NOR flash. The crate gives wear levelling (new
 //! records are appended; a page is erased only when the range is full) and power-fail safety
 //! (every item carries a CRC-32; an item whose write was interrupted is skipped, so a `load`
@@ -12,7 +12,7 @@
 //! [`handle`] answers the `save` and `load` commands; the firmware calls [`Store::load`] at
 //! start-up and logs why it used the defaults.
 
-use crate::settings::{RecordError, Settings, RECORD_MAX};
+use crate::settings::{self, Record, RecordError, RECORD_MAX};
 use crate::Controller;
 use core::ops::Range;
 use embassy_futures::block_on;
@@ -59,6 +59,9 @@ pub enum LoadError {
     Invalid,
     /// The flash reported an error.
     Storage,
+    /// The record reads but does not apply (primaries that span no colour space, an observer
+    /// this build lacks).
+    NotApplicable,
 }
 
 impl LoadError {
@@ -70,6 +73,7 @@ impl LoadError {
             LoadError::Format(_) => "old format",
             LoadError::Invalid => "invalid",
             LoadError::Storage => "flash error",
+            LoadError::NotApplicable => "not applicable",
         }
     }
 }
@@ -85,18 +89,16 @@ pub enum SaveError {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BadRange;
 
-impl<'a> Value<'a> for Settings {
+/// Written from the borrowed record; read back as bytes (`fetch_item::<&[u8]>`) and decoded
+/// by [`settings::read`], so no owned copy of the settings is ever built.
+impl<'a> Value<'a> for Record<'_> {
     fn serialize_into(&self, buffer: &mut [u8]) -> Result<usize, SerializationError> {
         self.encode(buffer)
             .ok_or(SerializationError::BufferTooSmall)
     }
 
-    fn deserialize_from(buffer: &'a [u8]) -> Result<(Self, usize), SerializationError> {
-        match Settings::decode(buffer) {
-            Ok(s) => Ok((s, buffer.len())),
-            Err(RecordError::Format(v)) => Err(SerializationError::Custom(v as i32)),
-            Err(RecordError::Invalid) => Err(SerializationError::InvalidFormat),
-        }
+    fn deserialize_from(_: &'a [u8]) -> Result<(Self, usize), SerializationError> {
+        Err(SerializationError::InvalidData)
     }
 }
 
@@ -118,30 +120,30 @@ impl<F: NorFlash> Store<F> {
 
     /// Appends `settings` as the newest record. A range the crate finds corrupted beyond its
     /// own repair (bytes that were never its pages) is erased once and the save retried.
-    pub fn save(&mut self, settings: &Settings, buffer: &mut Buffer) -> Result<(), SaveError> {
-        match block_on(self.map.store_item(&mut buffer.0, &KEY, settings)) {
+    pub fn save(&mut self, record: &Record, buffer: &mut Buffer) -> Result<(), SaveError> {
+        match block_on(self.map.store_item(&mut buffer.0, &KEY, record)) {
             Err(Error::Corrupted { .. }) => {
                 block_on(self.map.erase_all()).map_err(|_| SaveError::Storage)?;
-                block_on(self.map.store_item(&mut buffer.0, &KEY, settings))
+                block_on(self.map.store_item(&mut buffer.0, &KEY, record))
                     .map_err(|_| SaveError::Storage)
             }
             r => r.map_err(|_| SaveError::Storage),
         }
     }
 
-    /// The newest intact record.
-    pub fn load(&mut self, buffer: &mut Buffer) -> Result<Settings, LoadError> {
-        match block_on(self.map.fetch_item::<Settings>(&mut buffer.0, &KEY)) {
-            Ok(Some(s)) => Ok(s),
+    /// The newest intact record's bytes (in `buffer`), checked with [`settings::read`].
+    pub fn load<'b>(&mut self, buffer: &'b mut Buffer) -> Result<&'b [u8], LoadError> {
+        match block_on(self.map.fetch_item::<&[u8]>(&mut buffer.0, &KEY)) {
+            Ok(Some(bytes)) => match settings::read(bytes, None) {
+                Ok(_) => Ok(bytes),
+                Err(RecordError::Format(v)) => Err(LoadError::Format(v)),
+                Err(RecordError::Invalid) => Err(LoadError::Invalid),
+            },
             Ok(None) => match self.blank() {
                 Ok(true) => Err(LoadError::NotSaved),
                 Ok(false) => Err(LoadError::Corrupted),
                 Err(e) => Err(e),
             },
-            Err(Error::SerializationError(SerializationError::Custom(v))) => {
-                Err(LoadError::Format(v as u8))
-            }
-            Err(Error::SerializationError(_)) => Err(LoadError::Invalid),
             Err(Error::Corrupted { .. }) => Err(LoadError::Corrupted),
             Err(_) => Err(LoadError::Storage),
         }
@@ -169,28 +171,49 @@ impl<F: NorFlash> Store<F> {
     }
 }
 
-/// Answers `save` and `load` with the store; every other command goes to the controller.
+/// Parses a line (the protocol's [`Command::parse`]) in a frame of its own: its work space
+/// (a 64-point table, the factors of a product) is gone before the command runs.
+#[inline(never)]
+pub fn parse(line: &str) -> Result<Command, Fault> {
+    Command::parse(line)
+}
+
+/// Answers a line: `save` and `load` with the store; every other command goes to the
+/// controller. Not inlined: the caller's frame (the firmware's `main`, alive for ever) would
+/// otherwise hold every command's temporaries at once.
+#[inline(never)]
 pub fn handle<F: NorFlash>(
     controller: &mut Controller,
     store: &mut Store<F>,
     buffer: &mut Buffer,
-    parsed: Result<Command, Fault>,
+    line: &str,
 ) -> Reply {
+    let parsed = parse(line);
     match parsed {
-        Ok(Command::Save) => match store.save(&controller.settings(), buffer) {
+        Ok(Command::Save) => match store.save(&controller.record(), buffer) {
             Ok(()) => Reply::Done("save"),
             Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
         },
-        Ok(Command::Load) => match store.load(buffer) {
-            Ok(s) => match controller.apply(&s) {
-                Ok(()) => Reply::Done("load"),
-                Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
-            },
+        Ok(Command::Load) => match restore(controller, store, buffer) {
+            Ok(()) => Reply::Done("load"),
             Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
             Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
         },
         other => controller.handle(other),
     }
+}
+
+/// Applies the newest saved record to the controller (`load`, and every start); on an error
+/// the controller is unchanged.
+pub fn restore<F: NorFlash>(
+    controller: &mut Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Result<(), LoadError> {
+    let bytes = store.load(buffer)?;
+    controller
+        .apply_record(bytes)
+        .map_err(|_| LoadError::NotApplicable)
 }
 
 /// A blocking `embedded-storage` NOR flash seen through the async traits `sequential-storage`
@@ -230,32 +253,62 @@ impl<F: blocking::NorFlash> NorFlash for Blocking<F> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::FORMAT;
+    use crate::settings::{Header, FORMAT};
     use sequential_storage::mock_flash::{MockFlashBase, WriteCountCheck};
     use specpoly_core::{display::TABLE_MAX, GamutMap, Observer, Transfer};
 
+    /// Owned settings for the tests: curves plus the record's other fields.
+    #[derive(Clone, Debug, PartialEq)]
+    struct Owned {
+        trc: [Transfer; 3],
+        header: Header,
+    }
+
+    impl Owned {
+        fn record(&self) -> Record<'_> {
+            let h = self.header;
+            Record {
+                xy: h.xy,
+                luminance: h.luminance,
+                trc: &self.trc,
+                map: h.map,
+                observer: h.observer,
+            }
+        }
+    }
+
     /// Distinct settings for save number `i` (a gamma that says which).
-    fn numbered(i: usize) -> Settings {
-        Settings {
-            xy: [[0.7, 0.29], [0.17, 0.7], [0.135, 0.04]],
-            luminance: [2.5, 7.25, 1.0],
+    fn numbered(i: usize) -> Owned {
+        Owned {
             trc: [
                 Transfer::Gamma(1.0 + i as f32 / 64.0),
                 Transfer::Srgb,
                 Transfer::Linear,
             ],
-            map: GamutMap::Desaturate,
-            observer: Observer::Cie1931,
+            header: Header {
+                xy: [[0.7, 0.29], [0.17, 0.7], [0.135, 0.04]],
+                luminance: [2.5, 7.25, 1.0],
+                map: GamutMap::Desaturate,
+                observer: Observer::Cie1931,
+            },
         }
     }
 
-    fn largest() -> Settings {
+    fn largest() -> Owned {
         let table: [f32; TABLE_MAX] = core::array::from_fn(|i| (i as f32 / 63.0).powi(2));
         let t = Transfer::table(&table).unwrap();
-        Settings {
+        Owned {
             trc: [t.clone(), t.clone(), t],
             ..numbered(0)
         }
+    }
+
+    /// What `load` gives, read back into owned settings.
+    fn load<F: NorFlash>(s: &mut Store<F>, buf: &mut Buffer) -> Result<Owned, LoadError> {
+        let bytes = s.load(buf)?;
+        let mut trc = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
+        let header = settings::read(bytes, Some(&mut trc)).map_err(|_| LoadError::Invalid)?;
+        Ok(Owned { trc, header })
     }
 
     /// 4 pages of 2 KiB, 4-byte words (the QEMU RAM flash's word; STM32F4 sectors are larger).
@@ -269,11 +322,15 @@ mod tests {
     fn saved_settings_load_back_and_blank_flash_says_so() {
         let mut buf = Buffer::new();
         let mut s = store(Flash::default());
-        assert_eq!(s.load(&mut buf), Err(LoadError::NotSaved));
-        s.save(&largest(), &mut buf).unwrap();
-        assert_eq!(s.load(&mut buf), Ok(largest()));
-        s.save(&numbered(3), &mut buf).unwrap();
-        assert_eq!(s.load(&mut buf), Ok(numbered(3)), "the newest record wins");
+        assert_eq!(load(&mut s, &mut buf), Err(LoadError::NotSaved));
+        s.save(&largest().record(), &mut buf).unwrap();
+        assert_eq!(load(&mut s, &mut buf), Ok(largest()));
+        s.save(&numbered(3).record(), &mut buf).unwrap();
+        assert_eq!(
+            load(&mut s, &mut buf),
+            Ok(numbered(3)),
+            "the newest record wins"
+        );
         assert!(Store::new(Flash::default(), 0..100).is_err());
     }
 
@@ -283,9 +340,9 @@ mod tests {
         let mut s = store(Flash::default());
         let start = s.flash().stats_snapshot();
         for i in 0..300 {
-            s.save(&numbered(i), &mut buf).unwrap();
+            s.save(&numbered(i).record(), &mut buf).unwrap();
         }
-        assert_eq!(s.load(&mut buf), Ok(numbered(299)));
+        assert_eq!(load(&mut s, &mut buf), Ok(numbered(299)));
         let stats = start.compare_to(s.flash().stats_snapshot());
         // 300 records of 64 B in 8 KiB: the pages were recycled, each a few times only
         assert!(stats.erases >= 4 && stats.erases < 40, "{stats:?}");
@@ -297,32 +354,32 @@ mod tests {
         // a record of format 0 (an older firmware), written through the map directly
         let mut s = store(Flash::default());
         let mut raw = [0u8; RECORD_MAX];
-        let n = numbered(1).encode(&mut raw).unwrap();
+        let n = numbered(1).record().encode(&mut raw).unwrap();
         raw[0] = FORMAT - 1;
         block_on(s.map.store_item(&mut buf.0, &KEY, &&raw[..n])).unwrap();
-        assert_eq!(s.load(&mut buf), Err(LoadError::Format(FORMAT - 1)));
+        assert_eq!(load(&mut s, &mut buf), Err(LoadError::Format(FORMAT - 1)));
 
         // a record with a flipped bit: its CRC fails, it is skipped, and nothing else is there
         let mut s = store(Flash::default());
-        s.save(&numbered(2), &mut buf).unwrap();
-        let n = numbered(2).encode(&mut raw).unwrap();
+        s.save(&numbered(2).record(), &mut buf).unwrap();
+        let n = numbered(2).record().encode(&mut raw).unwrap();
         let bytes = s.flash().as_bytes_mut();
         let at = bytes
             .windows(n)
             .position(|w| w == &raw[..n])
             .expect("the record is in flash");
         bytes[at + 5] ^= 0x10;
-        assert_eq!(s.load(&mut buf), Err(LoadError::Corrupted));
+        assert_eq!(load(&mut s, &mut buf), Err(LoadError::Corrupted));
         // and the store still takes new records
-        s.save(&numbered(4), &mut buf).unwrap();
-        assert_eq!(s.load(&mut buf), Ok(numbered(4)));
+        s.save(&numbered(4).record(), &mut buf).unwrap();
+        assert_eq!(load(&mut s, &mut buf), Ok(numbered(4)));
 
         // bytes that were never the crate's pages: refused, then erased by the next save
         let mut s = store(Flash::default());
         s.flash().as_bytes_mut()[..256].fill(0x5A);
-        assert_eq!(s.load(&mut buf), Err(LoadError::Corrupted));
-        s.save(&numbered(5), &mut buf).unwrap();
-        assert_eq!(s.load(&mut buf), Ok(numbered(5)));
+        assert_eq!(load(&mut s, &mut buf), Err(LoadError::Corrupted));
+        s.save(&numbered(5).record(), &mut buf).unwrap();
+        assert_eq!(load(&mut s, &mut buf), Ok(numbered(5)));
     }
 
     /// Power cut at every byte written or erased over a run of saves that wraps the pages: after
@@ -340,7 +397,7 @@ mod tests {
             let mut done = None;
             let mut cut = None;
             for i in 0..SAVES {
-                match s.save(&numbered(i), &mut buf) {
+                match s.save(&numbered(i).record(), &mut buf) {
                     Ok(()) => done = Some(i),
                     Err(_) => {
                         cut = Some(i);
@@ -352,7 +409,7 @@ mod tests {
                 break; // k is past the last byte of the run
             };
             cuts += 1;
-            match s.load(&mut buf) {
+            match load(&mut s, &mut buf) {
                 Ok(got) => assert!(
                     got == numbered(i) || Some(&got) == done.map(numbered).as_ref(),
                     "cut at byte {k} in save {i}: loaded {got:?}"
@@ -362,9 +419,9 @@ mod tests {
                 }
                 Err(e) => panic!("cut at byte {k} in save {i}: {e:?}"),
             }
-            s.save(&numbered(99), &mut buf)
+            s.save(&numbered(99).record(), &mut buf)
                 .unwrap_or_else(|e| panic!("save after a cut at byte {k}: {e:?}"));
-            assert_eq!(s.load(&mut buf), Ok(numbered(99)), "cut at byte {k}");
+            assert_eq!(load(&mut s, &mut buf), Ok(numbered(99)), "cut at byte {k}");
         }
         assert!(cuts > 24 * 60, "{cuts} cut points");
     }

@@ -10,7 +10,7 @@ use heapless::String;
 use specpoly_firmware::stm32f4::flash::{SettingsFlash, SECTOR, SECTORS};
 use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
-use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE, MAX_REPLY};
+use specpoly_protocol::{LineReader, Reply, MAX_LINE, MAX_REPLY};
 use stm32f4xx_hal::{block, nb, pac, prelude::*, rcc::Config, serial::Serial};
 
 #[entry]
@@ -43,11 +43,8 @@ fn main() -> ! {
     let Ok(mut store) = Store::new(flash, 0..(SECTOR * SECTORS) as u32) else {
         panic!("settings range");
     };
-    match store.load(&mut buffer) {
-        Ok(s) => match controller.apply(&s) {
-            Ok(()) => defmt::info!("settings loaded from flash"),
-            Err(_) => defmt::warn!("saved settings not applicable: defaults used"),
-        },
+    match store::restore(&mut controller, &mut store, &mut buffer) {
+        Ok(()) => defmt::info!("settings loaded from flash"),
         Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
         Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
     }
@@ -66,7 +63,7 @@ fn main() -> ! {
         };
         let reply = match line {
             Ok(l) if l.trim_ascii().is_empty() => continue,
-            Ok(l) => store::handle(&mut controller, &mut store, &mut buffer, Command::parse(l)),
+            Ok(l) => store::handle(&mut controller, &mut store, &mut buffer, l),
             Err(f) => Reply::Error(f),
         };
         out.clear();
