@@ -13,6 +13,7 @@
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both);
 //! without them these tests fail with a message saying so. They never skip.
 
+use specpoly::led::lines::{refl, Preset};
 use specpoly::led::{Link, Oracle};
 use specpoly_core::{delta_e2000, Display, GamutMap, Illuminant, Lab, Observer, Transfer, Xyz};
 use specpoly_protocol::{Command, Gamut, Reply};
@@ -413,13 +414,12 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
         "xyz 0 0 0".to_owned(),
     ];
     let named = |n: &str| vec![n.to_owned()];
-    lines.push(specpoly::cli::led::refl_line("poly", "D65", &named("colorchecker#red")).unwrap());
-    lines
-        .push(specpoly::cli::led::refl_line("paper", "FL11", &named("colorchecker#blue")).unwrap());
+    lines.push(refl(Preset::Poly, Illuminant::D65, &named("colorchecker#red")).unwrap());
+    lines.push(refl(Preset::Paper, Illuminant::FL11, &named("colorchecker#blue")).unwrap());
     lines.push(
-        specpoly::cli::led::refl_line(
-            "poly",
-            "A",
+        refl(
+            Preset::Poly,
+            Illuminant::A,
             &[
                 "colorchecker#red".to_owned(),
                 "colorchecker#yellow".to_owned(),
@@ -428,9 +428,9 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
         .unwrap(),
     );
     lines.push(
-        specpoly::cli::led::refl_line(
-            "paper",
-            "FL2",
+        refl(
+            Preset::Paper,
+            Illuminant::FL2,
             &[
                 "colorchecker#foliage".to_owned(),
                 "colorchecker#foliage".to_owned(),

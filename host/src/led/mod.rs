@@ -6,6 +6,7 @@
 
 pub mod check;
 pub mod error;
+pub mod lines;
 pub mod link;
 pub mod model;
 

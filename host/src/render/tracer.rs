@@ -132,13 +132,14 @@ impl<T: Shade> Compiled<T> {
             Some(l) => &l.light,
             None => &ambient,
         };
-        let conv = |n: &Option<crate::spectra::Named>| -> Result<Option<T>, specpoly_core::Error> {
-            n.as_ref()
-                .map(|n| T::from_reflectance(&n.tabulated(), reference))
-                .transpose()
-        };
+        let conv =
+            |n: &Option<crate::spectrum_names::Named>| -> Result<Option<T>, specpoly_core::Error> {
+                n.as_ref()
+                    .map(|n| T::from_reflectance(&n.tabulated(), reference))
+                    .transpose()
+            };
         let coef =
-            |n: &Option<crate::spectra::Named>| -> Result<Option<Coef<T>>, specpoly_core::Error> {
+            |n: &Option<crate::spectrum_names::Named>| -> Result<Option<Coef<T>>, specpoly_core::Error> {
                 let Some(v) = conv(n)? else {
                     return Ok(None);
                 };
