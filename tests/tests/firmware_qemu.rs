@@ -265,6 +265,23 @@ fn selftest_passes_on_target_within_the_budgets() {
     assert!(ram <= RAM_BUDGET, "static RAM {ram} B over {RAM_BUDGET} B");
 }
 
+/// A panic reaches the host as a defmt `error` frame naming its location, and QEMU exits
+/// with a failure code (`firmware/src/bin/panic.rs` panics on purpose).
+#[test]
+fn a_panic_is_logged_through_defmt_and_fails_the_run() {
+    let dir = default_build();
+    let (code, log) = run_to_exit(&dir.join("panic"), &[]);
+    assert_eq!(code, Some(1), "{log}");
+    let lines: Vec<&str> = log.lines().collect();
+    assert_eq!(lines.first(), Some(&"about to panic"), "{log}");
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("error: firmware panic at src/bin/panic.rs:")),
+        "{log}"
+    );
+}
+
 fn field<T: std::str::FromStr>(out: &str, prefix: &str) -> T {
     out.lines()
         .find_map(|l| l.strip_prefix(prefix))
