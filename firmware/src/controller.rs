@@ -11,6 +11,8 @@
 //! No chromatic adaptation: under illuminant A a white paper is shown as A's colour.
 //! Out-of-gamut targets are mapped with [`GamutMap`] and the reply says so.
 
+use core::mem::MaybeUninit;
+
 use crate::{
     lights,
     settings::{self, Record},
@@ -63,8 +65,8 @@ impl Controller {
     /// [`Controller::new`] into `slot` (a static): built in a frame of its own, which is gone
     /// when the caller goes on, so the caller's frame never holds a controller.
     #[inline(never)]
-    pub fn init(slot: &mut Option<Controller>, max: u16) -> &mut Controller {
-        slot.insert(Self::new(max))
+    pub fn init(slot: &mut MaybeUninit<Controller>, max: u16) -> &mut Controller {
+        slot.write(Self::new(max))
     }
 
     /// The duties the LED should show now.

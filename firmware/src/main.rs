@@ -6,6 +6,7 @@
 #![no_std]
 #![no_main]
 
+use core::mem::MaybeUninit;
 use cortex_m_rt::{entry, exception};
 use specpoly_firmware::board::{
     flash::{RamFlash, PAGE, PAGES},
@@ -25,9 +26,11 @@ fn main() -> ! {
     // The large state lives in statics sized by their types, not in `main`'s frame
     // (cortex-m-rt makes each a `&'static mut`): the line being read, the reply, the
     // store's work buffer and the controller (its calibrated display).
-    static mut LINES: LineReader<MAX_LINE> = LineReader::new();
+    // `MaybeUninit` keeps them in `.bss`: a reader's `None` fault and a controller's niche
+    // would otherwise put their whole initial images in `.data`, i.e. in flash too (2 KiB)
+    static mut LINES: MaybeUninit<LineReader<MAX_LINE>> = MaybeUninit::uninit();
     static mut BUFFER: Buffer = Buffer::new();
-    static mut CONTROLLER: Option<Controller> = None;
+    static mut CONTROLLER: MaybeUninit<Controller> = MaybeUninit::uninit();
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
@@ -48,7 +51,7 @@ fn main() -> ! {
         Err(_) => panic!("PWM stand-in"),
     };
     let controller = Controller::init(CONTROLLER, led.max());
-    let (lines, buffer) = (LINES, BUFFER);
+    let (lines, buffer) = (LINES.write(LineReader::new()), BUFFER);
     let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
         // whole pages, at least two, by the constants
         panic!("settings range");
