@@ -18,8 +18,9 @@ use cortex_m_semihosting::debug;
 
 /// Any panic is a bug (input never panics: the parser is fuzzed on the host and on target):
 /// log where through defmt and exit QEMU with a failure code. Hand-written rather than
-/// `panic-probe`: its `print-defmt` formats the message with `core::fmt` (≈ 2 KiB of flash over
-/// the 32 KiB budget) and it stops in `udf`, which leaves QEMU running instead of failing.
+/// `panic-probe`: its `print-defmt` formats the message with `core::fmt`, which the firmware
+/// otherwise keeps out of flash, and it stops in `udf`, which leaves QEMU running instead of
+/// exiting with a failure.
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {
     match info.location() {
