@@ -39,6 +39,9 @@ cargo fmt --all --check
 say "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
 (cd firmware && cargo clippy --release -- -D warnings)
+# the STM32F4 board build (stm32f4xx-hal); firmware_qemu builds it and runs it on netduinoplus2
+(cd firmware && cargo clippy --release --no-default-features --features stm32f4 --bin stm32f4 \
+  --target-dir target/stm32f4 -- -D warnings)
 
 say "specpoly-core for a microcontroller (thumbv7em-none-eabihf)"
 cargo build -p specpoly-core --target thumbv7em-none-eabihf

@@ -1,12 +1,14 @@
 //! Build steps for the firmware:
 //!
-//! 1. memory.x goes where cortex-m-rt's link.x finds it (OUT_DIR on the linker search path);
+//! 1. memory.x (`memory.x.in` for QEMU mps2-an386, `memory-stm32f4.x.in` with feature
+//!    `stm32f4`) goes where cortex-m-rt's link.x finds it (OUT_DIR on the linker search path);
 //! 2. the moments of every built-in light under both observers, for both presets, are computed
 //!    here with `specpoly-core` (the same `Moments::new` the host uses) and compiled in as
 //!    `lights.rs`: 7 lights × (27 + 99) floats ≈ 3.5 KiB of flash per observer, instead of
 //!    the 12 KiB of observer and light tables plus the f64 code that integrates them on target
 //!    (the 32 KiB flash budget). CIE 1964 only with the `observer-1964` feature;
-//! 3. an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector table).
+//! 3. on mps2, an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector
+//!    table); the STM32's comes from its PAC.
 //!
 //! Each light is written as `Moments::from_parts(m, white)`, the values of `Moments::new`
 //! printed with `{:?}` (shortest round-trip form), so they are the core's to the bit.
@@ -47,13 +49,25 @@ fn table<const S: usize, L: Layout<S>>(
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("OUT_DIR is set by cargo"));
-    fs::copy("memory.x.in", out.join("memory.x")).expect("copy memory.x.in to OUT_DIR");
+    let stm32f4 = env::var_os("CARGO_FEATURE_STM32F4").is_some();
+    let memory = if stm32f4 {
+        "memory-stm32f4.x.in"
+    } else {
+        "memory.x.in"
+    };
+    fs::copy(memory, out.join("memory.x")).expect("copy the memory layout to OUT_DIR");
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed=memory.x.in");
+    println!("cargo:rerun-if-changed=memory-stm32f4.x.in");
     println!("cargo:rerun-if-changed=build.rs");
 
-    // an empty device.x: the one interrupt vector is defined in src/board/vectors.rs
-    fs::write(out.join("device.x"), "/* see src/board/vectors.rs */\n").expect("write device.x");
+    // mps2: an empty device.x, the one interrupt vector is in src/board/vectors.rs; the
+    // STM32's device.x comes with its PAC (`stm32f4`, feature `rt`)
+    if !stm32f4 {
+        fs::write(out.join("device.x"), "/* see src/board/vectors.rs */\n").expect("device.x");
+    } else {
+        let _ = fs::remove_file(out.join("device.x"));
+    }
 
     let observers: &[Observer] = if env::var_os("CARGO_FEATURE_OBSERVER_1964").is_some() {
         &[Observer::Cie1931, Observer::Cie1964]

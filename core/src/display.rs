@@ -133,6 +133,32 @@ pub struct Encoded {
     pub out_of_gamut: bool,
 }
 
+/// Cowan's matrices (RGB → XYZ and its inverse) from the primaries' chromaticities `[x, y]`
+/// and luminances at full drive: column `i` is primary `i`'s XYZ.
+fn matrices(xy: [[f32; 2]; 3], luminance: [f32; 3]) -> Result<(Mat3, Mat3), Error> {
+    let mut m = [[0.0f32; 3]; 3];
+    for (i, (c, l)) in xy.iter().zip(luminance).enumerate() {
+        if !(c[0].is_finite() && c[1].is_finite() && l.is_finite()) {
+            return Err(Error::NonFinite(i));
+        }
+        if c[1] <= 0.0 {
+            return Err(Error::Singular);
+        }
+        let p = Xyy {
+            x: c[0],
+            y: c[1],
+            big_y: l,
+        }
+        .to_xyz();
+        m[0][i] = p.x;
+        m[1][i] = p.y;
+        m[2][i] = p.z;
+    }
+    let to_xyz = Mat3(m);
+    let from_xyz = to_xyz.inverse()?;
+    Ok((to_xyz, from_xyz))
+}
+
 impl Display {
     /// Cowan's model from the primaries' chromaticities `[x, y]` and luminances at full drive.
     pub fn from_primaries(
@@ -141,32 +167,21 @@ impl Display {
         black: Xyz,
         transfer: [Transfer; 3],
     ) -> Result<Self, Error> {
-        let mut m = [[0.0f32; 3]; 3];
-        for (i, (c, l)) in xy.iter().zip(luminance).enumerate() {
-            if !(c[0].is_finite() && c[1].is_finite() && l.is_finite()) {
-                return Err(Error::NonFinite(i));
-            }
-            if c[1] <= 0.0 {
-                return Err(Error::Singular);
-            }
-            let p = Xyy {
-                x: c[0],
-                y: c[1],
-                big_y: l,
-            }
-            .to_xyz();
-            m[0][i] = p.x;
-            m[1][i] = p.y;
-            m[2][i] = p.z;
-        }
-        let to_xyz = Mat3(m);
-        let from_xyz = to_xyz.inverse()?;
+        let (to_xyz, from_xyz) = matrices(xy, luminance)?;
         Ok(Self {
             to_xyz,
             from_xyz,
             black,
             transfer,
         })
+    }
+
+    /// New primaries for this display, its curves and black kept ([`Display::from_primaries`]
+    /// in place: no second display, whose curves would be copied, is built). On an error the
+    /// display is unchanged.
+    pub fn set_primaries(&mut self, xy: [[f32; 2]; 3], luminance: [f32; 3]) -> Result<(), Error> {
+        (self.to_xyz, self.from_xyz) = matrices(xy, luminance)?;
+        Ok(())
     }
 
     /// Cowan's model from the primaries' chromaticities and the white's chromaticity and
@@ -177,14 +192,14 @@ impl Display {
         white_luminance: f32,
         transfer: [Transfer; 3],
     ) -> Result<Self, Error> {
-        let unit = Self::from_primaries(xy, [1.0; 3], Xyz::default(), transfer.clone())?;
+        let (_, unit_from_xyz) = matrices(xy, [1.0; 3])?;
         let w = Xyy {
             x: white_xy[0],
             y: white_xy[1],
             big_y: white_luminance,
         }
         .to_xyz();
-        let lum = unit.from_xyz.apply(w.to_array());
+        let lum = unit_from_xyz.apply(w.to_array());
         Self::from_primaries(xy, lum, Xyz::default(), transfer)
     }
 
@@ -216,6 +231,13 @@ impl Display {
     /// The channels' transfer curves.
     pub fn transfer(&self) -> &[Transfer; 3] {
         &self.transfer
+    }
+
+    /// The channels' transfer curves, to change in place: the curves are independent of the
+    /// primaries' matrices, so no other field depends on them (the LED controller sets one
+    /// curve without copying the others).
+    pub fn transfer_mut(&mut self) -> &mut [Transfer; 3] {
+        &mut self.transfer
     }
 
     /// The primaries' chromaticities and luminances.

@@ -11,9 +11,15 @@
 //! No chromatic adaptation: under illuminant A a white paper is shown as A's colour.
 //! Out-of-gamut targets are mapped with [`GamutMap`] and the reply says so.
 
-use crate::lights;
+use core::mem::MaybeUninit;
+
+use crate::{
+    lights,
+    settings::{self, Record},
+};
 use specpoly_core::{
-    display::SRGB_PRIMARIES, Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
+    display::{D65_XY, SRGB_PRIMARIES},
+    Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
 use specpoly_protocol::{
     ColourReport, Command, CurveSummary, ErrorCode, Fault, Reflectance, Reply, StateReport,
@@ -37,17 +43,15 @@ impl Controller {
     /// ideal linear LED with the Rec. 709 primaries and a D65 white (`Y` shares 0.2126, 0.7152,
     /// 0.0722), clipping, CIE 1931 observer, off.
     pub fn new(max: u16) -> Self {
-        let srgb = Display::srgb();
-        let (_, luminance) = srgb.primaries();
-        let xy = SRGB_PRIMARIES;
-        let t = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
-        let display = match Display::from_primaries(xy, luminance, Xyz::default(), t) {
+        // sRGB's matrices (Rec. 709 primaries, D65 white) with linear curves
+        let display = match Display::from_primaries_white(SRGB_PRIMARIES, D65_XY, 1.0, linear()) {
             Ok(d) => d,
-            // sRGB's primaries are valid (the core's unit tests)
-            Err(_) => srgb,
+            // constant, valid primaries (as `Display::srgb`, unit-tested in the core)
+            Err(_) => unreachable!("sRGB primaries are valid"),
         };
+        let (_, luminance) = display.primaries();
         Self {
-            xy,
+            xy: SRGB_PRIMARIES,
             luminance,
             display,
             map: GamutMap::Clip,
@@ -56,6 +60,13 @@ impl Controller {
             duty: [0; 3],
             max,
         }
+    }
+
+    /// [`Controller::new`] into `slot` (a static): built in a frame of its own, which is gone
+    /// when the caller goes on, so the caller's frame never holds a controller.
+    #[inline(never)]
+    pub fn init(slot: &mut MaybeUninit<Controller>, max: u16) -> &mut Controller {
+        slot.write(Self::new(max))
     }
 
     /// The duties the LED should show now.
@@ -68,7 +79,9 @@ impl Controller {
         &self.display
     }
 
-    /// Handles one parsed line (or its parse fault) and returns the reply.
+    /// Handles one parsed line (or its parse fault) and returns the reply. Not inlined: its
+    /// temporaries are not wanted in the frames of callers that go deeper (`store::handle`).
+    #[inline(never)]
     pub fn handle(&mut self, parsed: Result<Command, Fault>) -> Reply {
         let cmd = match parsed {
             Ok(c) => c,
@@ -77,34 +90,26 @@ impl Controller {
         match cmd {
             Command::Hello => Reply::hello(self.max),
             Command::State => Reply::State(self.state()),
-            Command::Calibrate { xy, luminance } => {
-                let t = self.display.transfer().clone();
-                match Display::from_primaries(xy, luminance, Xyz::default(), t) {
-                    Ok(d) => {
-                        self.xy = xy;
-                        self.luminance = luminance;
-                        self.display = d;
-                        self.colour(self.target);
-                        Reply::Done("cal")
-                    }
-                    Err(_) => Reply::Error(Fault::new(ErrorCode::Singular)),
+            // new matrices in place (no second display copying three 64-point curves)
+            Command::Calibrate { xy, luminance } => match self.display.set_primaries(xy, luminance)
+            {
+                Ok(()) => {
+                    self.xy = xy;
+                    self.luminance = luminance;
+                    self.colour(self.target);
+                    Reply::Done("cal")
                 }
-            }
+                Err(_) => Reply::Error(Fault::new(ErrorCode::Singular)),
+            },
             Command::Transfer { channels, curve } => {
-                let mut t = self.display.transfer().clone();
-                for (i, c) in t.iter_mut().enumerate() {
+                // the curves are independent of the matrices: set in place
+                for (i, c) in self.display.transfer_mut().iter_mut().enumerate() {
                     if channels.includes(i) {
                         *c = curve.clone();
                     }
                 }
-                match Display::from_primaries(self.xy, self.luminance, Xyz::default(), t) {
-                    Ok(d) => {
-                        self.display = d;
-                        self.colour(self.target);
-                        Reply::Done("trc")
-                    }
-                    Err(_) => Reply::Error(Fault::new(ErrorCode::Singular)),
-                }
+                self.colour(self.target);
+                Reply::Done("trc")
             }
             Command::Map(m) => {
                 self.map = m;
@@ -127,7 +132,42 @@ impl Controller {
                 let xyz = self.reflectance_xyz(illuminant, &product);
                 Reply::Colour(self.colour(xyz))
             }
+            // answered with the flash by `store::handle`; a controller alone has no storage
+            Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
         }
+    }
+
+    /// The settings `save` keeps (calibration, curves, gamut map, observer), borrowed.
+    pub fn record(&self) -> Record<'_> {
+        Record {
+            xy: self.xy,
+            luminance: self.luminance,
+            trc: self.display.transfer(),
+            map: self.map,
+            observer: self.observer,
+        }
+    }
+
+    /// Applies a saved record ([`settings::read`]) and re-drives the last colour; refuses
+    /// (and changes nothing) a record that does not read, primaries that span no colour space,
+    /// or an observer this build lacks. The record is checked whole first, then the primaries
+    /// are set and the curves read straight into the display (no copy of the curves).
+    pub fn apply_record(&mut self, bytes: &[u8]) -> Result<(), ErrorCode> {
+        let h = settings::read(bytes, None).map_err(|_| ErrorCode::NotSaved)?;
+        if !lights::has_observer(h.observer) {
+            return Err(ErrorCode::UnknownName);
+        }
+        self.display
+            .set_primaries(h.xy, h.luminance)
+            .map_err(|_| ErrorCode::Singular)?;
+        // checked above: reads again without error
+        let _ = settings::read(bytes, Some(self.display.transfer_mut()));
+        self.xy = h.xy;
+        self.luminance = h.luminance;
+        self.map = h.map;
+        self.observer = h.observer;
+        self.colour(self.target);
+        Ok(())
     }
 
     /// XYZ (perfect white `Y = 100`) of a reflectance under a built-in light, with the current
@@ -169,6 +209,11 @@ impl Controller {
             max: self.max,
         }
     }
+}
+
+/// Three linear curves.
+fn linear() -> [Transfer; 3] {
+    [Transfer::Linear, Transfer::Linear, Transfer::Linear]
 }
 
 #[cfg(test)]
@@ -247,6 +292,36 @@ mod tests {
             Reply::Colour(r) => assert!((r.xyz.y - 25.0).abs() < 1e-3, "{r:?}"),
             other => panic!("{other:?}"),
         }
+    }
+
+    #[test]
+    fn settings_apply_to_another_controller() {
+        let mut a = Controller::new(1000);
+        for l in [
+            "cal 0.7 0.29 2 0.17 0.7 7 0.135 0.04 1",
+            "trc g gamma 2.2",
+            "map desaturate",
+        ] {
+            assert!(matches!(run(&mut a, l), Reply::Done(_)), "{l}");
+        }
+        let mut buf = [0u8; crate::settings::RECORD_MAX];
+        let n = a.record().encode(&mut buf).unwrap();
+        let mut b = Controller::new(1000);
+        run(&mut b, "xyz 20 20 20");
+        b.apply_record(&buf[..n]).unwrap();
+        run(&mut a, "xyz 20 20 20");
+        assert_eq!(a.duty(), b.duty(), "re-driven with the loaded calibration");
+        assert_eq!(run(&mut a, "state"), run(&mut b, "state"));
+        let mut bad = a.record();
+        bad.xy = [[0.3, 0.3]; 3];
+        let n = bad.encode(&mut buf).unwrap();
+        assert_eq!(b.apply_record(&buf[..n]), Err(ErrorCode::Singular));
+        assert_eq!(b.apply_record(&buf[..n - 1]), Err(ErrorCode::NotSaved));
+        assert_eq!(run(&mut a, "state"), run(&mut b, "state"), "unchanged");
+        assert_eq!(
+            run(&mut b, "save"),
+            Reply::Error(Fault::new(ErrorCode::Storage))
+        );
     }
 
     #[test]

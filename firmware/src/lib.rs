@@ -5,7 +5,9 @@
 //! §7.3). Commands arrive as lines on the UART ([`specpoly_protocol`], `PROTOCOL.md`); the
 //! [`controller`] computes XYZ and duties; the [`led`] driver sets three PWM channels.
 //!
-//! The controller and the driver are target-independent and unit-tested on the host; the board
+//! Settings survive resets in flash ([`settings`]: the record, [`store`]: `sequential-storage`).
+//! The controller, the driver and the store are target-independent and unit-tested on the host
+//! (the store against `sequential-storage`'s mock flash); the board
 //! support ([`board`]: UART, a PWM stand-in, stack painting, an instruction counter) exists only
 //! for `thumbv7em-none-eabihf` (QEMU `mps2-an386`). No heap.
 #![cfg_attr(not(test), no_std)]
@@ -14,9 +16,22 @@
 pub mod controller;
 pub mod led;
 pub mod lights;
+pub mod settings;
+pub mod store;
 
-#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[cfg(all(target_arch = "arm", target_os = "none", feature = "mps2"))]
 pub mod board;
+
+#[cfg(all(target_arch = "arm", target_os = "none", feature = "stm32f4"))]
+pub mod stm32f4;
+
+#[cfg(all(
+    target_arch = "arm",
+    target_os = "none",
+    feature = "mps2",
+    feature = "stm32f4"
+))]
+compile_error!("one board at a time: --no-default-features --features stm32f4");
 
 pub use controller::Controller;
 pub use led::{LedError, RgbLed};

@@ -1,22 +1,36 @@
-//! The RGB-LED colour controller on QEMU mps2-an386: wiring only. Lines from UART0 go through
-//! the shared protocol parser to the [`Controller`]; its reply goes back on the UART and its
-//! duties to the LED, and (QEMU has no PWM) to semihosting: `duty R G B max=M stack=BYTES`.
+//! The RGB-LED colour controller on QEMU mps2-an386: wiring only. At start the settings saved
+//! in flash are loaded (or the defaults kept, with the reason logged). Lines from UART0 go
+//! through the shared protocol parser to the [`Controller`] (`save`/`load` to the settings
+//! [`Store`]); the reply goes back on the UART and the duties to the LED, and (QEMU has no PWM)
+//! to the defmt log: `duty R G B max=M stack=BYTES`.
 #![no_std]
 #![no_main]
 
-use core::fmt::Write as _;
+use core::mem::MaybeUninit;
 use cortex_m_rt::{entry, exception};
-use cortex_m_semihosting::hprintln;
-use heapless::String;
-use specpoly_firmware::board::{host_line, pwm::ReportedPwm, stack, uart::Uart};
+use specpoly_firmware::board::{
+    flash::{RamFlash, PAGE, PAGES},
+    pwm::ReportedPwm,
+    stack,
+    uart::Uart,
+};
+use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
-use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE, MAX_REPLY};
+use specpoly_protocol::{Fault, LineReader, Reply, MAX_LINE};
 
 /// SysTick period: the core sleeps in `wfi` and wakes on a UART byte or after 1 ms at most.
 const TICK: u32 = 25_000;
 
 #[entry]
 fn main() -> ! {
+    // The large state lives in statics sized by their types, not in `main`'s frame
+    // (cortex-m-rt makes each a `&'static mut`): the line being read, the reply, the
+    // store's work buffer and the controller (its calibrated display).
+    // `MaybeUninit` keeps them in `.bss`: a reader's `None` fault and a controller's niche
+    // would otherwise put their whole initial images in `.data`, i.e. in flash too (2 KiB)
+    static mut LINES: MaybeUninit<LineReader<MAX_LINE>> = MaybeUninit::uninit();
+    static mut BUFFER: Buffer = Buffer::new();
+    static mut CONTROLLER: MaybeUninit<Controller> = MaybeUninit::uninit();
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
@@ -36,10 +50,18 @@ fn main() -> ! {
         // equal, non-zero maxima by construction
         Err(_) => panic!("PWM stand-in"),
     };
-    let mut controller = Controller::new(led.max());
-    let mut lines = LineReader::<MAX_LINE>::new();
-    let mut out: String<MAX_REPLY> = String::new();
-    hprintln!("specpoly-led ready");
+    let controller = Controller::init(CONTROLLER, led.max());
+    let (lines, buffer) = (LINES.write(LineReader::new()), BUFFER);
+    let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
+        // whole pages, at least two, by the constants
+        panic!("settings range");
+    };
+    match store::restore(controller, &mut store, buffer) {
+        Ok(()) => defmt::info!("settings loaded from flash"),
+        Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
+        Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
+    }
+    defmt::info!("specpoly-led ready");
     loop {
         let Some(byte) = uart.read() else {
             cortex_m::asm::wfi();
@@ -48,33 +70,44 @@ fn main() -> ! {
         let Some(line) = lines.push(byte) else {
             continue;
         };
-        let reply = match line {
-            Ok(l) if l.trim_ascii().is_empty() => continue,
-            Ok(l) => controller.handle(Command::parse(l)),
-            Err(f) => Reply::Error(f),
-        };
-        out.clear();
-        if reply.write(&mut out).is_err() {
-            // a reply longer than MAX_REPLY (bounded by the protocol's tests): say so
-            out.clear();
-            let _ = out.push_str("err too-long");
+        if !answer(line, controller, &mut store, buffer, &mut uart) {
+            continue;
         }
-        let _ = uart.write_str(&out);
-        uart.write_byte(b'\n');
         let duty = controller.duty();
         if led.set(duty).is_ok() {
-            host_line(
-                &["duty"],
-                &[
-                    (" ", duty[0] as i64),
-                    (" ", duty[1] as i64),
-                    (" ", duty[2] as i64),
-                    (" max=", led.max() as i64),
-                    (" stack=", stack::high_water() as i64),
-                ],
+            defmt::info!(
+                "duty {=u16} {=u16} {=u16} max={=u16} stack={=usize}",
+                duty[0],
+                duty[1],
+                duty[2],
+                led.max(),
+                stack::high_water()
             );
         }
     }
+}
+
+/// Answers one line (or its fault) on the UART; `false` for an empty line, which gets no
+/// reply. The reply is written straight to the UART (no reply buffer: at most `MAX_REPLY`
+/// bytes, the protocol's tests bound it). Not inlined: the parsed command and the reply live
+/// only while a line is answered, not in `main`'s frame for ever.
+#[inline(never)]
+fn answer(
+    line: Result<&str, Fault>,
+    controller: &mut Controller,
+    store: &mut Store<Blocking<RamFlash>>,
+    buffer: &mut Buffer,
+    uart: &mut Uart,
+) -> bool {
+    let reply = match line {
+        Ok(l) if l.trim_ascii().is_empty() => return false,
+        Ok(l) => store::handle(controller, store, buffer, l),
+        Err(f) => Reply::Error(f),
+    };
+    // the UART never refuses a byte
+    let _ = reply.write(uart);
+    uart.write_byte(b'\n');
+    true
 }
 
 #[exception]

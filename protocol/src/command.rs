@@ -140,6 +140,11 @@ pub enum Command {
     },
     /// `state`: the calibration and the last colour.
     State,
+    /// `save`: keep the settings (calibration, curves, map, observer) in the controller's flash;
+    /// they are loaded again at every start.
+    Save,
+    /// `load`: the settings last saved, now.
+    Load,
 }
 
 fn number(tok: &str, at: usize) -> Result<f32, Fault> {
@@ -187,6 +192,8 @@ impl Command {
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
+            "save" => Command::Save,
+            "load" => Command::Load,
             "cal" => {
                 let mut xy = [[0.0; 2]; 3];
                 let mut luminance = [0.0; 3];
@@ -325,6 +332,8 @@ impl Command {
         match self {
             Command::Hello => w.write_str("hello"),
             Command::State => w.write_str("state"),
+            Command::Save => w.write_str("save"),
+            Command::Load => w.write_str("load"),
             Command::Calibrate { xy, luminance } => {
                 w.write_str("cal")?;
                 for i in 0..3 {

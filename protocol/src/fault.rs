@@ -32,11 +32,15 @@ pub enum ErrorCode {
     Singular,
     /// A reply the host could not read (host side only; `bad-reply`).
     BadReply,
+    /// The settings could not be written to or read from flash (`storage`).
+    Storage,
+    /// `load` found no saved settings of this firmware's format (`not-saved`).
+    NotSaved,
 }
 
 impl ErrorCode {
     /// Every code.
-    pub const ALL: [ErrorCode; 12] = [
+    pub const ALL: [ErrorCode; 14] = [
         ErrorCode::TooLong,
         ErrorCode::BadByte,
         ErrorCode::UnknownCommand,
@@ -49,6 +53,8 @@ impl ErrorCode {
         ErrorCode::BadCurve,
         ErrorCode::Singular,
         ErrorCode::BadReply,
+        ErrorCode::Storage,
+        ErrorCode::NotSaved,
     ];
 
     /// The wire name.
@@ -66,6 +72,8 @@ impl ErrorCode {
             ErrorCode::BadCurve => "bad-curve",
             ErrorCode::Singular => "singular",
             ErrorCode::BadReply => "bad-reply",
+            ErrorCode::Storage => "storage",
+            ErrorCode::NotSaved => "not-saved",
         }
     }
 

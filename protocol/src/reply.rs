@@ -122,7 +122,7 @@ pub enum Reply {
 }
 
 /// Settings acknowledged by [`Reply::Done`].
-pub const SETTINGS: [&str; 4] = ["cal", "trc", "map", "observer"];
+pub const SETTINGS: [&str; 6] = ["cal", "trc", "map", "observer", "save", "load"];
 
 fn write_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
     w.write_char(' ')?;

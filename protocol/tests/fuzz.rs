@@ -193,6 +193,8 @@ fn every_command_round_trips() {
     let commands = [
         Command::Hello,
         Command::State,
+        Command::Save,
+        Command::Load,
         Command::Calibrate {
             xy: [[0.7, 0.29], [0.17, 0.7], [0.135, 0.04]],
             luminance: [2.5, 7.25, 1.0],
@@ -275,6 +277,8 @@ fn bad_lines_name_the_word_at_fault() {
         ("blink", ErrorCode::UnknownCommand, Some(0)),
         ("xyz 1 2", ErrorCode::MissingArgument, Some(3)),
         ("xyz 1 2 3 4", ErrorCode::ExtraArgument, Some(4)),
+        ("save now", ErrorCode::ExtraArgument, Some(1)),
+        ("load 1", ErrorCode::ExtraArgument, Some(1)),
         ("xyz 1 two 3", ErrorCode::BadNumber, Some(2)),
         ("xyz 1 2 1e40", ErrorCode::OutOfRange, Some(3)),
         ("xyy 0.3 0 10", ErrorCode::OutOfRange, Some(2)),
@@ -364,6 +368,11 @@ fn replies_parse_and_reject() {
         })
     );
     assert_eq!(Reply::parse("ok cal"), Ok(Reply::Done("cal")));
+    assert_eq!(Reply::parse("ok save"), Ok(Reply::Done("save")));
+    assert_eq!(
+        Reply::parse("err not-saved"),
+        Ok(Reply::Error(Fault::new(ErrorCode::NotSaved)))
+    );
     assert_eq!(
         Reply::parse("err bad-number at=2"),
         Ok(Reply::Error(Fault {

@@ -7,6 +7,9 @@
 //!   the one tolerance table `specpoly::led::check::TOLERANCES` (which `led --check` uses too);
 //! - the `fast-math` build (micromath): its colour error against the libm build, in ΔE00.
 //!
+//! The firmware logs through defmt (semihosting under QEMU): QEMU's standard output carries
+//! binary frames, decoded here with `defmt-decoder` and the ELF's `.defmt` table ([`log_of`]).
+//!
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both);
 //! without them these tests fail with a message saying so. They never skip.
 
@@ -21,8 +24,14 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
-const FLASH_BUDGET: u64 = 32 * 1024;
+/// The controller with defmt alone fits 32 KiB (32 320 B); keeping settings in flash with
+/// `sequential-storage` adds ≈ 13 KiB (docs/performance.md, "## Firmware"). Real parts have
+/// 256–512 KiB.
+const FLASH_BUDGET: u64 = 48 * 1024;
 const RAM_BUDGET: u64 = 4 * 1024;
+/// Static RAM plus the deepest stack use (painted) over every command and a start-up that
+/// loads saved settings (docs/performance.md, "## Firmware").
+const TOTAL_RAM_BUDGET: u64 = 6 * 1024;
 
 fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -125,7 +134,39 @@ fn qemu(elf: &Path, extra: &[&str]) -> Process {
     c
 }
 
-/// Runs an ELF that exits through semihosting; returns (exit code, stdout).
+/// The defmt log of `elf` in `bytes` (QEMU's standard output), one line per frame: the message
+/// of an `info` frame, `LEVEL: message` for the other levels. Fails on a malformed frame.
+fn log_of(elf: &Path, bytes: &[u8]) -> String {
+    let image = std::fs::read(elf).expect("read the ELF");
+    let table = defmt_decoder::Table::parse(&image)
+        .expect("the ELF's defmt table parses")
+        .expect("the ELF has a defmt table");
+    let mut decoder = table.new_stream_decoder();
+    decoder.received(bytes);
+    let mut out = String::new();
+    loop {
+        match decoder.decode() {
+            Ok(frame) => {
+                match frame.level().map(|l| l.as_str()) {
+                    Some("info") | None => {}
+                    Some(level) => {
+                        out.push_str(level);
+                        out.push_str(": ");
+                    }
+                }
+                out.push_str(&frame.display_message().to_string());
+                out.push('\n');
+            }
+            Err(defmt_decoder::DecodeError::UnexpectedEof) => break,
+            Err(defmt_decoder::DecodeError::Malformed) => {
+                panic!("a malformed defmt frame after:\n{out}")
+            }
+        }
+    }
+    out
+}
+
+/// Runs an ELF that exits through semihosting; returns (exit code, decoded defmt log).
 fn run_to_exit(elf: &Path, extra: &[&str]) -> (Option<i32>, String) {
     let mut child = qemu(elf, extra)
         .stdout(Stdio::piped())
@@ -136,11 +177,11 @@ fn run_to_exit(elf: &Path, extra: &[&str]) -> (Option<i32>, String) {
     let start = Instant::now();
     loop {
         if let Some(status) = child.try_wait().expect("wait for qemu") {
-            let mut out = String::new();
+            let mut out = Vec::new();
             if let Some(mut s) = child.stdout.take() {
-                let _ = s.read_to_string(&mut out);
+                let _ = s.read_to_end(&mut out);
             }
-            return (status.code(), out);
+            return (status.code(), log_of(elf, &out));
         }
         if start.elapsed() > Duration::from_secs(120) {
             let _ = child.kill();
@@ -224,6 +265,23 @@ fn selftest_passes_on_target_within_the_budgets() {
     assert!(ram <= RAM_BUDGET, "static RAM {ram} B over {RAM_BUDGET} B");
 }
 
+/// A panic reaches the host as a defmt `error` frame naming its location, and QEMU exits
+/// with a failure code (`firmware/src/bin/panic.rs` panics on purpose).
+#[test]
+fn a_panic_is_logged_through_defmt_and_fails_the_run() {
+    let dir = default_build();
+    let (code, log) = run_to_exit(&dir.join("panic"), &[]);
+    assert_eq!(code, Some(1), "{log}");
+    let lines: Vec<&str> = log.lines().collect();
+    assert_eq!(lines.first(), Some(&"about to panic"), "{log}");
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("error: firmware panic at src/bin/panic.rs:")),
+        "{log}"
+    );
+}
+
 fn field<T: std::str::FromStr>(out: &str, prefix: &str) -> T {
     out.lines()
         .find_map(|l| l.strip_prefix(prefix))
@@ -231,44 +289,65 @@ fn field<T: std::str::FromStr>(out: &str, prefix: &str) -> T {
         .unwrap_or_else(|| panic!("no `{prefix}` in:\n{out}"))
 }
 
-/// QEMU running the controller with its UART on a pseudo-terminal.
+/// QEMU running the controller with its UART on a pseudo-terminal; its standard output (the
+/// defmt frames) is collected as bytes, its standard error (QEMU's own messages, the pty path)
+/// as text.
 struct Emulator {
     child: Child,
+    elf: PathBuf,
     pty: String,
-    log: std::sync::Arc<Mutex<String>>,
+    stdout: std::sync::Arc<Mutex<Vec<u8>>>,
 }
 
 impl Emulator {
     fn start() -> Self {
+        Self::start_with(&[])
+    }
+
+    /// Starts QEMU with `extra` arguments.
+    fn start_with(extra: &[&str]) -> Self {
         let elf = default_build().join("specpoly-firmware");
-        let mut child = qemu(&elf, &["-serial", "pty"])
+        let mut args = vec!["-serial", "pty"];
+        args.extend_from_slice(extra);
+        let mut child = qemu(&elf, &args)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
             .stdin(Stdio::null())
             .spawn()
             .expect("qemu-system-arm starts");
-        let stdout = child.stdout.take().expect("piped stdout");
+        let mut stdout = child.stdout.take().expect("piped stdout");
         let stderr = child.stderr.take().expect("piped stderr");
-        let log = std::sync::Arc::new(Mutex::new(String::new()));
+        let bytes = std::sync::Arc::new(Mutex::new(Vec::new()));
         let (tx, rx) = std::sync::mpsc::channel();
-        for stream in [Box::new(stdout) as Box<dyn Read + Send>, Box::new(stderr)] {
-            let log = log.clone();
-            let tx = tx.clone();
-            std::thread::spawn(move || {
-                for line in BufReader::new(stream).lines().map_while(Result::ok) {
-                    if let Some(i) = line.find("/dev/pts/") {
-                        let pty: String = line[i..]
-                            .chars()
-                            .take_while(|c| !c.is_whitespace() && *c != ')')
-                            .collect();
-                        let _ = tx.send(pty);
-                    }
-                    let mut l = log.lock().unwrap_or_else(|e| e.into_inner());
-                    l.push_str(&line);
-                    l.push('\n');
+        // QEMU announces the pty ("char device redirected to /dev/pts/N (label serial0)") on
+        // standard output, before the firmware's first frame: taken out of the defmt stream
+        let sink = bytes.clone();
+        let tx_out = tx.clone();
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 4096];
+            let mut announced = false;
+            while let Ok(n) = stdout.read(&mut buf) {
+                if n == 0 {
+                    break;
                 }
-            });
-        }
+                let mut all = sink.lock().unwrap_or_else(|e| e.into_inner());
+                all.extend_from_slice(&buf[..n]);
+                if !announced {
+                    if let Some((pty, end)) = pty_announcement(&all) {
+                        all.drain(..end);
+                        let _ = tx_out.send(pty);
+                        announced = true;
+                    }
+                }
+            }
+        });
+        std::thread::spawn(move || {
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                if let Some((pty, _)) = pty_announcement(line.as_bytes()) {
+                    let _ = tx.send(pty);
+                }
+            }
+        });
         let pty = match rx.recv_timeout(Duration::from_secs(20)) {
             Ok(p) => p,
             Err(_) => {
@@ -276,12 +355,35 @@ impl Emulator {
                 panic!("QEMU printed no pty path");
             }
         };
-        Self { child, pty, log }
+        Self {
+            child,
+            elf,
+            pty,
+            stdout: bytes,
+        }
     }
 
+    /// The firmware's defmt log so far, decoded.
     fn log(&self) -> String {
-        self.log.lock().unwrap_or_else(|e| e.into_inner()).clone()
+        let bytes = self
+            .stdout
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone();
+        log_of(&self.elf, &bytes)
     }
+}
+
+/// QEMU's pty announcement in `bytes`: the path and the end of its line (after the `\n`).
+fn pty_announcement(bytes: &[u8]) -> Option<(String, usize)> {
+    let key = b"/dev/pts/";
+    let i = bytes.windows(key.len()).position(|w| w == key)?;
+    let nl = i + bytes[i..].iter().position(|b| *b == b'\n')?;
+    let pty: String = String::from_utf8_lossy(&bytes[i..nl])
+        .chars()
+        .take_while(|c| !c.is_whitespace() && *c != ')')
+        .collect();
+    Some((pty, nl + 1))
 }
 
 impl Drop for Emulator {
@@ -459,19 +561,36 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     .expect("the led command line parses");
     specpoly::cli::run(cli).expect("specpoly led --calibration --check agrees with the firmware");
 
-    // duties are also reported through semihosting, with the stack's high-water mark
+    // duties are also logged (defmt over semihosting), with the stack's high-water mark
     std::thread::sleep(Duration::from_millis(200));
     let log = emu.log();
+    // a fresh start: nothing saved, then ready
+    let start: Vec<&str> = log.lines().take(2).collect();
+    assert_eq!(
+        start,
+        ["no saved settings: defaults used", "specpoly-led ready"],
+        "{log}"
+    );
     let duty_lines = log.lines().filter(|l| l.starts_with("duty ")).count();
     assert!(duty_lines >= 2 * lines.len(), "{log}");
+    assert_total_ram(&emu.elf, &log);
+}
+
+/// The deepest stack use the log reports (`stack=`, after each command) plus the ELF's static
+/// RAM stays within [`TOTAL_RAM_BUDGET`].
+fn assert_total_ram(elf: &Path, log: &str) {
     let stack: u64 = log
         .lines()
-        .rev()
-        .find_map(|l| l.split("stack=").nth(1))
-        .and_then(|v| v.trim().parse().ok())
+        .filter_map(|l| l.split("stack=").nth(1))
+        .filter_map(|v| v.trim().parse().ok())
+        .max()
         .expect("a stack report");
-    println!("firmware stack high-water mark: {stack} B");
-    assert!(stack > 0 && stack < 16 * 1024, "stack {stack}");
+    let (_, ram) = budget(elf);
+    println!("firmware RAM: static {ram} B + stack high-water mark {stack} B");
+    assert!(
+        stack > 0 && ram + stack <= TOTAL_RAM_BUDGET,
+        "static {ram} B + stack {stack} B over {TOTAL_RAM_BUDGET} B"
+    );
 }
 
 #[test]
@@ -543,4 +662,253 @@ fn micromath_colour_error_against_libm() {
 fn specpoly_firmware_default_display() -> Display {
     let _ = Illuminant::D65;
     Display::srgb()
+}
+
+/// Waits (≤ 10 s) until the firmware's log holds `text`; returns the log.
+fn wait_for_log(emu: &Emulator, text: &str) -> String {
+    let start = Instant::now();
+    loop {
+        let log = emu.log();
+        if log.contains(text) {
+            return log;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "no `{text}` in the firmware log:\n{log}"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+fn state<P: std::io::Read + std::io::Write>(link: &mut Link<P>) -> specpoly_protocol::StateReport {
+    match link.send("state").unwrap() {
+        Reply::State(s) => s,
+        other => panic!("expected a state reply, got {other:?}"),
+    }
+}
+
+/// `save`, a machine reset through QEMU's monitor (`system_reset`: the CPU restarts from the
+/// vector table, RAM-backed settings flash kept) and the settings are back; `load` restores them
+/// after a change; flash holding garbage is ignored with a warning at start and defaults used.
+#[test]
+fn settings_survive_a_reset_and_damaged_flash_is_ignored() {
+    let dir = tempfile::tempdir().unwrap();
+    let sock = dir.path().join("monitor.sock");
+    let chardev = format!("socket,id=mon,path={},server=on,wait=off", sock.display());
+    let emu = Emulator::start_with(&["-chardev", &chardev, "-mon", "chardev=mon,mode=readline"]);
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    link.hello().expect("hello");
+    wait_for_log(&emu, "no saved settings: defaults used");
+    let defaults = state(&mut link);
+    assert_eq!(link.exchange("load").unwrap(), "err not-saved");
+
+    for line in [
+        "cal 0.7 0.29 2.5 0.17 0.7 7.25 0.135 0.04 1",
+        "trc g gamma 2.2",
+        "trc b table 0 0.02 0.1 0.3 0.6 1",
+        "map desaturate",
+    ] {
+        assert!(matches!(link.send(line).unwrap(), Reply::Done(_)), "{line}");
+    }
+    let saved = state(&mut link);
+    assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
+
+    let mut monitor = std::os::unix::net::UnixStream::connect(&sock).expect("QEMU's monitor");
+    std::io::Write::write_all(&mut monitor, b"system_reset\n").unwrap();
+    wait_for_log(&emu, "settings loaded from flash");
+    link.hello().expect("hello after the reset");
+    let after = state(&mut link);
+    assert_eq!(
+        (after.primaries, after.trc, after.map),
+        (saved.primaries, saved.trc, saved.map)
+    );
+    assert_ne!(after.primaries, defaults.primaries);
+
+    assert_eq!(link.send("map clip").unwrap(), Reply::Done("map"));
+    assert_eq!(link.send("load").unwrap(), Reply::Done("load"));
+    assert_eq!(state(&mut link).map, GamutMap::Desaturate);
+    // a start-up and a `load` of a record with a tabulated curve, within the RAM budget
+    std::thread::sleep(Duration::from_millis(200));
+    assert_total_ram(&emu.elf, &emu.log());
+    drop(link);
+    drop(emu);
+
+    // the settings region preloaded with bytes that are no record
+    let garbage = dir.path().join("garbage.bin");
+    std::fs::write(&garbage, [0x5Au8; 256]).unwrap();
+    let loader = format!(
+        "loader,file={},addr=0x003FC000,force-raw=on",
+        garbage.display()
+    );
+    let emu = Emulator::start_with(&["-device", &loader]);
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    link.hello().expect("hello");
+    let log = wait_for_log(&emu, "specpoly-led ready");
+    assert!(
+        log.contains("warn: saved settings ignored (corrupted): defaults used"),
+        "{log}"
+    );
+    assert_eq!(state(&mut link).primaries, defaults.primaries);
+    assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
+    assert_eq!(link.send("load").unwrap(), Reply::Done("load"));
+}
+
+/// The STM32F4 board build (feature `stm32f4`, stm32f4xx-hal) on QEMU's `netduinoplus2`
+/// (STM32F405): QEMU 7.2 models its USART2 and TIM3 (not RCC, GPIO or the flash interface).
+/// The protocol runs end to end over USART2, and the duties of a colour reply are read back
+/// from TIM3's compare registers CCR1–CCR3 through QEMU's monitor (`xp`), with the
+/// full scale from ARR: the HAL's PWM channels behind `SetDutyCycle`, checked at the register
+/// level. `save` answers `err storage` there (no flash controller); the flash path is tested
+/// on mps2-an386 and with the mock flash.
+#[test]
+fn board_build_drives_the_timer_registers_on_netduinoplus2() {
+    let dir = {
+        static LOCK: Mutex<()> = Mutex::new(());
+        let _guard = LOCK.lock().unwrap_or_else(|e| e.into_inner());
+        require_tools();
+        let dir = repo().join("firmware/target/stm32f4");
+        let out = cargo()
+            .args([
+                "build",
+                "--release",
+                "--no-default-features",
+                "--features",
+                "stm32f4",
+                "--bin",
+                "stm32f4",
+                "--target",
+                TARGET,
+                "--target-dir",
+            ])
+            .arg(&dir)
+            .output()
+            .expect("cargo runs");
+        assert!(
+            out.status.success(),
+            "board build failed:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        dir.join(TARGET).join("release")
+    };
+    let elf = dir.join("stm32f4");
+    let (flash, _) = budget(&elf);
+    println!("stm32f4 board image: flash {flash} B");
+    assert!(
+        flash <= FLASH_BUDGET,
+        "flash {flash} B over {FLASH_BUDGET} B"
+    );
+
+    let tmp = tempfile::tempdir().unwrap();
+    let (uart, mon) = (
+        tmp.path().join("usart2.sock"),
+        tmp.path().join("monitor.sock"),
+    );
+    let mut child = Process::new("qemu-system-arm")
+        .args([
+            "-machine",
+            "netduinoplus2",
+            "-nographic",
+            "-serial",
+            "null",
+            "-serial",
+        ])
+        .arg(format!("unix:{},server=on,wait=off", uart.display()))
+        .arg("-monitor")
+        .arg(format!("unix:{},server=on,wait=off", mon.display()))
+        .arg("-kernel")
+        .arg(&elf)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .stdin(Stdio::null())
+        .spawn()
+        .expect("qemu-system-arm starts");
+    let connect = |p: &Path| {
+        let start = Instant::now();
+        loop {
+            match std::os::unix::net::UnixStream::connect(p) {
+                Ok(s) => {
+                    s.set_read_timeout(Some(Duration::from_millis(200)))
+                        .unwrap();
+                    return s;
+                }
+                Err(_) if start.elapsed() < Duration::from_secs(10) => {
+                    std::thread::sleep(Duration::from_millis(50))
+                }
+                Err(e) => panic!("QEMU socket {}: {e}", p.display()),
+            }
+        }
+    };
+    let mut serial = connect(&uart);
+    let mut monitor = connect(&mon);
+    // one request; what arrived until a whole line follows `until` (or 10 s passed)
+    let ask = |s: &mut std::os::unix::net::UnixStream, line: &str, until: &str| -> String {
+        std::io::Write::write_all(s, line.as_bytes()).unwrap();
+        let (mut got, start) = (Vec::new(), Instant::now());
+        let mut buf = [0u8; 1024];
+        let complete = |g: &[u8]| {
+            let g = String::from_utf8_lossy(g);
+            g.find(until).is_some_and(|i| g[i..].contains('\n'))
+        };
+        while !complete(&got) && start.elapsed() < Duration::from_secs(10) {
+            if let Ok(n) = s.read(&mut buf) {
+                got.extend_from_slice(&buf[..n]);
+            }
+        }
+        String::from_utf8_lossy(&got).into_owned()
+    };
+    // QEMU's USART drops bytes that arrive before the firmware has enabled it: ask until heard
+    let start = Instant::now();
+    let hello = loop {
+        let h = ask(&mut serial, "hello\n", "ok");
+        if h.contains("ok hello") || start.elapsed() > Duration::from_secs(20) {
+            break h;
+        }
+    };
+    let reply = ask(&mut serial, "xyz 20 20 20\n", "ok");
+    let state = ask(&mut serial, "state\n", "ok");
+    let save = ask(&mut serial, "save\n", "err");
+    // TIM3 at 0x4000_0400: ARR at +0x2C, CCR1–CCR3 at +0x34…+0x3C (RM0368 §13.4)
+    let arr = ask(&mut monitor, "xp /1wx 0x4000042c\n", "000000004000042c:");
+    let ccr = ask(&mut monitor, "xp /3wx 0x40000434\n", "0000000040000434:");
+    let _ = child.kill();
+    let _ = child.wait();
+
+    let hello = hello
+        .lines()
+        .find(|l| l.contains("ok hello"))
+        .unwrap_or_default();
+    let Ok(Reply::Hello { max, .. }) = Reply::parse(hello.trim_start_matches('\0').trim()) else {
+        panic!("hello: {hello:?}");
+    };
+    let dev = colour(Reply::parse(reply.trim()).unwrap_or_else(|_| panic!("{reply:?}")));
+    assert_eq!(save.trim(), "err storage");
+    let words = |out: &str, addr: &str| -> Vec<u32> {
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(addr))
+            .unwrap_or_else(|| panic!("no {addr} in {out:?}"));
+        line.split_whitespace()
+            .skip(1)
+            .map(|w| u32::from_str_radix(w.trim_start_matches("0x"), 16).unwrap())
+            .collect()
+    };
+    assert_eq!(
+        words(&arr, "000000004000042c:"),
+        vec![max as u32 - 1],
+        "ARR = max − 1"
+    );
+    let ccr = words(&ccr, "0000000040000434:");
+    assert_eq!(
+        ccr,
+        dev.duty.map(u32::from).to_vec(),
+        "CCR1–3 hold the duties"
+    );
+    // the reply agrees with the host's independent f64 computation for the board's state
+    let Ok(Reply::State(st)) = Reply::parse(state.trim()) else {
+        panic!("state: {state:?}");
+    };
+    let oracle = Oracle::from_state(&st, None).expect("an oracle for the board's state");
+    if let Err(e) = oracle.verify(&Command::Xyz(Xyz::new(20.0, 20.0, 20.0)), &dev) {
+        panic!("board reply {dev:?}: {e}");
+    }
 }

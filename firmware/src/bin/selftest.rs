@@ -1,5 +1,6 @@
 //! On-target tests and measurements, under QEMU with semihosting: exits 0 when every check
-//! passes, 1 otherwise. Prints, for the host tests and docs/performance.md:
+//! passes, 1 otherwise. Logs through defmt (decoded on the host by the tests), for the host tests
+//! and docs/performance.md:
 //!
 //! - `check NAME ok|FAIL`;
 //! - `insns PRESET WHAT N`: instructions per call (meaningful under `-icount shift=0`);
@@ -12,7 +13,7 @@
 
 use core::fmt::Write as _;
 use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hprintln};
+use cortex_m_semihosting::debug;
 use heapless::String;
 use specpoly_core::{
     DefaultSpectrum, Illuminant, Layout, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
@@ -42,7 +43,7 @@ struct Checks {
 
 impl Checks {
     fn check(&mut self, name: &str, ok: bool) {
-        hprintln!("check {} {}", name, if ok { "ok" } else { "FAIL" });
+        defmt::info!("check {} {}", name, if ok { "ok" } else { "FAIL" });
         if !ok {
             self.failed += 1;
         }
@@ -58,7 +59,7 @@ fn main() -> ! {
     stack::paint();
     let mut checks = Checks { failed: 0 };
     let Some(p) = cortex_m::Peripherals::take() else {
-        hprintln!("selftest: no peripherals");
+        defmt::info!("selftest: no peripherals");
         debug::exit(debug::EXIT_FAILURE);
         loop {
             cortex_m::asm::wfi();
@@ -147,7 +148,7 @@ fn main() -> ! {
 
     // 3. instruction counts (under -icount shift=0)
     let cal = counter.insns_per_call(10, || cortex_m::asm::delay(100_000));
-    hprintln!("insns calibration delay-100000 {}", cal);
+    defmt::info!("insns calibration delay-100000 {}", cal);
     let n = 20;
     let ill = Illuminant::D65.tabulated();
     let m_paper = Moments::new(Observer::Cie1931, &ill);
@@ -161,27 +162,27 @@ fn main() -> ! {
             &ill,
         ));
     });
-    hprintln!("insns paper moments {}", insns);
+    defmt::info!("insns paper moments {}", insns);
     let insns = counter.insns_per_call(2, || {
         core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill));
     });
-    hprintln!("insns default moments {}", insns);
+    defmt::info!("insns default moments {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
         core::hint::black_box(core::hint::black_box(&rp).mul(core::hint::black_box(&rp)));
     });
-    hprintln!("insns paper mul {}", insns);
+    defmt::info!("insns paper mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
         core::hint::black_box(core::hint::black_box(&rd).mul(core::hint::black_box(&rd)));
     });
-    hprintln!("insns default mul {}", insns);
+    defmt::info!("insns default mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
         core::hint::black_box(m_paper.xyz(core::hint::black_box(&rp)));
     });
-    hprintln!("insns paper xyz {}", insns);
+    defmt::info!("insns paper xyz {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
         core::hint::black_box(m_default.xyz(core::hint::black_box(&rd)));
     });
-    hprintln!("insns default xyz {}", insns);
+    defmt::info!("insns default xyz {}", insns);
     let target = m_default.xyz(&rd);
     for (name, curve) in [("linear", "trc rgb linear"), ("srgb", "trc rgb srgb")] {
         let _ = handle(&mut c, curve);
@@ -191,7 +192,7 @@ fn main() -> ! {
                 d.encode_relative(core::hint::black_box(target), specpoly_core::GamutMap::Clip),
             );
         });
-        hprintln!("insns {} encode {}", name, insns);
+        defmt::info!("insns {} encode {}", name, insns);
     }
     let _ = disp;
     // whole colour computations: reflectance (cached moments) → XYZ → duties
@@ -205,7 +206,7 @@ fn main() -> ! {
             let xyz = c.reflectance_xyz(Illuminant::D65, core::hint::black_box(&r));
             core::hint::black_box(c.colour(xyz));
         });
-        hprintln!("insns {} colour {}", preset, insns);
+        defmt::info!("insns {} colour {}", preset, insns);
         // a whole line: parse (two factors), compute, format the reply
         line.clear();
         let _ = write_reflect(&mut line, Illuminant::D65, &[r, r]);
@@ -214,7 +215,7 @@ fn main() -> ! {
             out.clear();
             let _ = reply.write(&mut out);
         });
-        hprintln!("insns {} line-2-factors {}", preset, insns);
+        defmt::info!("insns {} line-2-factors {}", preset, insns);
     }
 
     // 4. colours on an sRGB-curve LED, for the libm / fast-math comparison on the host
@@ -224,7 +225,7 @@ fn main() -> ! {
         for y in [0.25f32, 0.3, 0.35, 0.4] {
             for big_y in [5.0f32, 20.0, 60.0] {
                 let r = c.colour(Xyy { x, y, big_y }.to_xyz());
-                hprintln!(
+                defmt::info!(
                     "colour {} duty {} {} {}",
                     i,
                     r.duty[0],
@@ -236,12 +237,12 @@ fn main() -> ! {
         }
     }
 
-    hprintln!("stack {}", stack::high_water());
+    defmt::info!("stack {}", stack::high_water());
     if checks.failed == 0 {
-        hprintln!("selftest: pass");
+        defmt::info!("selftest: pass");
         debug::exit(debug::EXIT_SUCCESS);
     } else {
-        hprintln!("selftest: fail ({} checks)", checks.failed);
+        defmt::info!("selftest: fail ({} checks)", checks.failed);
         debug::exit(debug::EXIT_FAILURE);
     }
     loop {
