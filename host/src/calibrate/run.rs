@@ -3,18 +3,24 @@
 //!
 //! ```text
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
+//!                        [--patches SET.ti1] [--resume | --force]
 //! ```
-//! writes `CAL.ti3` (all readings, rewritten atomically after each patch so an interrupted run
-//! keeps what it measured) and `CAL.toml` (the fit of the non-verification patches).
+//! writes `CAL.ti3` (all readings, rewritten atomically after each patch — or each batch with
+//! `--instrument argyll` — so an interrupted run keeps what it measured; see
+//! [`crate::calibrate::session`]) and `CAL.toml` (the fit of the non-verification patches).
+//! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
+//! `--force` keeps it as `CAL.ti3.1` (`.2`, …) and starts over.
 
 use crate::calibrate::display::{self, PatchDisplay};
 use crate::calibrate::file;
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
-use crate::calibrate::instrument::{self, Instrument};
+use crate::calibrate::instrument::{self, argyll, Instrument};
+use crate::calibrate::interrupt;
 use crate::calibrate::measurement::Measurement;
 use crate::calibrate::patches::{self, Patch};
+use crate::calibrate::session::{Existing, Session};
 use crate::error::{CliError, Result};
-use crate::io::cgats::{self, Ti3Info};
+use crate::io::cgats::Ti3Info;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -48,6 +54,28 @@ pub struct RunArgs {
     /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
     #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
     pub matrix: MatrixFit,
+    /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
+    /// `calibrate patches`) instead of the ramps; every patch is fitted.
+    #[arg(long, value_name = "SET.ti1")]
+    pub patches: Option<PathBuf>,
+    /// `CAL.ti3` exists: measure only the patches it lacks (same patch set only).
+    #[arg(long, conflicts_with = "force")]
+    pub resume: bool,
+    /// `CAL.ti3` exists: keep it as `CAL.ti3.1` (`.2`, …) and start over.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// The patch set of a run: `--patches FILE.ti1`, or the standard ramps and verification
+/// patches.
+pub fn patch_set(a: &RunArgs) -> Result<Vec<Patch>> {
+    match &a.patches {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| CliError::io(p, e))?;
+            patches::from_devices(&crate::io::ti1::read_ti1(&text, &p.display().to_string())?)
+        }
+        None => patches::standard(a.ramp_steps, a.verify),
+    }
 }
 
 /// Where the readings go: `CAL.toml` → `CAL.ti3`.
@@ -106,6 +134,13 @@ pub fn measure_all(
                 _ => CliError::data(msg),
             }
         };
+        if interrupt::requested() {
+            bar.abandon();
+            return Err(Interrupted {
+                error: at(CliError::data(interrupt::MESSAGE)),
+                taken,
+            });
+        }
         let reading = display
             .show(p.device)
             .and_then(|()| {
@@ -178,7 +213,7 @@ pub fn raw_primaries(patches: &[Patch], m: &[Measurement]) -> Option<[[f64; 3]; 
 
 /// Runs `specpoly calibrate run`.
 pub fn run_cli(a: &RunArgs) -> Result<()> {
-    let set = patches::standard(a.ramp_steps, a.verify)?;
+    let set = patch_set(a)?;
     let ti3 = ti3_path(&a.output);
     if ti3 == a.output {
         return Err(CliError::usage(format!(
@@ -186,42 +221,55 @@ pub fn run_cli(a: &RunArgs) -> Result<()> {
             a.output.display()
         )));
     }
-    let display = display::open(&a.display)?;
-    println!("display: {}", display.describe());
-    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
-    println!("instrument: {}", instrument.describe());
+    let existing = if a.resume {
+        Existing::Resume
+    } else if a.force {
+        Existing::Force
+    } else {
+        Existing::Refuse
+    };
+    let info = Ti3Info {
+        descriptor: "specpoly calibrate run".into(),
+        instrument: None,
+        created: Some(file::now_utc()),
+        absolute: true,
+        keywords: Vec::new(),
+    };
+    let (mut session, note) = Session::open(&ti3, &set, existing, info)?;
+    if let Some(n) = note {
+        eprintln!("{n}");
+    }
+    interrupt::install();
     let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
-    println!(
+    let head = format!(
         "{} patches ({} for the fit, {} to verify); readings → {}",
         set.len(),
         set.len() - n_verify,
         n_verify,
         ti3.display()
     );
-    let settle = a
-        .settle
-        .map(Duration::from_millis)
-        .unwrap_or_else(|| display.default_settle());
-    let info = Ti3Info {
-        descriptor: "specpoly calibrate run".into(),
-        instrument: Some(instrument.describe()),
-        created: Some(file::now_utc()),
-        absolute: true,
+    let measured = if argyll::is_argyll(&a.instrument) {
+        measure_with_argyll(a, &set, &mut session, &head).map(|()| None)
+    } else {
+        measure_direct(a, &set, &mut session, &head)
     };
-    let taken = measure_all(display.as_mut(), instrument.as_mut(), &set, settle, |m| {
-        save_ti3(&ti3, m, &info)
-    })
-    .map_err(|i| {
-        let kept = if i.taken.is_empty() {
+    let truth = measured.map_err(|e| {
+        let n = session.taken();
+        let kept = if n == 0 {
             "no readings taken".to_string()
         } else {
-            format!("{} readings kept in {}", i.taken.len(), ti3.display())
+            format!(
+                "{n} readings kept in {} (run again with --resume to measure the other {})",
+                ti3.display(),
+                set.len() - n
+            )
         };
-        match i.error {
+        match e {
             CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
             e => CliError::data(format!("{e}; {kept}")),
         }
     })?;
+    let taken = session.measurements();
     println!("measured {} patches → {}", taken.len(), ti3.display());
     if let Some(p) = raw_primaries(&set, &taken) {
         for (name, p) in ["red", "green", "blue"].iter().zip(p) {
@@ -232,9 +280,8 @@ pub fn run_cli(a: &RunArgs) -> Result<()> {
             );
         }
     }
-    if let Some(sim) = display.simulation() {
-        let m = sim.model();
-        for (name, p) in ["red", "green", "blue"].iter().zip(m.primaries) {
+    if let Some(m) = truth {
+        for (name, p) in ["red", "green", "blue"].iter().zip(m) {
             let c = xyy(p);
             println!(
                 "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
@@ -254,14 +301,95 @@ pub fn run_cli(a: &RunArgs) -> Result<()> {
         .filter(|(p, _)| !p.kind.for_fit())
         .map(|(_, m)| *m)
         .collect();
-    fit_and_write(&a.output, &ti3, &info, a.matrix, &fit_set, &verify_set)
+    fit_and_write(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix,
+        &fit_set,
+        &verify_set,
+    )
 }
 
-/// Writes the readings so far as a CGATS .ti3 (A's writer: ArgyllCMS's layout, normalised to
-/// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
-/// measured), atomically.
-fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
-    crate::io::atomic::write(path, cgats::write_ti3(m, info).as_bytes())
+/// Measures the patches `session` lacks with `--display` and `--instrument` (one patch at a
+/// time, each saved at once). Returns the simulated display's true primaries, if simulated.
+fn measure_direct(
+    a: &RunArgs,
+    set: &[Patch],
+    session: &mut Session,
+    head: &str,
+) -> Result<Option<[[f64; 3]; 3]>> {
+    if a.display.starts_with("argyll") {
+        return Err(CliError::usage(
+            "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
+        ));
+    }
+    let display = display::open(&a.display)?;
+    println!("display: {}", display.describe());
+    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
+    println!("instrument: {}", instrument.describe());
+    println!("{head}");
+    session.set_instrument(instrument.describe());
+    let settle = a
+        .settle
+        .map(Duration::from_millis)
+        .unwrap_or_else(|| display.default_settle());
+    let missing = session.missing();
+    let todo: Vec<Patch> = missing.iter().map(|&i| set[i]).collect();
+    measure_all(display.as_mut(), instrument.as_mut(), &todo, settle, |m| {
+        let k = m.len() - 1;
+        session.record(missing[k], m[k].xyz)
+    })
+    .map_err(|i| i.error)?;
+    Ok(display.simulation().map(|s| s.model().primaries))
+}
+
+/// Measures the patches `session` lacks with ArgyllCMS's `dispread`, a batch at a time, each
+/// batch saved before the next starts.
+fn measure_with_argyll(
+    a: &RunArgs,
+    set: &[Patch],
+    session: &mut Session,
+    head: &str,
+) -> Result<()> {
+    let ti3 = ti3_path(&a.output);
+    let mut reader = argyll::Dispread::open(
+        &a.instrument,
+        &a.display,
+        &ti3,
+        a.settle.map(Duration::from_millis),
+    )?;
+    println!("display: {}", reader.describe_display());
+    println!("instrument: {}", reader.describe());
+    println!("{head}");
+    session.set_instrument(reader.describe());
+    if !reader.is_fake() && std::io::stdin().is_terminal() {
+        eprintln!(
+            "put the instrument on the middle of the screen (where ArgyllCMS's patch window opens) and press Enter"
+        );
+        let mut line = String::new();
+        std::io::stdin()
+            .read_line(&mut line)
+            .map_err(|e| CliError::io("stdin", e))?;
+    }
+    let missing = session.missing();
+    let bar = progress_bar(missing.len());
+    let total = set.len();
+    for chunk in missing.chunks(reader.batch()) {
+        let devices: Vec<[f64; 3]> = chunk.iter().map(|&i| set[i].device).collect();
+        let first = chunk[0] + 1;
+        let last = chunk[chunk.len() - 1] + 1;
+        let xyz = reader.measure(&devices).map_err(|e| {
+            bar.abandon();
+            CliError::data(format!("patches {first}–{last} of {total}: {e}"))
+        })?;
+        let rows: Vec<(usize, [f64; 3])> = chunk.iter().copied().zip(xyz).collect();
+        session.set_instrument(reader.describe());
+        session.record_all(&rows)?;
+        bar.inc(chunk.len() as u64);
+    }
+    bar.finish_and_clear();
+    Ok(())
 }
 
 /// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, writes `out` and prints the

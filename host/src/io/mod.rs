@@ -4,3 +4,4 @@ pub mod atomic;
 pub mod cgats;
 pub mod csv;
 pub mod stdout;
+pub mod ti1;

@@ -6,11 +6,13 @@
 //! | `serial:PORT[,baud=N][,timeout=SECS][,measure-timeout=SECS][,retries=N]` | [`serial::Pr6xx`]: a Photo Research PR-655/670 in remote mode |
 //! | `sim` | [`sim::SimInstrument`] reading the `--display sim:…` display |
 //! | `sim:SPD[,options]` | a simulated display that mirrors whatever `--display` shows (web, manual), read by [`sim::SimInstrument`] |
+//! | `argyll[:options]` | [`argyll::Dispread`]: any instrument ArgyllCMS drives, measuring batches of patches with `dispread` (not an [`Instrument`]: `dispread` shows the patches itself) |
 
 use crate::calibrate::display::{Mirrored, PatchDisplay};
 use crate::calibrate::sim::{SimHandle, SimModel};
 use crate::error::{CliError, Result};
 
+pub mod argyll;
 pub mod serial;
 pub mod sim;
 
@@ -50,7 +52,12 @@ pub fn open(
     if let Some(rest) = spec.strip_prefix("serial:") {
         return Ok((display, Box::new(serial::Pr6xx::from_spec(rest)?)));
     }
+    if argyll::is_argyll(spec) {
+        return Err(CliError::usage(
+            "--instrument argyll measures with ArgyllCMS's dispread, which shows the patches itself: use it with --display argyll[:N]",
+        ));
+    }
     Err(CliError::usage(format!(
-        "--instrument `{spec}`: expected `serial:PORT[,options]`, `sim` or `sim:SPD[,options]`"
+        "--instrument `{spec}`: expected `serial:PORT[,options]`, `argyll[:options]`, `sim` or `sim:SPD[,options]`"
     )))
 }
