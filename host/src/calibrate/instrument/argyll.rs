@@ -24,7 +24,8 @@
 //! `--display` names where `dispread` shows the patches: `argyll[:N]` (its own window on
 //! display N, default 1), `argyll:web[:PORT]` (its web server, `-dweb`), `argyll:fake[:ICC]`
 //! (ArgyllCMS's fake display and instrument; with an ICC profile it measures that profile's
-//! colours, otherwise its built-in model); options `scale=S` (the window's size relative to
+//! colours, otherwise its built-in model), `argyll:dummy` (no window: the instrument reads
+//! whatever is in front of it); options `scale=S` (the window's size relative to
 //! ArgyllCMS's default, `-P 0.5,0.5,S`) and `fill` (black around the window, `-F`).
 //!
 //! OPTIONS (comma separated):
@@ -64,6 +65,8 @@ pub enum ArgyllDisplay {
     Web(Option<u16>),
     /// The fake display and instrument, optionally measuring an ICC profile.
     Fake(Option<PathBuf>),
+    /// No window (`-d dummy`): the instrument reads whatever is in front of it.
+    Dummy,
 }
 
 /// The `--display` for `dispread`.
@@ -89,7 +92,7 @@ impl DisplayOptions {
         let head = parts.next().unwrap_or("");
         let usage = || {
             CliError::usage(format!(
-                "--display `{spec}`: with --instrument argyll, ArgyllCMS shows the patches: `argyll[:N]` (its window on display N), `argyll:web[:PORT]` or `argyll:fake[:PROFILE.icc]`, options `scale=S`, `fill`"
+                "--display `{spec}`: with --instrument argyll, ArgyllCMS shows the patches: `argyll[:N]` (its window on display N), `argyll:web[:PORT]`, `argyll:fake[:PROFILE.icc]` or `argyll:dummy`, options `scale=S`, `fill`"
             ))
         };
         let rest = match head.strip_prefix("argyll") {
@@ -101,6 +104,7 @@ impl DisplayOptions {
             None => ArgyllDisplay::Screen(1),
             Some("web") => ArgyllDisplay::Web(None),
             Some("fake") => ArgyllDisplay::Fake(None),
+            Some("dummy") => ArgyllDisplay::Dummy,
             Some(r) if r.starts_with("web:") => {
                 ArgyllDisplay::Web(Some(r[4..].parse().map_err(|_| usage())?))
             }
@@ -157,6 +161,7 @@ impl DisplayOptions {
             ArgyllDisplay::Web(None) => vec!["-dweb".to_string()],
             ArgyllDisplay::Web(Some(p)) => vec![format!("-dweb:{p}")],
             ArgyllDisplay::Fake(_) => vec!["-dfake".to_string()],
+            ArgyllDisplay::Dummy => vec!["-d".to_string(), "dummy".to_string()],
         };
         if let Some(s) = self.scale {
             a.push("-P".into());
@@ -325,7 +330,12 @@ impl Dispread {
         let dir = parent.join(format!(".{name}.argyll{}", std::process::id()));
         std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
         if let ArgyllDisplay::Fake(Some(icc)) = &display.display {
-            let to = dir.join("fake.icm");
+            // ArgyllCMS looks for `fake.icc` on Unix and macOS, `fake.icm` on Windows
+            let to = dir.join(if cfg!(windows) {
+                "fake.icm"
+            } else {
+                "fake.icc"
+            });
             std::fs::copy(icc, &to).map_err(|e| CliError::io(icc, e))?;
         }
         Ok(Self {
@@ -362,6 +372,7 @@ impl Dispread {
                 p.unwrap_or(8080)
             ),
             ArgyllDisplay::Fake(None) => "ArgyllCMS's fake display (built-in model)".into(),
+            ArgyllDisplay::Dummy => "no patch window (ArgyllCMS's dummy display)".into(),
             ArgyllDisplay::Fake(Some(p)) => {
                 format!("ArgyllCMS's fake display measuring {}", p.display())
             }
