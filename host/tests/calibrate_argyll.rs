@@ -6,11 +6,12 @@
 //!
 //! The oracle for the fake device is ArgyllCMS's own model of it (spectro/dispsup.c,
 //! `disprd_fake_read`): colorants red (0.41, 0.21, 0.02), green (0.30, 0.55, 0.15), blue
-//! (0.15, 0.10, 0.97) scaled so they add up to a white of Y = 120 cd/m², plus offsets
-//! that full drive minus black cancels, plus uniform noise of at most 0.02, 0.01, 0.04 cd/m²
-//! on X, Y, Z. So the readings' primaries (full channel minus black) must have those
-//! colorants' chromaticities within [`XY_TOL`], and their luminances must add up to 120
-//! within [`Y_TOL`].
+//! (0.15, 0.10, 0.97) scaled so they add up to a white of Y = 120 cd/m², input offsets
+//! (−0.03, 0.07, −0.08, negative ones cut to 0) before a power of 2.5, an XYZ offset, and
+//! uniform noise of at most 0.02, 0.01, 0.04 cd/m² on X, Y, Z. So the readings' primaries
+//! (full channel minus black) must have those colorants' chromaticities within [`XY_TOL`],
+//! and their luminances, like white minus black, must add up to 120 less green's share at
+//! the offset (120 − G·0.07^2.5) within [`Y_TOL`].
 //!
 //! **Headless machines.** ArgyllCMS looks for USB instruments in `/dev/bus/usb`, then
 //! `/proc/bus/usb`, then — if neither has an entry — reads every device node in `/dev`,
@@ -29,7 +30,7 @@ use std::time::{Duration, Instant};
 /// Chromaticity tolerance of the fake device's primaries (its noise is ≤ 0.04 cd/m² on
 /// readings of 9–82 cd/m²).
 const XY_TOL: f64 = 0.002;
-/// Luminance tolerance of the primaries' sum, cd/m² (three readings' noise, twice).
+/// Luminance tolerance of the primaries' sum, cd/m² (six readings' noise of ≤ 0.01 each).
 const Y_TOL: f64 = 0.1;
 
 struct Done {
@@ -208,19 +209,28 @@ fn fake_device_end_to_end() {
             );
         }
     }
-    // the colorants are scaled to add up to the white, Y = 120 cd/m²
-    let sum: f64 = (0..3)
+    // the colorants are scaled to add up to the white, Y = 120 cd/m²; black is the green
+    // colorant at its input offset 0.07 (red's and blue's are negative, cut to 0), to the
+    // power 2.5, so full green minus black lacks that much of green
+    let g = 0.07f64.powf(2.5);
+    let prim: Vec<f64> = (0..3)
         .map(|ch| {
             let mut d = [0.0; 3];
             d[ch] = 1.0;
             find(&r, d)[1] - black[1]
         })
-        .sum();
+        .collect();
+    let want = 120.0 - prim[1] / (1.0 - g) * g;
+    let sum: f64 = prim.iter().sum();
     assert!(
-        (sum - 120.0).abs() < Y_TOL,
-        "R + G + B − 3·black: Y = {sum}"
+        (sum - want).abs() < Y_TOL,
+        "R + G + B − 3·black: Y = {sum}, model {want}"
     );
-    assert!(white[1] > 119.0 && white[1] < 121.0, "{white:?}");
+    let wk = white[1] - black[1];
+    assert!(
+        (wk - want).abs() < Y_TOL,
+        "white − black: Y = {wk}, model {want}"
+    );
     // the fit says the same
     let cal = specpoly::calibrate::file::load(&dir.path().join("fake.toml")).unwrap();
     let red = cal.data().primaries.red;
