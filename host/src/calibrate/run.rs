@@ -1,5 +1,5 @@
-//! `specpoly calibrate run`: show patches, read them, save the readings as CGATS .ti3 after
-//! every patch, fit Cowan's model and write the calibration.
+//! Measuring a display (`specpoly calibrate run`): show patches, read them, save the readings
+//! as CGATS .ti3 after every patch, fit Cowan's model and write the calibration.
 //!
 //! ```text
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
@@ -11,72 +11,19 @@
 //! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
 //! `--force` keeps it as `CAL.ti3.1` (`.2`, …) and starts over.
 
-use crate::calibrate::display::{self, PatchDisplay};
-use crate::calibrate::file;
+use crate::calibrate::file::Calibration;
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
 use crate::calibrate::instrument::{self, argyll, Instrument};
 use crate::calibrate::interrupt;
-use crate::calibrate::measurement::Measurement;
+use crate::calibrate::patch_display::{self, PatchDisplay};
 use crate::calibrate::patches::{self, Patch};
-use crate::calibrate::session::{Existing, Session};
+use crate::calibrate::session::Session;
 use crate::error::{CliError, Result};
-use crate::io::cgats::Ti3Info;
-use std::io::IsTerminal;
+use crate::io::cgats::{self, Ti3Info};
+use crate::io::progress;
+use crate::measurement::Measurement;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
-
-/// Arguments of `specpoly calibrate run`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct RunArgs {
-    /// Where patches are shown: `web[:PORT]` (a page on 127.0.0.1; open the printed URL),
-    /// `led:PORT` (the RGB-LED controller), `manual` (prints the RGB, waits for Enter),
-    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`).
-    #[arg(long, value_name = "DISPLAY")]
-    pub display: String,
-    /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode), `sim`
-    /// (reads `--display sim:…`), `sim:SPD[,options]` (simulates what `--display` shows).
-    #[arg(long, value_name = "INSTRUMENT")]
-    pub instrument: String,
-    /// The calibration to write (TOML); the readings go beside it with extension `.ti3`.
-    #[arg(short, long, value_name = "CAL.toml")]
-    pub output: PathBuf,
-    /// Levels per channel ramp, 0 and 1 included (2–256).
-    #[arg(long, default_value_t = 9, value_name = "N")]
-    pub ramp_steps: usize,
-    /// Verification patches (spread over the RGB cube; measured, not fitted).
-    #[arg(long, default_value_t = 16, value_name = "N")]
-    pub verify: usize,
-    /// Wait after a patch is on screen before reading it, ms [default: 0 for sim and manual,
-    /// 100 for led, 500 for web].
-    #[arg(long, value_name = "MS")]
-    pub settle: Option<u64>,
-    /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
-    /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
-    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
-    pub matrix: MatrixFit,
-    /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
-    /// `calibrate patches`) instead of the ramps; every patch is fitted.
-    #[arg(long, value_name = "SET.ti1")]
-    pub patches: Option<PathBuf>,
-    /// `CAL.ti3` exists: measure only the patches it lacks (same patch set only).
-    #[arg(long, conflicts_with = "force")]
-    pub resume: bool,
-    /// `CAL.ti3` exists: keep it as `CAL.ti3.1` (`.2`, …) and start over.
-    #[arg(long)]
-    pub force: bool,
-}
-
-/// The patch set of a run: `--patches FILE.ti1`, or the standard ramps and verification
-/// patches.
-pub fn patch_set(a: &RunArgs) -> Result<Vec<Patch>> {
-    match &a.patches {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| CliError::io(p, e))?;
-            patches::from_devices(&crate::io::ti1::read_ti1(&text, &p.display().to_string())?)
-        }
-        None => patches::standard(a.ramp_steps, a.verify),
-    }
-}
 
 /// Where the readings go: `CAL.toml` → `CAL.ti3`.
 pub fn ti3_path(output: &Path) -> PathBuf {
@@ -92,21 +39,6 @@ pub struct Interrupted {
     pub taken: Vec<Measurement>,
 }
 
-/// A progress bar with the patch count and the time left, drawn on stderr only when it is a
-/// terminal.
-fn progress_bar(n: usize) -> indicatif::ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(n as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "measuring [{bar:30}] {pos}/{len} patches, {eta} left",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
-}
-
 /// Shows each patch, waits `settle`, reads it, and calls `save` with all readings so far after
 /// every patch. Stops at the first failure (of the display, the instrument or `save`).
 pub fn measure_all(
@@ -116,7 +48,7 @@ pub fn measure_all(
     settle: Duration,
     mut save: impl FnMut(&[Measurement]) -> Result<()>,
 ) -> std::result::Result<Vec<Measurement>, Interrupted> {
-    let bar = progress_bar(patches.len());
+    let bar = progress::bar(patches.len() as u64, "measuring", "patches");
     let mut taken: Vec<Measurement> = Vec::with_capacity(patches.len());
     for (i, p) in patches.iter().enumerate() {
         let at = |e: CliError| {
@@ -176,18 +108,8 @@ pub fn open(
     display_spec: &str,
     instrument_spec: &str,
 ) -> Result<(Box<dyn PatchDisplay>, Box<dyn Instrument>)> {
-    let d = display::open(display_spec)?;
+    let d = patch_display::open(display_spec)?;
     instrument::open(instrument_spec, d)
-}
-
-/// The chromaticity and luminance of an XYZ.
-fn xyy(p: [f64; 3]) -> [f64; 3] {
-    let s = p[0] + p[1] + p[2];
-    if s > 0.0 {
-        [p[0] / s, p[1] / s, p[1]]
-    } else {
-        [0.0, 0.0, p[1]]
-    }
 }
 
 /// The primaries as the raw readings give them: full channel minus black (what a fit must
@@ -211,126 +133,98 @@ pub fn raw_primaries(patches: &[Patch], m: &[Measurement]) -> Option<[[f64; 3]; 
     Some(out)
 }
 
-/// Runs `specpoly calibrate run`.
-pub fn run_cli(a: &RunArgs) -> Result<()> {
-    let set = patch_set(a)?;
-    let ti3 = ti3_path(&a.output);
-    if ti3 == a.output {
-        return Err(CliError::usage(format!(
-            "-o {}: name the calibration `.toml`; the readings go to `.ti3` beside it",
-            a.output.display()
-        )));
-    }
-    let existing = if a.resume {
-        Existing::Resume
-    } else if a.force {
-        Existing::Force
-    } else {
-        Existing::Refuse
-    };
-    let info = Ti3Info {
-        descriptor: "specpoly calibrate run".into(),
-        instrument: None,
-        created: Some(file::now_utc()),
-        absolute: true,
-        keywords: Vec::new(),
-    };
-    let (mut session, note) = Session::open(&ti3, &set, existing, info)?;
-    if let Some(n) = note {
-        eprintln!("{n}");
-    }
-    interrupt::install();
-    let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
-    let head = format!(
-        "{} patches ({} for the fit, {} to verify); readings → {}",
-        set.len(),
-        set.len() - n_verify,
-        n_verify,
-        ti3.display()
-    );
-    let measured = if argyll::is_argyll(&a.instrument) {
-        measure_with_argyll(a, &set, &mut session, &head).map(|()| None)
-    } else {
-        measure_direct(a, &set, &mut session, &head)
-    };
-    let truth = measured.map_err(|e| {
-        let n = session.taken();
-        let kept = if n == 0 {
-            "no readings taken".to_string()
-        } else {
-            format!(
-                "{n} readings kept in {} (run again with --resume to measure the other {})",
-                ti3.display(),
-                set.len() - n
-            )
-        };
-        match e {
-            CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
-            e => CliError::data(format!("{e}; {kept}")),
-        }
-    })?;
-    let taken = session.measurements();
-    println!("measured {} patches → {}", taken.len(), ti3.display());
-    if let Some(p) = raw_primaries(&set, &taken) {
-        for (name, p) in ["red", "green", "blue"].iter().zip(p) {
-            let c = xyy(p);
-            println!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (reading − black)",
-                c[0], c[1], c[2]
-            );
-        }
-    }
-    if let Some(m) = truth {
-        for (name, p) in ["red", "green", "blue"].iter().zip(m) {
-            let c = xyy(p);
-            println!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
-                c[0], c[1], c[2]
-            );
-        }
-    }
-    let fit_set: Vec<Measurement> = set
-        .iter()
-        .zip(&taken)
-        .filter(|(p, _)| p.kind.for_fit())
-        .map(|(_, m)| *m)
-        .collect();
-    let verify_set: Vec<Measurement> = set
-        .iter()
-        .zip(&taken)
-        .filter(|(p, _)| !p.kind.for_fit())
-        .map(|(_, m)| *m)
-        .collect();
-    fit_and_write(
-        &a.output,
-        &ti3,
-        session.info(),
-        a.matrix,
-        &fit_set,
-        &verify_set,
+/// Writes the readings so far as a CGATS .ti3 (A's writer: ArgyllCMS's layout, normalised to
+/// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
+/// measured), atomically.
+pub fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
+    crate::io::atomic::write(path, cgats::write_ti3(m, info).as_bytes())
+}
+
+/// The readings of the fit patches and of the verification patches of `set`, in order.
+pub fn split(set: &[Patch], taken: &[Measurement]) -> (Vec<Measurement>, Vec<Measurement>) {
+    let (fit, verify): (Vec<_>, Vec<_>) =
+        set.iter().zip(taken).partition(|(p, _)| p.kind.for_fit());
+    (
+        fit.into_iter().map(|(_, m)| *m).collect(),
+        verify.into_iter().map(|(_, m)| *m).collect(),
     )
 }
 
-/// Measures the patches `session` lacks with `--display` and `--instrument` (one patch at a
-/// time, each saved at once). Returns the simulated display's true primaries, if simulated.
-fn measure_direct(
-    a: &RunArgs,
+/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, records where the readings
+/// came from and writes the calibration to `out`.
+pub fn fit_and_save(
+    out: &Path,
+    ti3: &Path,
+    info: &Ti3Info,
+    matrix: MatrixFit,
+    fit_set: &[Measurement],
+    verify_set: &[Measurement],
+) -> Result<Calibration> {
+    let opts = FitOptions {
+        matrix,
+        ..FitOptions::default()
+    };
+    let mut cal = fit::fit_and_verify(fit_set, verify_set, &opts)?;
+    {
+        let (_, prov) = cal.report_mut();
+        prov.source = ti3.display().to_string();
+        prov.instrument = info.instrument.clone().unwrap_or_default();
+        prov.measured = info.created.clone().unwrap_or_default();
+    }
+    cal.save(out)?;
+    Ok(cal)
+}
+
+/// The patch set of a run: `patches` (an ArgyllCMS `.ti1`), or the standard ramps and
+/// verification patches.
+pub fn patch_set(patches: Option<&Path>, ramp_steps: usize, verify: usize) -> Result<Vec<Patch>> {
+    match patches {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| CliError::io(p, e))?;
+            patches::from_devices(&crate::io::ti1::read_ti1(&text, &p.display().to_string())?)
+        }
+        None => patches::standard(ramp_steps, verify),
+    }
+}
+
+/// Where and how a run measures.
+pub struct Devices<'a> {
+    /// `--display`.
+    pub display: &'a str,
+    /// `--instrument`.
+    pub instrument: &'a str,
+    /// `--settle`, ms.
+    pub settle: Option<u64>,
+    /// The readings file (the ArgyllCMS path works beside it).
+    pub ti3: &'a Path,
+}
+
+/// Measures the patches `session` lacks: one at a time with `--display` and `--instrument`
+/// (each saved at once), or a batch at a time with ArgyllCMS's `dispread` (each batch saved
+/// before the next starts). `say` prints a line (the devices, the patch count) before
+/// measuring starts. Returns the simulated display's true primaries, if it is simulated.
+pub fn measure_session(
+    dev: &Devices<'_>,
     set: &[Patch],
     session: &mut Session,
     head: &str,
+    say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<Option<[[f64; 3]; 3]>> {
-    if a.display.starts_with("argyll") {
+    if argyll::is_argyll(dev.instrument) {
+        return measure_with_argyll(dev, set, session, head, say).map(|()| None);
+    }
+    if dev.display.starts_with("argyll") {
         return Err(CliError::usage(
             "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
         ));
     }
-    let display = display::open(&a.display)?;
-    println!("display: {}", display.describe());
-    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
-    println!("instrument: {}", instrument.describe());
-    println!("{head}");
+    let display = patch_display::open(dev.display)?;
+    say(&format!("display: {}", display.describe()))?;
+    let (mut display, mut instrument) = instrument::open(dev.instrument, display)?;
+    say(&format!("instrument: {}", instrument.describe()))?;
+    say(head)?;
     session.set_instrument(instrument.describe());
-    let settle = a
+    let settle = dev
         .settle
         .map(Duration::from_millis)
         .unwrap_or_else(|| display.default_settle());
@@ -344,24 +238,23 @@ fn measure_direct(
     Ok(display.simulation().map(|s| s.model().primaries))
 }
 
-/// Measures the patches `session` lacks with ArgyllCMS's `dispread`, a batch at a time, each
-/// batch saved before the next starts.
 fn measure_with_argyll(
-    a: &RunArgs,
+    dev: &Devices<'_>,
     set: &[Patch],
     session: &mut Session,
     head: &str,
+    say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
-    let ti3 = ti3_path(&a.output);
+    use std::io::IsTerminal;
     let mut reader = argyll::Dispread::open(
-        &a.instrument,
-        &a.display,
-        &ti3,
-        a.settle.map(Duration::from_millis),
+        dev.instrument,
+        dev.display,
+        dev.ti3,
+        dev.settle.map(Duration::from_millis),
     )?;
-    println!("display: {}", reader.describe_display());
-    println!("instrument: {}", reader.describe());
-    println!("{head}");
+    say(&format!("display: {}", reader.describe_display()))?;
+    say(&format!("instrument: {}", reader.describe()))?;
+    say(head)?;
     session.set_instrument(reader.describe());
     if !reader.is_fake() && std::io::stdin().is_terminal() {
         eprintln!(
@@ -373,7 +266,7 @@ fn measure_with_argyll(
             .map_err(|e| CliError::io("stdin", e))?;
     }
     let missing = session.missing();
-    let bar = progress_bar(missing.len());
+    let bar = progress::bar(missing.len() as u64, "measuring", "patches");
     let total = set.len();
     for chunk in missing.chunks(reader.batch()) {
         let devices: Vec<[f64; 3]> = chunk.iter().map(|&i| set[i].device).collect();
@@ -389,49 +282,5 @@ fn measure_with_argyll(
         bar.inc(chunk.len() as u64);
     }
     bar.finish_and_clear();
-    Ok(())
-}
-
-/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, writes `out` and prints the
-/// result.
-fn fit_and_write(
-    out: &Path,
-    ti3: &Path,
-    info: &Ti3Info,
-    matrix: MatrixFit,
-    fit_set: &[Measurement],
-    verify_set: &[Measurement],
-) -> Result<()> {
-    let opts = FitOptions {
-        matrix,
-        ..FitOptions::default()
-    };
-    let mut cal = fit::fit_and_verify(fit_set, verify_set, &opts)?;
-    {
-        let (_, prov) = cal.report_mut();
-        prov.source = ti3.display().to_string();
-        prov.instrument = info.instrument.clone().unwrap_or_default();
-        prov.measured = info.created.clone().unwrap_or_default();
-    }
-    cal.save(out)?;
-    let d = cal.data();
-    println!("fit ({} matrix) → {}", d.fit.matrix, out.display());
-    for (name, p) in ["red", "green", "blue"].iter().zip(d.primaries.array()) {
-        println!(
-            "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (fit)",
-            p.x, p.y, p.luminance
-        );
-    }
-    let r = &d.fit.residual;
-    println!(
-        "  ΔE00 on the {} fit patches: mean {:.2}, max {:.2}",
-        r.patches, r.mean, r.max
-    );
-    if let Some(v) = &d.fit.verification {
-        println!(
-            "  ΔE00 on the {} verification patches: mean {:.2}, 95th percentile {:.2}, max {:.2}",
-            v.patches, v.mean, v.p95, v.max
-        );
-    }
     Ok(())
 }

@@ -17,10 +17,10 @@
 //! FNV-1a (Fowler–Noll–Vo, 64-bit offset basis and prime) is written out here: eight lines,
 //! and a checksum crate would pin a hash this file format must keep stable anyway.
 
-use crate::calibrate::measurement::Measurement;
 use crate::calibrate::patches::Patch;
 use crate::error::{CliError, Result};
 use crate::io::cgats::{self, Ti3Info};
+use crate::measurement::Measurement;
 use std::path::{Path, PathBuf};
 
 /// What to do when the `.ti3` already exists.

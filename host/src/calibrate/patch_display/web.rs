@@ -20,6 +20,7 @@
 
 use super::PatchDisplay;
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 use specpoly_core::quantize8;
 use std::io::{BufRead, BufReader, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
@@ -113,67 +114,37 @@ impl WebDisplay {
         })
     }
 
-    /// Parses `web[:PORT][,wait=SECS][,timeout=SECS]` and starts serving.
-    pub fn from_spec(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let head = parts.next().unwrap_or("web");
-        let port = match head.strip_prefix("web") {
-            Some("") => 0,
-            Some(p) => p
-                .strip_prefix(':')
-                .and_then(|p| p.parse::<u16>().ok())
-                .ok_or_else(|| {
-                    CliError::usage(format!("--display `{spec}`: expected `web` or `web:PORT`"))
-                })?,
-            None => {
-                return Err(CliError::usage(format!(
-                    "--display `{spec}`: not a web display"
-                )))
-            }
+    /// Parses `web[:PORT][,wait=SECS][,timeout=SECS][,size=F][,background=L]` and starts serving.
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let port = match spec.arg {
+            None => 0,
+            Some(p) => p.parse::<u16>().map_err(|_| {
+                CliError::usage(format!(
+                    "--display `{}`: expected `web` or `web:PORT`",
+                    spec.text
+                ))
+            })?,
         };
         let mut first_wait = Duration::from_secs(300);
         let mut timeout = Duration::from_secs(10);
         let mut window = Window::default();
-        for p in parts {
-            let (k, v) = p.split_once('=').unwrap_or((p, ""));
-            let fraction = |lo_open: bool| {
-                v.parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite() && *x <= 1.0 && (*x > 0.0 || (!lo_open && *x == 0.0)))
-                    .ok_or_else(|| {
-                        CliError::usage(format!(
-                            "--display {spec}: `{p}`: expected a number in {}0, 1]",
-                            if lo_open { "(" } else { "[" }
-                        ))
-                    })
-            };
+        for &(k, v) in &spec.options {
             match k {
+                "wait" => first_wait = spec.seconds(k, v)?,
+                "timeout" => timeout = spec.seconds(k, v)?,
                 "size" => {
-                    window.size = fraction(true)?;
-                    continue;
+                    window.size = spec.number(k, v)?;
+                    if !(window.size > 0.0 && window.size <= 1.0) {
+                        return Err(spec.bad(k, v, "expected a fraction of the area in (0, 1]"));
+                    }
                 }
                 "background" => {
-                    window.background = fraction(false)?;
-                    continue;
+                    window.background = spec.number(k, v)?;
+                    if !(0.0..=1.0).contains(&window.background) {
+                        return Err(spec.bad(k, v, "expected a grey level in [0, 1]"));
+                    }
                 }
-                _ => {}
-            }
-            let secs = v
-                .parse::<f64>()
-                .ok()
-                .filter(|s| s.is_finite() && *s > 0.0)
-                .map(Duration::from_secs_f64)
-                .ok_or_else(|| {
-                    CliError::usage(format!("--display {spec}: `{p}`: expected seconds > 0"))
-                })?;
-            match k {
-                "wait" => first_wait = secs,
-                "timeout" => timeout = secs,
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "--display {spec}: unknown option `{p}` (wait, timeout, size, background)"
-                    )))
-                }
+                _ => return Err(spec.unknown(k, "wait, timeout, size, background")),
             }
         }
         let mut d = Self::start(port)?;
@@ -421,7 +392,8 @@ mod tests {
 
     #[test]
     fn window_size_and_background() {
-        let d = WebDisplay::from_spec("web,size=0.1,background=0.2").unwrap();
+        let open = |s: &str| WebDisplay::from_spec(&DeviceSpec::parse(s));
+        let d = open("web,size=0.1,background=0.2").unwrap();
         let page = get(d.addr, "/");
         // a 10 % window: sides √0.1 = 31.6228 % of the screen's, centred
         assert!(page.contains("width:31.6228%;height:31.6228%"), "{page}");
@@ -436,7 +408,7 @@ mod tests {
             "web,background=-0.1",
             "web,size=x",
         ] {
-            assert!(WebDisplay::from_spec(bad).is_err(), "{bad}");
+            assert!(open(bad).is_err(), "{bad}");
         }
     }
 }

@@ -1,0 +1,204 @@
+//! `specpoly calibrate run`: measures a display ([`crate::calibrate::run`]) and prints what it
+//! does as it goes.
+//!
+//! ```text
+//! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
+//!                        [--patches SET.ti1] [--resume | --force]
+//! ```
+//! writes `CAL.ti3` (every reading, committed atomically as it is taken; never overwritten:
+//! see [`crate::calibrate::session`]) and `CAL.toml` (the fit of the non-verification
+//! patches).
+
+use crate::calibrate::file::{self, Calibration};
+use crate::calibrate::fit::MatrixFit;
+use crate::calibrate::interrupt;
+use crate::calibrate::run::{
+    fit_and_save, measure_session, patch_set, raw_primaries, split, ti3_path, Devices,
+};
+use crate::calibrate::session::{Existing, Session};
+use crate::error::{CliError, Result};
+use crate::io::cgats::Ti3Info;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `specpoly calibrate run`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Where patches are shown: `web[:PORT]` (a page on 127.0.0.1; open the printed URL),
+    /// `led:PORT` (the RGB-LED controller), `manual` (prints the RGB, waits for Enter),
+    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`), `argyll[:N]`
+    /// (ArgyllCMS's patch window, with `--instrument argyll`).
+    #[arg(long, value_name = "DISPLAY")]
+    pub display: String,
+    /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode),
+    /// `argyll[:options]` (any ArgyllCMS instrument, through `dispread`; with `--display
+    /// argyll[:N]`), `sim` (reads `--display sim:…`), `sim:SPD[,options]` (simulates what
+    /// `--display` shows).
+    #[arg(long, value_name = "INSTRUMENT")]
+    pub instrument: String,
+    /// The calibration to write (TOML); the readings go beside it with extension `.ti3`.
+    #[arg(short, long, value_name = "CAL.toml")]
+    pub output: PathBuf,
+    /// Levels per channel ramp, 0 and 1 included (2–256).
+    #[arg(long, default_value_t = 9, value_name = "N")]
+    pub ramp_steps: usize,
+    /// Verification patches (spread over the RGB cube; measured, not fitted).
+    #[arg(long, default_value_t = 16, value_name = "N")]
+    pub verify: usize,
+    /// Wait after a patch is on screen before reading it, ms [default: 0 for sim and manual,
+    /// 100 for led, 500 for web].
+    #[arg(long, value_name = "MS")]
+    pub settle: Option<u64>,
+    /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
+    /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
+    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
+    pub matrix: MatrixFit,
+    /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
+    /// `calibrate patches`) instead of the ramps; every patch is fitted.
+    #[arg(long, value_name = "SET.ti1")]
+    pub patches: Option<PathBuf>,
+    /// `CAL.ti3` exists: measure only the patches it lacks (same patch set only).
+    #[arg(long, conflicts_with = "force")]
+    pub resume: bool,
+    /// `CAL.ti3` exists: keep it as `CAL.ti3.1` (`.2`, …) and start over.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Prints one line on stdout.
+fn line(s: &str) -> Result<()> {
+    crate::io::stdout::print(&format!("{s}\n"))
+}
+
+/// The chromaticity and luminance of an XYZ.
+fn xyy(p: [f64; 3]) -> [f64; 3] {
+    let s = p[0] + p[1] + p[2];
+    if s > 0.0 {
+        [p[0] / s, p[1] / s, p[1]]
+    } else {
+        [0.0, 0.0, p[1]]
+    }
+}
+
+/// Runs `specpoly calibrate run`.
+pub fn run(a: &RunArgs) -> Result<()> {
+    let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify)?;
+    let ti3 = ti3_path(&a.output);
+    if ti3 == a.output {
+        return Err(CliError::usage(format!(
+            "-o {}: name the calibration `.toml`; the readings go to `.ti3` beside it",
+            a.output.display()
+        )));
+    }
+    let existing = if a.resume {
+        Existing::Resume
+    } else if a.force {
+        Existing::Force
+    } else {
+        Existing::Refuse
+    };
+    let info = Ti3Info {
+        descriptor: "specpoly calibrate run".into(),
+        instrument: None,
+        created: Some(file::now_utc()),
+        absolute: true,
+        keywords: Vec::new(),
+    };
+    let (mut session, note) = Session::open(&ti3, &set, existing, info)?;
+    if let Some(n) = note {
+        eprintln!("{n}");
+    }
+    interrupt::install();
+    let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
+    let head = format!(
+        "{} patches ({} for the fit, {} to verify); readings → {}",
+        set.len(),
+        set.len() - n_verify,
+        n_verify,
+        ti3.display()
+    );
+    let devices = Devices {
+        display: &a.display,
+        instrument: &a.instrument,
+        settle: a.settle,
+        ti3: &ti3,
+    };
+    let truth =
+        measure_session(&devices, &set, &mut session, &head, &mut |s| line(s)).map_err(|e| {
+            let n = session.taken();
+            let kept = if n == 0 {
+                "no readings taken".to_string()
+            } else {
+                format!(
+                    "{n} readings kept in {} (run again with --resume to measure the other {})",
+                    ti3.display(),
+                    set.len() - n
+                )
+            };
+            match e {
+                CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
+                e => CliError::data(format!("{e}; {kept}")),
+            }
+        })?;
+    let taken = session.measurements();
+    line(&format!(
+        "measured {} patches → {}",
+        taken.len(),
+        ti3.display()
+    ))?;
+    if let Some(p) = raw_primaries(&set, &taken) {
+        for (name, p) in ["red", "green", "blue"].iter().zip(p) {
+            let c = xyy(p);
+            line(&format!(
+                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (reading − black)",
+                c[0], c[1], c[2]
+            ))?;
+        }
+    }
+    if let Some(m) = truth {
+        for (name, p) in ["red", "green", "blue"].iter().zip(m) {
+            let c = xyy(p);
+            line(&format!(
+                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
+                c[0], c[1], c[2]
+            ))?;
+        }
+    }
+    let (fit_set, verify_set) = split(&set, &taken);
+    let cal = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix,
+        &fit_set,
+        &verify_set,
+    )?;
+    print_fit(&cal, &a.output)
+}
+
+/// Prints the fitted primaries and the fit's ΔE00.
+fn print_fit(cal: &Calibration, out: &Path) -> Result<()> {
+    let d = cal.data();
+    line(&format!(
+        "fit ({} matrix) → {}",
+        d.fit.matrix,
+        out.display()
+    ))?;
+    for (name, p) in ["red", "green", "blue"].iter().zip(d.primaries.array()) {
+        line(&format!(
+            "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (fit)",
+            p.x, p.y, p.luminance
+        ))?;
+    }
+    let r = &d.fit.residual;
+    line(&format!(
+        "  ΔE00 on the {} fit patches: mean {:.2}, max {:.2}",
+        r.n, r.mean, r.max
+    ))?;
+    if let Some(v) = &d.fit.verification {
+        line(&format!(
+            "  ΔE00 on the {} verification patches: mean {:.2}, 95th percentile {:.2}, max {:.2}",
+            v.n, v.mean, v.p95, v.max
+        ))?;
+    }
+    Ok(())
+}
