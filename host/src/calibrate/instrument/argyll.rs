@@ -46,6 +46,7 @@
 
 use crate::calibrate::interrupt;
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 use crate::io::{cgats, ti1};
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
@@ -86,21 +87,19 @@ pub fn is_argyll(spec: &str) -> bool {
 }
 
 impl DisplayOptions {
-    /// Parses `argyll[:N|:web[:PORT]|:fake[:ICC]][,scale=S][,fill]`.
-    pub fn parse(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let head = parts.next().unwrap_or("");
+    /// Parses `argyll[:N|:web[:PORT]|:fake[:ICC]|:dummy][,scale=S][,fill]` (the project's
+    /// one device-spec parser, [`DeviceSpec`]).
+    pub fn parse(text: &str) -> Result<Self> {
+        let spec = DeviceSpec::parse(text);
         let usage = || {
             CliError::usage(format!(
-                "--display `{spec}`: with --instrument argyll, ArgyllCMS shows the patches: `argyll[:N]` (its window on display N), `argyll:web[:PORT]`, `argyll:fake[:PROFILE.icc]` or `argyll:dummy`, options `scale=S`, `fill`"
+                "--display `{text}`: with --instrument argyll, ArgyllCMS shows the patches: `argyll[:N]` (its window on display N), `argyll:web[:PORT]`, `argyll:fake[:PROFILE.icc]` or `argyll:dummy`, options `scale=S`, `fill`"
             ))
         };
-        let rest = match head.strip_prefix("argyll") {
-            Some("") => None,
-            Some(r) => Some(r.strip_prefix(':').ok_or_else(usage)?),
-            None => return Err(usage()),
-        };
-        let display = match rest {
+        if spec.kind != "argyll" {
+            return Err(usage());
+        }
+        let display = match spec.arg {
             None => ArgyllDisplay::Screen(1),
             Some("web") => ArgyllDisplay::Web(None),
             Some("fake") => ArgyllDisplay::Fake(None),
@@ -112,7 +111,7 @@ impl DisplayOptions {
                 let p = PathBuf::from(&r[5..]);
                 if !p.is_file() {
                     return Err(CliError::data(format!(
-                        "--display {spec}: no profile {}",
+                        "--display {text}: no profile {}",
                         p.display()
                     )));
                 }
@@ -130,26 +129,17 @@ impl DisplayOptions {
             scale: None,
             fill: false,
         };
-        for p in parts {
-            match p.split_once('=') {
-                Some(("scale", v)) => {
-                    o.scale = Some(
-                        v.parse::<f64>()
-                            .ok()
-                            .filter(|s| s.is_finite() && *s > 0.0 && *s <= 100.0)
-                            .ok_or_else(|| {
-                                CliError::usage(format!(
-                                    "--display {spec}: scale `{v}`: expected a number in (0, 100]"
-                                ))
-                            })?,
-                    )
+        for &(k, v) in &spec.options {
+            match k {
+                "scale" => {
+                    let x = spec.number(k, v)?;
+                    if !(x > 0.0 && x <= 100.0) {
+                        return Err(spec.bad(k, v, "expected a scale in (0, 100]"));
+                    }
+                    o.scale = Some(x);
                 }
-                None if p == "fill" => o.fill = true,
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "--display {spec}: unknown option `{p}` (scale=S, fill)"
-                    )))
-                }
+                "fill" if v.is_empty() => o.fill = true,
+                _ => return Err(spec.unknown(k, "scale=S, fill")),
             }
         }
         Ok(o)
@@ -186,30 +176,39 @@ pub struct ArgyllOptions {
 }
 
 impl ArgyllOptions {
-    /// Parses what follows `argyll:` (see the module docs).
-    pub fn parse(opts: &str) -> Result<Self> {
+    /// Parses `argyll[:OPTION][,OPTION…]` (see the module docs) with the project's one
+    /// device-spec parser, [`DeviceSpec`]: the first option may follow the `:`.
+    pub fn parse(text: &str) -> Result<Self> {
+        let spec = DeviceSpec::parse(text);
+        if spec.kind != "argyll" {
+            return Err(CliError::usage(format!(
+                "--instrument `{text}`: expected `argyll[:options]`"
+            )));
+        }
+        let mut options: Vec<(&str, &str)> = Vec::new();
+        if let Some(first) = spec.arg.filter(|a| !a.is_empty()) {
+            options.push(first.split_once('=').unwrap_or((first, "")));
+        }
+        options.extend(spec.options.iter().copied());
         let mut o = Self {
             args: Vec::new(),
             batch: 12,
             timeout: Duration::from_secs(30),
         };
-        for p in opts.split(',').filter(|p| !p.is_empty()) {
-            let (k, v) = p.split_once('=').unwrap_or((p, ""));
-            let bad = |what: &str| CliError::usage(format!("--instrument argyll: `{p}`: {what}"));
+        for (k, v) in options {
             let word = |v: &str| {
                 if v.is_empty() || v.contains(char::is_whitespace) {
-                    Err(bad("expected one word"))
+                    Err(spec.bad(k, v, "expected one word"))
                 } else {
                     Ok(v.to_string())
                 }
             };
             match k {
                 "c" => {
-                    let n: u32 = v
-                        .parse()
-                        .ok()
-                        .filter(|n| *n >= 1)
-                        .ok_or_else(|| bad("expected the instrument's number, 1 or more"))?;
+                    let n: u32 = spec.integer(k, v)?;
+                    if n < 1 {
+                        return Err(spec.bad(k, v, "instruments are numbered from 1"));
+                    }
                     o.args.extend(["-c".into(), n.to_string()]);
                 }
                 "y" => o.args.extend(["-y".into(), word(v)?]),
@@ -217,7 +216,7 @@ impl ArgyllOptions {
                     let f = Path::new(v);
                     if !f.is_file() {
                         return Err(CliError::data(format!(
-                            "--instrument argyll: correction file `{v}` not found"
+                            "--instrument {text}: correction file `{v}` not found"
                         )));
                     }
                     let abs = std::fs::canonicalize(f).map_err(|e| CliError::io(f, e))?;
@@ -227,36 +226,33 @@ impl ArgyllOptions {
                 "fixed" if v.is_empty() => o.args.extend(["-Y".into(), "A".into()]),
                 "hires" if v.is_empty() => o.args.push("-H".into()),
                 "rate" => {
-                    let hz: f64 = v
-                        .parse()
-                        .ok()
-                        .filter(|h: &f64| h.is_finite() && *h > 0.0)
-                        .ok_or_else(|| bad("expected a refresh rate in Hz"))?;
+                    let hz = spec.number(k, v)?;
+                    if hz <= 0.0 {
+                        return Err(spec.bad(k, v, "expected a refresh rate in Hz"));
+                    }
                     o.args.extend(["-Y".into(), format!("R:{hz}")]);
                 }
                 "drift" if matches!(v, "b" | "w" | "bw") => {
                     o.args.extend(["-I".into(), v.to_string()])
                 }
                 "batch" => {
-                    o.batch = v
-                        .parse()
-                        .ok()
-                        .filter(|n| (1..=1000).contains(n))
-                        .ok_or_else(|| bad("expected 1–1000 patches"))?
+                    o.batch = spec.integer(k, v)?;
+                    if !(1..=1000).contains(&o.batch) {
+                        return Err(spec.bad(k, v, "expected 1–1000 patches"));
+                    }
                 }
                 "timeout" => {
-                    o.timeout = v
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|s| s.is_finite() && *s > 0.0 && *s <= 3600.0)
-                        .map(Duration::from_secs_f64)
-                        .ok_or_else(|| bad("expected seconds in (0, 3600]"))?
+                    o.timeout = spec.seconds(k, v)?;
+                    if o.timeout > Duration::from_secs(3600) {
+                        return Err(spec.bad(k, v, "at most 3600 s"));
+                    }
                 }
                 "arg" => o.args.push(word(v)?),
                 _ => {
-                    return Err(CliError::usage(format!(
-                        "--instrument argyll: unknown option `{p}` (c=N, y=X, x=FILE, q=OBS, fixed, rate=HZ, hires, drift=b|w|bw, batch=N, timeout=SECS, arg=A)"
-                    )))
+                    return Err(spec.unknown(
+                        k,
+                        "c=N, y=X, x=FILE, q=OBS, fixed, rate=HZ, hires, drift=b|w|bw, batch=N, timeout=SECS, arg=A",
+                    ))
                 }
             }
         }
@@ -312,11 +308,7 @@ impl Dispread {
         ti3: &Path,
         settle: Option<Duration>,
     ) -> Result<Self> {
-        let opts = instrument
-            .strip_prefix("argyll")
-            .map(|r| r.strip_prefix(':').unwrap_or(r))
-            .unwrap_or("");
-        let options = ArgyllOptions::parse(opts)?;
+        let options = ArgyllOptions::parse(instrument)?;
         let display = DisplayOptions::parse(display)?;
         let program = find_program("dispread").ok_or_else(not_installed)?;
         let parent = match ti3.parent() {
@@ -620,17 +612,24 @@ mod tests {
 
     #[test]
     fn parses_options() {
-        let o = ArgyllOptions::parse("c=2,y=e,fixed,rate=60,batch=5,timeout=3,arg=-Ib").unwrap();
+        let o =
+            ArgyllOptions::parse("argyll:c=2,y=e,fixed,rate=60,batch=5,timeout=3,arg=-Ib").unwrap();
         assert_eq!(
             o.args,
             ["-c", "2", "-y", "e", "-Y", "A", "-Y", "R:60", "-Ib"].map(String::from)
         );
         assert_eq!(o.batch, 5);
         assert_eq!(o.timeout, Duration::from_secs(3));
-        assert!(ArgyllOptions::parse("c=0").is_err());
-        assert!(ArgyllOptions::parse("batch=0").is_err());
-        assert!(ArgyllOptions::parse("x=/nonexistent.ccss").is_err());
-        assert!(ArgyllOptions::parse("wat").is_err());
+        assert_eq!(
+            ArgyllOptions::parse("argyll").unwrap().args,
+            Vec::<String>::new()
+        );
+        assert_eq!(ArgyllOptions::parse("argyll,hires").unwrap().args, ["-H"]);
+        assert!(ArgyllOptions::parse("argyll:c=0").is_err());
+        assert!(ArgyllOptions::parse("argyll:batch=0").is_err());
+        assert!(ArgyllOptions::parse("argyll:x=/nonexistent.ccss").is_err());
+        assert!(ArgyllOptions::parse("argyll:wat").is_err());
+        assert!(ArgyllOptions::parse("serial:x").is_err());
         let d = DisplayOptions::parse("argyll:2,scale=0.5,fill").unwrap();
         assert_eq!(
             d.args(),
