@@ -128,7 +128,11 @@ fn ctrl_c_returns_the_instrument_to_local_mode_and_keeps_the_readings() {
     assert_eq!(e.lines().count(), 1, "{e}");
     assert!(e.contains("interrupted (Ctrl-C)"), "{e}");
     assert!(e.contains("readings kept in"), "{e}");
-    std::thread::sleep(Duration::from_millis(100));
+    // the emulator may still be integrating the interrupted M1 when Q arrives
+    let t = std::time::Instant::now();
+    while emu.quits.load(Ordering::SeqCst) == 0 && t.elapsed() < Duration::from_secs(3) {
+        std::thread::sleep(Duration::from_millis(10));
+    }
     assert_eq!(emu.quits.load(Ordering::SeqCst), 1, "Q sent on Ctrl-C");
     let text = std::fs::read_to_string(cal.with_extension("ti3")).unwrap();
     let n = specpoly::io::cgats::read_ti3(&text, "cal.ti3")
