@@ -71,12 +71,8 @@ fn line(s: &str) -> Result<()> {
 
 /// The chromaticity and luminance of an XYZ.
 fn xyy(p: [f64; 3]) -> [f64; 3] {
-    let s = p[0] + p[1] + p[2];
-    if s > 0.0 {
-        [p[0] / s, p[1] / s, p[1]]
-    } else {
-        [0.0, 0.0, p[1]]
-    }
+    let [x, y] = specpoly_core::chromaticity(p, [1.0; 3]);
+    [x, y, p[1]]
 }
 
 /// Runs `specpoly calibrate run`.
