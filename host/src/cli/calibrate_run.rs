@@ -69,7 +69,8 @@ fn line(s: &str) -> Result<()> {
     crate::io::stdout::print(&format!("{s}\n"))
 }
 
-/// The chromaticity and luminance of an XYZ.
+/// The chromaticity ([`specpoly_core::chromaticity`]; a black reading shows the equal-energy
+/// point) and luminance of an XYZ.
 fn xyy(p: [f64; 3]) -> [f64; 3] {
     let [x, y] = specpoly_core::chromaticity(p, [1.0; 3]);
     [x, y, p[1]]
