@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
-# target, QEMU for the firmware, Chromium for the web patch display), then formatting, lints,
+# target, QEMU for the firmware, Chromium for the web patch display, ArgyllCMS for the
+# `--instrument argyll` tests), then formatting, lints,
 # all tests (host, core, cross-crate, firmware under QEMU) and the microcontroller build of the
 # core. Stops with a clear message if something cannot be installed; never skips a test.
 set -euo pipefail
@@ -11,6 +12,7 @@ say "checking tools"
 missing=()
 command -v qemu-system-arm >/dev/null 2>&1 || missing+=(qemu-system-arm)
 command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+command -v spotread >/dev/null 2>&1 || missing+=(argyll)
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing ${missing[*]} (apt)"
@@ -22,7 +24,7 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium; do
+for tool in qemu-system-arm chromium spotread dispread targen; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then

@@ -166,7 +166,7 @@ fn manual_display_waits_for_enter() {
     assert!(done.stderr.contains("set RGB 255 255 255"), "{done:?}");
     assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), n);
 
-    // `q` stops; what was measured stays
+    // `q` stops; what was measured stays (--force: the first run's readings go to m.ti3.1)
     let mut run = common::start(&[
         "calibrate",
         "run",
@@ -174,6 +174,7 @@ fn manual_display_waits_for_enter() {
         "manual",
         "--instrument",
         "sim:crt",
+        "--force",
         "-o",
         cal.to_str().unwrap(),
     ]);
@@ -183,6 +184,7 @@ fn manual_display_waits_for_enter() {
     assert!(done.stderr.contains("stopped by the user"), "{done:?}");
     assert!(done.stderr.contains("3 readings kept in"), "{done:?}");
     assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), 3);
+    assert_eq!(ti3_rows(&dir.path().join("m.ti3.1")).len(), n);
 }
 
 #[test]

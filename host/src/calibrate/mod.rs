@@ -5,9 +5,11 @@ pub mod file;
 pub mod fit;
 pub mod icc;
 pub mod instrument;
+pub mod interrupt;
 pub mod patch_display;
 pub mod patches;
 pub mod run;
+pub mod session;
 pub mod sim;
 pub mod verify;
 

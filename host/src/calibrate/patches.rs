@@ -28,6 +28,8 @@ pub enum PatchKind {
     Grey,
     /// A verification colour (not used by the fit).
     Verify,
+    /// Any other colour of a patch set read from a file (used by the fit).
+    Mixed,
 }
 
 impl PatchKind {
@@ -41,6 +43,7 @@ impl PatchKind {
             PatchKind::Ramp(_) => "blue",
             PatchKind::Grey => "grey",
             PatchKind::Verify => "verify",
+            PatchKind::Mixed => "mixed",
         }
     }
 
@@ -119,6 +122,34 @@ pub fn standard(ramp_steps: usize, verify: usize) -> Result<Vec<Patch>> {
         }
     }
     Ok(out)
+}
+
+/// The kind of a patch given by its device values: black, white, a single-channel ramp step,
+/// grey, or mixed.
+pub fn classify(d: [f64; 3]) -> PatchKind {
+    let lit: Vec<usize> = (0..3).filter(|&k| d[k] > 0.0).collect();
+    match lit.as_slice() {
+        [] => PatchKind::Black,
+        [ch] => PatchKind::Ramp(*ch),
+        _ if d[0] == d[1] && d[1] == d[2] && d[0] >= 1.0 => PatchKind::White,
+        _ if d[0] == d[1] && d[1] == d[2] => PatchKind::Grey,
+        _ => PatchKind::Mixed,
+    }
+}
+
+/// A patch set read from a file (an ArgyllCMS `.ti1`, e.g. from `targen`): the patches in file
+/// order, each classified by [`classify`] and all used by the fit. Fails on an empty set.
+pub fn from_devices(devices: &[[f64; 3]]) -> Result<Vec<Patch>> {
+    if devices.is_empty() {
+        return Err(CliError::data("the patch set is empty"));
+    }
+    Ok(devices
+        .iter()
+        .map(|&device| Patch {
+            kind: classify(device),
+            device,
+        })
+        .collect())
 }
 
 #[cfg(test)]

@@ -3,15 +3,21 @@
 //!
 //! ```text
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
+//!                        [--patches SET.ti1] [--resume | --force]
 //! ```
-//! writes `CAL.ti3` (all readings, rewritten atomically after each patch so an interrupted run
-//! keeps what it measured) and `CAL.toml` (the fit of the non-verification patches).
+//! writes `CAL.ti3` (all readings, rewritten atomically after each patch — or each batch with
+//! `--instrument argyll` — so an interrupted run keeps what it measured; see
+//! [`crate::calibrate::session`]) and `CAL.toml` (the fit of the non-verification patches).
+//! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
+//! `--force` keeps it as `CAL.ti3.1` (`.2`, …) and starts over.
 
 use crate::calibrate::file::Calibration;
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
-use crate::calibrate::instrument::{self, Instrument};
+use crate::calibrate::instrument::{self, argyll, Instrument};
+use crate::calibrate::interrupt;
 use crate::calibrate::patch_display::{self, PatchDisplay};
-use crate::calibrate::patches::Patch;
+use crate::calibrate::patches::{self, Patch};
+use crate::calibrate::session::Session;
 use crate::error::{CliError, Result};
 use crate::io::cgats::{self, Ti3Info};
 use crate::io::progress;
@@ -60,6 +66,13 @@ pub fn measure_all(
                 _ => CliError::data(msg),
             }
         };
+        if interrupt::requested() {
+            bar.abandon();
+            return Err(Interrupted {
+                error: at(CliError::data(interrupt::MESSAGE)),
+                taken,
+            });
+        }
         let reading = display
             .show(p.device)
             .and_then(|()| {
@@ -160,4 +173,114 @@ pub fn fit_and_save(
     }
     cal.save(out)?;
     Ok(cal)
+}
+
+/// The patch set of a run: `patches` (an ArgyllCMS `.ti1`), or the standard ramps and
+/// verification patches.
+pub fn patch_set(patches: Option<&Path>, ramp_steps: usize, verify: usize) -> Result<Vec<Patch>> {
+    match patches {
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|e| CliError::io(p, e))?;
+            patches::from_devices(&crate::io::ti1::read_ti1(&text, &p.display().to_string())?)
+        }
+        None => patches::standard(ramp_steps, verify),
+    }
+}
+
+/// Where and how a run measures.
+pub struct Devices<'a> {
+    /// `--display`.
+    pub display: &'a str,
+    /// `--instrument`.
+    pub instrument: &'a str,
+    /// `--settle`, ms.
+    pub settle: Option<u64>,
+    /// The readings file (the ArgyllCMS path works beside it).
+    pub ti3: &'a Path,
+}
+
+/// Measures the patches `session` lacks: one at a time with `--display` and `--instrument`
+/// (each saved at once), or a batch at a time with ArgyllCMS's `dispread` (each batch saved
+/// before the next starts). `say` prints a line (the devices, the patch count) before
+/// measuring starts. Returns the simulated display's true primaries, if it is simulated.
+pub fn measure_session(
+    dev: &Devices<'_>,
+    set: &[Patch],
+    session: &mut Session,
+    head: &str,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+) -> Result<Option<[[f64; 3]; 3]>> {
+    if argyll::is_argyll(dev.instrument) {
+        return measure_with_argyll(dev, set, session, head, say).map(|()| None);
+    }
+    if dev.display.starts_with("argyll") {
+        return Err(CliError::usage(
+            "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
+        ));
+    }
+    let display = patch_display::open(dev.display)?;
+    say(&format!("display: {}", display.describe()))?;
+    let (mut display, mut instrument) = instrument::open(dev.instrument, display)?;
+    say(&format!("instrument: {}", instrument.describe()))?;
+    say(head)?;
+    session.set_instrument(instrument.describe());
+    let settle = dev
+        .settle
+        .map(Duration::from_millis)
+        .unwrap_or_else(|| display.default_settle());
+    let missing = session.missing();
+    let todo: Vec<Patch> = missing.iter().map(|&i| set[i]).collect();
+    measure_all(display.as_mut(), instrument.as_mut(), &todo, settle, |m| {
+        let k = m.len() - 1;
+        session.record(missing[k], m[k].xyz)
+    })
+    .map_err(|i| i.error)?;
+    Ok(display.simulation().map(|s| s.model().primaries))
+}
+
+fn measure_with_argyll(
+    dev: &Devices<'_>,
+    set: &[Patch],
+    session: &mut Session,
+    head: &str,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+) -> Result<()> {
+    use std::io::IsTerminal;
+    let mut reader = argyll::Dispread::open(
+        dev.instrument,
+        dev.display,
+        dev.ti3,
+        dev.settle.map(Duration::from_millis),
+    )?;
+    say(&format!("display: {}", reader.describe_display()))?;
+    say(&format!("instrument: {}", reader.describe()))?;
+    say(head)?;
+    session.set_instrument(reader.describe());
+    if !reader.is_fake() && std::io::stdin().is_terminal() {
+        eprintln!(
+            "put the instrument on the middle of the screen (where ArgyllCMS's patch window opens) and press Enter"
+        );
+        let mut line = String::new();
+        std::io::stdin()
+            .read_line(&mut line)
+            .map_err(|e| CliError::io("stdin", e))?;
+    }
+    let missing = session.missing();
+    let bar = progress::bar(missing.len() as u64, "measuring", "patches");
+    let total = set.len();
+    for chunk in missing.chunks(reader.batch()) {
+        let devices: Vec<[f64; 3]> = chunk.iter().map(|&i| set[i].device).collect();
+        let first = chunk[0] + 1;
+        let last = chunk[chunk.len() - 1] + 1;
+        let xyz = reader.measure(&devices).map_err(|e| {
+            bar.abandon();
+            CliError::data(format!("patches {first}–{last} of {total}: {e}"))
+        })?;
+        let rows: Vec<(usize, [f64; 3])> = chunk.iter().copied().zip(xyz).collect();
+        session.set_instrument(reader.describe());
+        session.record_all(&rows)?;
+        bar.inc(chunk.len() as u64);
+    }
+    bar.finish_and_clear();
+    Ok(())
 }

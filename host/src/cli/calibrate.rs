@@ -27,6 +27,23 @@ pub enum CalibrateCommand {
     Icc(IccArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
     Run(crate::cli::calibrate_run::RunArgs),
+    /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
+    /// give back with `run --patches`).
+    Patches(PatchesArgs),
+}
+
+/// `calibrate patches`.
+#[derive(Debug, clap::Args)]
+pub struct PatchesArgs {
+    /// The patch set to write (CGATS CTI1).
+    #[arg(short, long, value_name = "SET.ti1")]
+    pub output: PathBuf,
+    /// Levels per channel ramp, 0 and 1 included (2–256).
+    #[arg(long, default_value_t = 9, value_name = "N")]
+    pub ramp_steps: usize,
+    /// Verification patches (spread over the RGB cube).
+    #[arg(long, default_value_t = 16, value_name = "N")]
+    pub verify: usize,
 }
 
 /// `calibrate fit`.
@@ -104,7 +121,17 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
         CalibrateCommand::Verify(a) => verify_cmd(&a),
         CalibrateCommand::Icc(a) => icc_cmd(&a),
         CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
+        CalibrateCommand::Patches(a) => patches_cmd(&a),
     }
+}
+
+fn patches_cmd(a: &PatchesArgs) -> Result<()> {
+    let set = crate::calibrate::patches::standard(a.ramp_steps, a.verify)?;
+    let devices: Vec<[f64; 3]> = set.iter().map(|p| p.device).collect();
+    let text = crate::io::ti1::write_ti1(&devices, "specpoly calibrate patches");
+    crate::io::atomic::write(&a.output, text.as_bytes())?;
+    eprintln!("wrote {} ({} patches)", a.output.display(), set.len());
+    Ok(())
 }
 
 fn fit_cmd(a: &FitArgs) -> Result<()> {

@@ -3,29 +3,36 @@
 //!
 //! ```text
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
+//!                        [--patches SET.ti1] [--resume | --force]
 //! ```
-//! writes `CAL.ti3` (all readings, rewritten atomically after each patch so an interrupted run
-//! keeps what it measured) and `CAL.toml` (the fit of the non-verification patches).
+//! writes `CAL.ti3` (every reading, committed atomically as it is taken; never overwritten:
+//! see [`crate::calibrate::session`]) and `CAL.toml` (the fit of the non-verification
+//! patches).
 
 use crate::calibrate::file::{self, Calibration};
 use crate::calibrate::fit::MatrixFit;
-use crate::calibrate::run::{fit_and_save, measure_all, raw_primaries, save_ti3, split, ti3_path};
-use crate::calibrate::{instrument, patch_display, patches};
+use crate::calibrate::interrupt;
+use crate::calibrate::run::{
+    fit_and_save, measure_session, patch_set, raw_primaries, split, ti3_path, Devices,
+};
+use crate::calibrate::session::{Existing, Session};
 use crate::error::{CliError, Result};
 use crate::io::cgats::Ti3Info;
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 /// Arguments of `specpoly calibrate run`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct RunArgs {
     /// Where patches are shown: `web[:PORT]` (a page on 127.0.0.1; open the printed URL),
     /// `led:PORT` (the RGB-LED controller), `manual` (prints the RGB, waits for Enter),
-    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`).
+    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`), `argyll[:N]`
+    /// (ArgyllCMS's patch window, with `--instrument argyll`).
     #[arg(long, value_name = "DISPLAY")]
     pub display: String,
-    /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode), `sim`
-    /// (reads `--display sim:…`), `sim:SPD[,options]` (simulates what `--display` shows).
+    /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode),
+    /// `argyll[:options]` (any ArgyllCMS instrument, through `dispread`; with `--display
+    /// argyll[:N]`), `sim` (reads `--display sim:…`), `sim:SPD[,options]` (simulates what
+    /// `--display` shows).
     #[arg(long, value_name = "INSTRUMENT")]
     pub instrument: String,
     /// The calibration to write (TOML); the readings go beside it with extension `.ti3`.
@@ -45,6 +52,16 @@ pub struct RunArgs {
     /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
     #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
     pub matrix: MatrixFit,
+    /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
+    /// `calibrate patches`) instead of the ramps; every patch is fitted.
+    #[arg(long, value_name = "SET.ti1")]
+    pub patches: Option<PathBuf>,
+    /// `CAL.ti3` exists: measure only the patches it lacks (same patch set only).
+    #[arg(long, conflicts_with = "force")]
+    pub resume: bool,
+    /// `CAL.ti3` exists: keep it as `CAL.ti3.1` (`.2`, …) and start over.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Prints one line on stdout.
@@ -61,7 +78,7 @@ fn xyy(p: [f64; 3]) -> [f64; 3] {
 
 /// Runs `specpoly calibrate run`.
 pub fn run(a: &RunArgs) -> Result<()> {
-    let set = patches::standard(a.ramp_steps, a.verify)?;
+    let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify)?;
     let ti3 = ti3_path(&a.output);
     if ti3 == a.output {
         return Err(CliError::usage(format!(
@@ -69,42 +86,57 @@ pub fn run(a: &RunArgs) -> Result<()> {
             a.output.display()
         )));
     }
-    let display = patch_display::open(&a.display)?;
-    line(&format!("display: {}", display.describe()))?;
-    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
-    line(&format!("instrument: {}", instrument.describe()))?;
+    let existing = if a.resume {
+        Existing::Resume
+    } else if a.force {
+        Existing::Force
+    } else {
+        Existing::Refuse
+    };
+    let info = Ti3Info {
+        descriptor: "specpoly calibrate run".into(),
+        instrument: None,
+        created: Some(file::now_utc()),
+        absolute: true,
+        keywords: Vec::new(),
+    };
+    let (mut session, note) = Session::open(&ti3, &set, existing, info)?;
+    if let Some(n) = note {
+        eprintln!("{n}");
+    }
+    interrupt::install();
     let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
-    line(&format!(
+    let head = format!(
         "{} patches ({} for the fit, {} to verify); readings → {}",
         set.len(),
         set.len() - n_verify,
         n_verify,
         ti3.display()
-    ))?;
-    let settle = a
-        .settle
-        .map(Duration::from_millis)
-        .unwrap_or_else(|| display.default_settle());
-    let info = Ti3Info {
-        descriptor: "specpoly calibrate run".into(),
-        instrument: Some(instrument.describe()),
-        created: Some(file::now_utc()),
-        absolute: true,
+    );
+    let devices = Devices {
+        display: &a.display,
+        instrument: &a.instrument,
+        settle: a.settle,
+        ti3: &ti3,
     };
-    let taken = measure_all(display.as_mut(), instrument.as_mut(), &set, settle, |m| {
-        save_ti3(&ti3, m, &info)
-    })
-    .map_err(|i| {
-        let kept = if i.taken.is_empty() {
-            "no readings taken".to_string()
-        } else {
-            format!("{} readings kept in {}", i.taken.len(), ti3.display())
-        };
-        match i.error {
-            CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
-            e => CliError::data(format!("{e}; {kept}")),
-        }
-    })?;
+    let truth =
+        measure_session(&devices, &set, &mut session, &head, &mut |s| line(s)).map_err(|e| {
+            let n = session.taken();
+            let kept = if n == 0 {
+                "no readings taken".to_string()
+            } else {
+                format!(
+                    "{n} readings kept in {} (run again with --resume to measure the other {})",
+                    ti3.display(),
+                    set.len() - n
+                )
+            };
+            match e {
+                CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
+                e => CliError::data(format!("{e}; {kept}")),
+            }
+        })?;
+    let taken = session.measurements();
     line(&format!(
         "measured {} patches → {}",
         taken.len(),
@@ -119,9 +151,8 @@ pub fn run(a: &RunArgs) -> Result<()> {
             ))?;
         }
     }
-    if let Some(sim) = display.simulation() {
-        let m = sim.model();
-        for (name, p) in ["red", "green", "blue"].iter().zip(m.primaries) {
+    if let Some(m) = truth {
+        for (name, p) in ["red", "green", "blue"].iter().zip(m) {
             let c = xyy(p);
             line(&format!(
                 "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
@@ -130,7 +161,14 @@ pub fn run(a: &RunArgs) -> Result<()> {
         }
     }
     let (fit_set, verify_set) = split(&set, &taken);
-    let cal = fit_and_save(&a.output, &ti3, &info, a.matrix, &fit_set, &verify_set)?;
+    let cal = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix,
+        &fit_set,
+        &verify_set,
+    )?;
     print_fit(&cal, &a.output)
 }
 

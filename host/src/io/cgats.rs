@@ -339,6 +339,11 @@ fn number(v: &str, source: &str, line: usize, field: &str) -> Result<f64> {
 pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
     let tables = parse(text, source)?;
     let t = &tables[0];
+    if t.kind == "CTI1" {
+        return Err(CliError::data(format!(
+            "{source}: a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes"
+        )));
+    }
     const NEED: [&str; 6] = ["RGB_R", "RGB_G", "RGB_B", "XYZ_X", "XYZ_Y", "XYZ_Z"];
     let mut col = [0usize; 6];
     for (c, name) in col.iter_mut().zip(NEED) {
@@ -432,6 +437,9 @@ pub struct Ti3Info {
     /// them, the file is written as ArgyllCMS does: normalised to the white's `Y = 100`, the
     /// white's absolute XYZ in `LUMINANCE_XYZ_CDM2`. Otherwise XYZ is written as given.
     pub absolute: bool,
+    /// More keywords written after the standard ones (name, value), e.g. the patch set a
+    /// `calibrate run` measures (`SPECPOLY_PATCH_SET`).
+    pub keywords: Vec<(String, String)>,
 }
 
 /// The white patch: the brightest measurement at device `(1, 1, 1)`, averaged over repeats.
@@ -493,6 +501,9 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
             1.0
         }
     };
+    for (k, v) in &info.keywords {
+        let _ = writeln!(s, "{k} \"{}\"", q(v));
+    }
     let _ = writeln!(s, "\nNUMBER_OF_FIELDS 7");
     let _ = writeln!(s, "BEGIN_DATA_FORMAT");
     let _ = writeln!(s, "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z");

@@ -9,3 +9,4 @@ pub mod escape;
 pub mod progress;
 pub mod read;
 pub mod stdout;
+pub mod ti1;

@@ -99,6 +99,11 @@ impl Running {
         l[i..].split_whitespace().next().unwrap().to_string()
     }
 
+    /// The child's process id (to signal it).
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     /// Writes to the child's stdin.
     pub fn stdin(&mut self, text: &str) {
         if let Some(s) = self.child.stdin.as_mut() {

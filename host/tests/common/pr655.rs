@@ -28,6 +28,12 @@ pub struct Faults {
     pub vanish_on: Option<usize>,
     /// Integration time of every measurement.
     pub integration: Duration,
+    /// Echo every command back (its bytes, then CR LF) before answering, as an instrument
+    /// whose serial line is set to echo does.
+    pub echo: bool,
+    /// Send a line of noise before every reply and stray bytes at the start of the reply's
+    /// line (a port opened mid-transmission, a USB-serial adapter waking up).
+    pub noise: bool,
 }
 
 /// A running emulator.
@@ -37,6 +43,8 @@ pub struct Emulator {
     stop: Arc<AtomicBool>,
     /// `M1` commands received so far.
     pub measurements: Arc<AtomicUsize>,
+    /// `Q` commands (back to local mode) received so far.
+    pub quits: Arc<AtomicUsize>,
     thread: Option<std::thread::JoinHandle<()>>,
     // held open so the pty stays up between the driver's open and close
     _slave: TTYPort,
@@ -72,12 +80,14 @@ pub fn spawn(source: impl Fn() -> [f64; 3] + Send + 'static, faults: Faults) -> 
         .expect("master timeout");
     let stop = Arc::new(AtomicBool::new(false));
     let count = Arc::new(AtomicUsize::new(0));
-    let (s, c) = (stop.clone(), count.clone());
-    let thread = std::thread::spawn(move || run(master, source, faults, s, c));
+    let quits = Arc::new(AtomicUsize::new(0));
+    let (s, c, q) = (stop.clone(), count.clone(), quits.clone());
+    let thread = std::thread::spawn(move || run(master, source, faults, s, c, q));
     Emulator {
         path,
         stop,
         measurements: count,
+        quits,
         thread: Some(thread),
         _slave: slave,
     }
@@ -89,10 +99,23 @@ fn run(
     f: Faults,
     stop: Arc<AtomicBool>,
     count: Arc<AtomicUsize>,
+    quits: Arc<AtomicUsize>,
 ) {
     let mut buf: Vec<u8> = Vec::new();
     let mut last = [0.0f64; 3];
+    let noise = f.noise;
+    let echo = f.echo;
+    let echo_back = |port: &mut TTYPort, cmd: &[u8]| {
+        if echo {
+            let _ = port.write_all(cmd);
+            let _ = port.write_all(b"\r\n");
+            let _ = port.flush();
+        }
+    };
     let reply = |port: &mut TTYPort, s: &str| {
+        if noise {
+            let _ = port.write_all(b"\x00\xff#~ line noise ~#\r\n\x11@@");
+        }
         let _ = port.write_all(s.as_bytes());
         let _ = port.write_all(b"\r\n");
         let _ = port.flush();
@@ -116,6 +139,7 @@ fn run(
             // PHOTO comes without a line end
             if let Some(i) = find(&buf, b"PHOTO") {
                 buf.drain(..i + 5);
+                echo_back(&mut port, b"PHOTO");
                 reply(&mut port, " REMOTE MODE");
                 continue;
             }
@@ -124,8 +148,14 @@ fn run(
             };
             let line: Vec<u8> = buf.drain(..=i).collect();
             let cmd = String::from_utf8_lossy(&line).trim().to_string();
+            if !cmd.is_empty() {
+                echo_back(&mut port, cmd.as_bytes());
+            }
             match cmd.as_str() {
-                "" | "Q" => {}
+                "" => {}
+                "Q" => {
+                    quits.fetch_add(1, Ordering::SeqCst);
+                }
                 "M1" => {
                     let n = count.fetch_add(1, Ordering::SeqCst) + 1;
                     if f.vanish_on == Some(n) {

@@ -6,12 +6,14 @@
 //! | `serial:PORT[,baud=N][,timeout=SECS][,measure-timeout=SECS][,retries=N]` | [`serial::Pr6xx`]: a Photo Research PR-655/670 in remote mode |
 //! | `sim` | [`sim::SimInstrument`] reading the `--display sim:…` display |
 //! | `sim:SPD[,options]` | a simulated display that mirrors whatever `--display` shows (web, manual), read by [`sim::SimInstrument`] |
+//! | `argyll[:options]` | [`argyll::Dispread`]: any instrument ArgyllCMS drives, measuring batches of patches with `dispread` (not an [`Instrument`]: `dispread` shows the patches itself) |
 
 use crate::calibrate::patch_display::{Mirrored, PatchDisplay};
 use crate::calibrate::sim::{SimHandle, SimModel};
 use crate::error::{CliError, Result};
 use crate::io::device_spec::DeviceSpec;
 
+pub mod argyll;
 pub mod serial;
 pub mod sim;
 
@@ -53,7 +55,12 @@ pub fn open(
         ("serial", _) => return Ok((display, Box::new(serial::Pr6xx::from_spec(&d)?))),
         _ => {}
     }
+    if argyll::is_argyll(spec) {
+        return Err(CliError::usage(
+            "--instrument argyll measures with ArgyllCMS's dispread, which shows the patches itself: use it with --display argyll[:N]",
+        ));
+    }
     Err(CliError::usage(format!(
-        "--instrument `{spec}`: expected `serial:PORT[,options]`, `sim` or `sim:SPD[,options]`"
+        "--instrument `{spec}`: expected `serial:PORT[,options]`, `argyll[:options]`, `sim` or `sim:SPD[,options]`"
     )))
 }

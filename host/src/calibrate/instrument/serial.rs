@@ -24,8 +24,16 @@
 //! integrates longer at low light). A reply that does not come, does not parse or carries a
 //! non-zero status is retried (`retries`, default 2, after discarding pending input); a port
 //! that fails (unplugged, hung up) ends the run at once. Options: `baud` (default 9600).
+//!
+//! Real serial lines are not clean: an instrument set to echo sends each command back before
+//! its reply, and a port opened mid-transmission or a USB-serial adapter waking up delivers
+//! stray bytes. A line equal to the command is skipped, and so is any line with no reply in
+//! it; a reply preceded by noise on its own line is found by [`find_reply`]. Only when the
+//! deadline passes with nothing but noise does the exchange fail (and get retried). Ctrl-C
+//! stops a wait within 100 ms; dropping the driver sends `Q` (back to local mode).
 
 use super::Instrument;
+use crate::calibrate::interrupt;
 use crate::error::{CliError, Result};
 use crate::io::device_spec::DeviceSpec;
 use serialport::{ClearBuffer, SerialPort};
@@ -43,6 +51,8 @@ enum Fail {
     Status(&'static str, i64),
     /// The port failed: nothing more can be done.
     Gone(std::io::Error),
+    /// Ctrl-C.
+    Interrupted,
 }
 
 impl std::fmt::Display for Fail {
@@ -59,6 +69,7 @@ impl std::fmt::Display for Fail {
                 f,
                 "the serial port failed ({e}); was the instrument unplugged?"
             ),
+            Fail::Interrupted => write!(f, "{}", interrupt::MESSAGE),
         }
     }
 }
@@ -106,6 +117,21 @@ pub fn parse_reply(line: &str) -> Option<Reply> {
         units,
         values,
     })
+}
+
+/// The reply in a line that may start with noise: the longest suffix that [`parse_reply`]
+/// accepts and whose status is four digits (`0000`, `0018`, `-0001`).
+pub fn find_reply(line: &str) -> Option<Reply> {
+    let clean: String = line.chars().filter(|c| !c.is_control()).collect::<String>();
+    clean
+        .char_indices()
+        .map(|(i, _)| &clean[i..])
+        .filter(|s| {
+            let status = s.split(',').next().unwrap_or("").trim();
+            let digits = status.strip_prefix('-').unwrap_or(status);
+            digits.len() == 4 && digits.bytes().all(|b| b.is_ascii_digit())
+        })
+        .find_map(parse_reply)
 }
 
 /// Options of the serial instrument.
@@ -198,6 +224,9 @@ impl Pr6xx {
                     return Ok(s);
                 }
             }
+            if interrupt::requested() {
+                return Err(Fail::Interrupted);
+            }
             let now = Instant::now();
             if now >= deadline {
                 return Err(Fail::Timeout(cmd, timeout));
@@ -241,11 +270,23 @@ impl Pr6xx {
 
     fn try_remote_mode(&mut self) -> std::result::Result<(), Fail> {
         self.send("PHOTO")?;
-        let line = self.read_line("PHOTO", self.options.timeout)?;
-        if line.to_ascii_uppercase().contains("REMOTE MODE") {
-            Ok(())
-        } else {
-            Err(Fail::Garbled("PHOTO", line))
+        let timeout = self.options.timeout;
+        let deadline = Instant::now() + timeout;
+        let mut noise = None;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.read_line("PHOTO", left) {
+                Ok(line) if line.to_ascii_uppercase().contains("REMOTE MODE") => return Ok(()),
+                // an echo of the command or noise: keep reading until the deadline
+                Ok(line) => noise = Some(line),
+                Err(Fail::Timeout(..)) => {
+                    return Err(match noise {
+                        Some(n) => Fail::Garbled("PHOTO", n),
+                        None => Fail::Timeout("PHOTO", timeout),
+                    })
+                }
+                Err(f) => return Err(f),
+            }
         }
     }
 
@@ -254,7 +295,7 @@ impl Pr6xx {
         for _ in 0..=self.options.retries {
             match self.try_remote_mode() {
                 Ok(()) => return Ok(()),
-                Err(f @ Fail::Gone(_)) => return Err(self.err(f)),
+                Err(f @ (Fail::Gone(_) | Fail::Interrupted)) => return Err(self.err(f)),
                 Err(f) => {
                     last = Some(f);
                     self.drain().map_err(|f| self.err(f))?;
@@ -280,12 +321,32 @@ impl Pr6xx {
     ) -> std::result::Result<[f64; 3], Fail> {
         self.send(cmd)?;
         self.send("\r")?;
-        let line = self.read_line(cmd, timeout)?;
-        let r = parse_reply(&line).ok_or_else(|| Fail::Garbled(cmd, line.clone()))?;
-        if r.status != 0 {
-            return Err(Fail::Status(cmd, r.status));
+        let deadline = Instant::now() + timeout;
+        let mut noise = None;
+        loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            let line = match self.read_line(cmd, left) {
+                Ok(l) => l,
+                Err(Fail::Timeout(..)) => {
+                    return Err(match noise {
+                        Some(n) => Fail::Garbled(cmd, n),
+                        None => Fail::Timeout(cmd, timeout),
+                    })
+                }
+                Err(f) => return Err(f),
+            };
+            // the instrument echoing the command (a terminal setting), or noise on the line
+            // before the reply (a port opened mid-transmission, a USB-serial adapter's
+            // start-up bytes): skip it and keep reading until the deadline
+            if line.eq_ignore_ascii_case(cmd) {
+                continue;
+            }
+            match find_reply(&line) {
+                Some(r) if r.status != 0 => return Err(Fail::Status(cmd, r.status)),
+                Some(r) => return Ok(r.values),
+                None => noise = Some(line),
+            }
         }
-        Ok(r.values)
     }
 
     fn try_measure(&mut self) -> std::result::Result<[f64; 3], Fail> {
@@ -313,7 +374,7 @@ impl Instrument for Pr6xx {
         for _ in 0..attempts {
             match self.try_measure() {
                 Ok(x) => return Ok(x),
-                Err(f @ Fail::Gone(_)) => return Err(self.err(f)),
+                Err(f @ (Fail::Gone(_) | Fail::Interrupted)) => return Err(self.err(f)),
                 Err(f) => {
                     last = Some(f);
                     self.drain().map_err(|f| self.err(f))?;
@@ -353,5 +414,15 @@ mod tests {
         assert!(parse_reply("REMOTE MODE").is_none());
         assert!(parse_reply("0000,111,nan,1,1").is_none());
         assert!(parse_reply("").is_none());
+    }
+
+    #[test]
+    fn finds_replies_after_noise() {
+        let r = find_reply("\u{0}#!~0000,111,1.234e+002,0.3127,0.3290").unwrap();
+        assert_eq!(r.values, [123.4, 0.3127, 0.3290]);
+        assert_eq!(find_reply("xx0018").unwrap().status, 18);
+        assert!(find_reply("7").is_none());
+        assert!(find_reply("M1").is_none());
+        assert!(find_reply("0000,111,#!x?,0.3,").is_none());
     }
 }

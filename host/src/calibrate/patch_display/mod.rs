@@ -2,7 +2,7 @@
 //!
 //! | spec | implementation |
 //! |---|---|
-//! | `web[:PORT][,wait=SECS][,timeout=SECS]` | [`web::WebDisplay`]: a full-window page served on `127.0.0.1` (an ephemeral port unless given) |
+//! | `web[:PORT][,wait=SECS][,timeout=SECS][,size=F][,background=L]` | [`web::WebDisplay`]: a page served on `127.0.0.1` (an ephemeral port unless given) |
 //! | `led:PORT[,timeout=SECS]` | [`led_controller::LedControllerDisplay`]: the RGB-LED controller (`specpoly-firmware`) |
 //! | `manual` | [`manual::ManualDisplay`]: prints the RGB to set and waits for Enter |
 //! | `sim:SPD[,options]` | [`sim::SimDisplay`]: a simulated display (see [`crate::calibrate::sim`]) |

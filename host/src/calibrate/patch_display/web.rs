@@ -1,4 +1,4 @@
-//! `--display web[:PORT][,wait=SECS][,timeout=SECS]`: a full-window page served on
+//! `--display web[:PORT][,wait=SECS][,timeout=SECS][,size=F][,background=L]`: a page served on
 //! `127.0.0.1`, like ArgyllCMS's web display (`dispcal -dweb`). Open the printed URL in a
 //! browser on the display to calibrate, make it full screen, and put the instrument on it.
 //!
@@ -14,7 +14,9 @@
 //! [`WebDisplay::show`] returns once the page acknowledged the patch: it waits `wait` seconds
 //! (default 300) for a browser to show the first patch and `timeout` seconds (default 10) for
 //! each later one, and fails with a one-line error otherwise. The server listens on the
-//! loopback interface only.
+//! loopback interface only. `size` is the fraction of the window's area the patch covers
+//! (default 1: all of it; `0.1` is the "10 % window" OLED and local-dimming panels are
+//! measured with), `background` the grey level around it (default 0) — see [`Window`].
 
 use super::PatchDisplay;
 use crate::error::{CliError, Result};
@@ -36,6 +38,7 @@ struct State {
 
 #[derive(Debug, Default)]
 struct Shared {
+    window: Mutex<Window>,
     state: Mutex<State>,
     changed: Condvar,
     stop: AtomicBool,
@@ -54,6 +57,28 @@ pub struct WebDisplay {
     server: Option<std::thread::JoinHandle<()>>,
     first_wait: Duration,
     timeout: Duration,
+    window: Window,
+}
+
+/// The patch window: the fraction of the screen's area the patch covers (a centred
+/// rectangle with the screen's aspect ratio) and the grey level around it. Full-screen
+/// patches make OLED and local-dimming panels limit their brightness; a 10 % window on a
+/// dark surround is what such panels are measured with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Window {
+    /// Fraction of the screen's area, `(0, 1]`.
+    pub size: f64,
+    /// Grey level around the patch, `[0, 1]` (8-bit on the page).
+    pub background: f64,
+}
+
+impl Default for Window {
+    fn default() -> Self {
+        Self {
+            size: 1.0,
+            background: 0.0,
+        }
+    }
 }
 
 /// `rgb(R,G,B)` of device values, 8 bits per channel.
@@ -85,10 +110,11 @@ impl WebDisplay {
             server: Some(server),
             first_wait: Duration::from_secs(300),
             timeout: Duration::from_secs(10),
+            window: Window::default(),
         })
     }
 
-    /// Parses `web[:PORT][,wait=SECS][,timeout=SECS]` and starts serving.
+    /// Parses `web[:PORT][,wait=SECS][,timeout=SECS][,size=F][,background=L]` and starts serving.
     pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
         let port = match spec.arg {
             None => 0,
@@ -101,16 +127,31 @@ impl WebDisplay {
         };
         let mut first_wait = Duration::from_secs(300);
         let mut timeout = Duration::from_secs(10);
+        let mut window = Window::default();
         for &(k, v) in &spec.options {
             match k {
                 "wait" => first_wait = spec.seconds(k, v)?,
                 "timeout" => timeout = spec.seconds(k, v)?,
-                _ => return Err(spec.unknown(k, "wait, timeout")),
+                "size" => {
+                    window.size = spec.number(k, v)?;
+                    if !(window.size > 0.0 && window.size <= 1.0) {
+                        return Err(spec.bad(k, v, "expected a fraction of the area in (0, 1]"));
+                    }
+                }
+                "background" => {
+                    window.background = spec.number(k, v)?;
+                    if !(0.0..=1.0).contains(&window.background) {
+                        return Err(spec.bad(k, v, "expected a grey level in [0, 1]"));
+                    }
+                }
+                _ => return Err(spec.unknown(k, "wait, timeout, size, background")),
             }
         }
         let mut d = Self::start(port)?;
         d.first_wait = first_wait;
         d.timeout = timeout;
+        d.window = window;
+        *d.shared.window.lock().unwrap_or_else(|e| e.into_inner()) = window;
         Ok(d)
     }
 
@@ -211,8 +252,9 @@ fn serve(listener: TcpListener, shared: Arc<Shared>) {
 
 const PAGE: &str = r#"<!doctype html>
 <html><head><meta charset="utf-8"><title>specpoly calibration patch</title>
-<style>html,body{margin:0;width:100%;height:100%;overflow:hidden;cursor:none}</style></head>
-<body style="background:__CSS__">
+<style>html,body{margin:0;width:100%;height:100%;overflow:hidden;cursor:none}
+#patch{position:absolute;left:__OFF__%;top:__OFF__%;width:__SIDE__%;height:__SIDE__%}</style></head>
+<body style="background:__BG__"><div id="patch" style="background:__CSS__"></div>
 <script>
 "use strict";
 let seq = __SEQ__;
@@ -225,7 +267,7 @@ async function tick() {
     const r = await fetch("/patch", {cache: "no-store"});
     const p = await r.json();
     if (p.seq !== seq) {
-      document.body.style.background = p.css;
+      document.getElementById("patch").style.background = p.css;
       seq = p.seq;
       ack(seq);
     }
@@ -273,7 +315,12 @@ fn handle(stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
     };
     match path {
         "/" | "/index.html" => {
+            let win = *shared.window.lock().unwrap_or_else(|e| e.into_inner());
+            let side = 100.0 * win.size.sqrt();
             let page = PAGE
+                .replace("__SIDE__", &format!("{side:.4}"))
+                .replace("__OFF__", &format!("{:.4}", (100.0 - side) / 2.0))
+                .replace("__BG__", &css([win.background; 3]))
                 .replace("__CSS__", &css(rgb))
                 .replace("__SEQ__", &seq.to_string());
             respond(&mut w, "200 OK", "text/html; charset=utf-8", &page)
@@ -341,5 +388,27 @@ mod tests {
         d.timeout = Duration::from_millis(50);
         let e = d.show([0.0; 3]).unwrap_err().to_string();
         assert!(e.contains("no browser showed patch 2"), "{e}");
+    }
+
+    #[test]
+    fn window_size_and_background() {
+        let open = |s: &str| WebDisplay::from_spec(&DeviceSpec::parse(s));
+        let d = open("web,size=0.1,background=0.2").unwrap();
+        let page = get(d.addr, "/");
+        // a 10 % window: sides √0.1 = 31.6228 % of the screen's, centred
+        assert!(page.contains("width:31.6228%;height:31.6228%"), "{page}");
+        assert!(page.contains("left:34.1886%;top:34.1886%"), "{page}");
+        assert!(
+            page.contains("<body style=\"background:rgb(51,51,51)\">"),
+            "{page}"
+        );
+        for bad in [
+            "web,size=0",
+            "web,size=1.5",
+            "web,background=-0.1",
+            "web,size=x",
+        ] {
+            assert!(open(bad).is_err(), "{bad}");
+        }
     }
 }
