@@ -39,6 +39,7 @@ pub mod display;
 pub mod error;
 pub mod fit;
 pub mod illuminant;
+pub mod light;
 mod math;
 pub mod matrix;
 pub mod moments;
