@@ -12,6 +12,7 @@ pub mod data;
 pub mod error;
 pub mod io;
 pub mod led;
+pub mod light;
 pub mod plot;
 pub mod render;
 pub mod repr;
