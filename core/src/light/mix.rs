@@ -14,9 +14,10 @@
 //!    objectives: least radiant power `Σ dᵢΦᵢ` (= greatest luminous efficacy of radiation, as `Y`
 //!    is fixed) and least drive `Σ dᵢ` (electrical power when the channels draw equal power at
 //!    full drive).
-//! 3. Rf and Ra are not linear: a compass search over the `N − 3` free duties (the other three
-//!    solved from `A·d = t`), started at the centroid of the vertices and halfway from it to up to
-//!    eight vertices, steps from 0.1 halved to 10⁻⁴, infeasible steps rejected.
+//! 3. Rf and Ra are not linear: every vertex is scored, then a pattern search over the `N − 3`
+//!    free duties (the other three solved from `A·d = t`) along the axes and their pairwise
+//!    diagonals, started at the centroid of the vertices, halfway from it to up to eight
+//!    vertices, and at the best vertex; steps from 0.1 halved to 10⁻⁴, infeasible steps rejected.
 //!
 //! With three channels the duties are unique. Channel transfer curves are not modelled: duties
 //! are linear in light output (PWM).
@@ -356,7 +357,7 @@ fn search(
             _ => false,
         }
     };
-    let mut starts: Vec<[f64; MAX_CHANNELS], 9> = Vec::new();
+    let mut starts: Vec<[f64; MAX_CHANNELS], 10> = Vec::new();
     let _ = starts.push(centroid);
     let stride = verts.len().div_ceil(8).max(1);
     for v in verts.iter().step_by(stride) {
@@ -366,18 +367,47 @@ fn search(
         }
         let _ = starts.push(s);
     }
+    // the vertices themselves (the optimum often lies on the boundary) and the best as a start
     let mut best = (f64::NEG_INFINITY, centroid);
+    for v in verts {
+        let f = eval(v);
+        if f > best.0 {
+            best = (f, *v);
+        }
+    }
+    if best.0 > f64::NEG_INFINITY {
+        let _ = starts.push(best.1);
+    }
+    // search directions in the free duties: the axes and, for two or three free duties, the
+    // diagonals (so the search can slide along a face the axes would leave)
+    let free: Vec<usize, MAX_CHANNELS> = (0..n).filter(|i| !basis.contains(i)).collect();
+    let mut dirs: Vec<[f64; MAX_CHANNELS], 32> = Vec::new();
+    for (a, &i) in free.iter().enumerate() {
+        let mut e = [0.0; MAX_CHANNELS];
+        e[i] = 1.0;
+        let _ = dirs.push(e);
+        for &j in &free[a + 1..] {
+            for sj in [1.0, -1.0] {
+                let mut e = [0.0; MAX_CHANNELS];
+                e[i] = 1.0;
+                e[j] = sj;
+                let _ = dirs.push(e);
+            }
+        }
+    }
     for start in starts {
         let mut d = start;
         let mut f = eval(&d);
         let mut step = 0.1;
         while step > 1e-4 {
             let mut moved = false;
-            for i in (0..n).filter(|i| !basis.contains(i)) {
+            for dir in &dirs {
                 for sign in [1.0, -1.0] {
                     let mut e = d;
-                    e[i] += sign * step;
-                    if !in_unit(e[i]) || !complete(&mut e) {
+                    for &i in &free {
+                        e[i] += sign * step * dir[i];
+                    }
+                    if !free.iter().all(|&i| in_unit(e[i])) || !complete(&mut e) {
                         continue;
                     }
                     let fe = eval(&e);
