@@ -95,6 +95,7 @@ pub fn cct_duv(uv: [f64; 2]) -> Result<Cct, LightError> {
     let f = |m: f64| dist2(uv, planck_uv(1e6 / m.clamp(lo_m, hi_m)));
     let mut m = best.1;
     let mut h = h0;
+    let mut moves = 0;
     while h > 1e-5 {
         let (fa, fm, fb) = (f(m - h), f(m), f(m + h));
         let curv = fa - 2.0 * fm + fb;
@@ -106,7 +107,14 @@ pub fn cct_duv(uv: [f64; 2]) -> Result<Cct, LightError> {
             h
         };
         m = (m + step).clamp(lo_m, hi_m);
-        h *= 0.1;
+        // a step that reached the bracket's edge may not have reached the minimum: step again
+        // at this scale (bounded) before shrinking
+        if step.abs() < h || moves >= 20 {
+            h *= 0.1;
+            moves = 0;
+        } else {
+            moves += 1;
+        }
     }
     if m <= lo_m + 1e-3 || m >= hi_m - 1e-3 {
         return Err(no);
@@ -149,7 +157,7 @@ mod tests {
     #[test]
     fn planckian_points_round_trip() {
         for t in [1500.0, 2700.0, 4000.0, 6500.0, 10000.0, 20000.0] {
-            for duv in [-0.02, 0.0, 0.01] {
+            for duv in [-0.045, -0.02, 0.0, 0.01, 0.045] {
                 let uv = cct_to_uv(Cct { cct: t, duv }).unwrap();
                 let c = cct_duv(uv).unwrap();
                 assert!((c.cct - t).abs() < 0.02 * t / 1000.0, "{t} {duv} {c:?}");
