@@ -9,7 +9,7 @@
 //!
 //! - [`cct`]: CIE 1960 UCS, correlated colour temperature and Duv (nearest point on the
 //!   Planckian locus, found directly; CIE 015:2018 §9.5);
-//! - [`reference`]: Planckian radiators and CIE daylight, the reference illuminants;
+//! - [`reference`](mod@reference): Planckian radiators and CIE daylight, the reference illuminants;
 //! - [`cri`]: CIE 13.3-1995 general colour rendering index Ra and the special indices (R9);
 //! - [`cam02`]: CIECAM02 and CAM02-UCS (CIE 159:2004; Luo, Cui & Li 2006);
 //! - [`tm30`]: CIE 224:2017 / ANSI-IES TM-30 fidelity Rf and gamut index Rg;
