@@ -25,7 +25,7 @@ pub struct MixArgs {
         value_name = "NAME=FILE.csv[#COLUMN]"
     )]
     pub channels: Vec<String>,
-    /// The target: xy:X,Y (CIE 1931) or cct:K[,duv:D] (Planckian locus, ANSI Duv offset).
+    /// The target: xy:X,Y (CIE 1931), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv offset).
     #[arg(long, value_parser = parse_target, value_name = "xy:X,Y|cct:K[,duv:D]")]
     pub target: Target,
     /// Relative luminance: the fraction of the most the channels give at that chromaticity.
