@@ -14,26 +14,27 @@
 //! The paper instead fitted x̄, ȳ, z̄ by cubics and integrated the degree-6 product analytically
 //! (eq. 7); [`crate::paper`] keeps that path for reproduction.
 
-use crate::{cheb::basis_f64, Breaks, Error, Observer, Spectrum, Tabulated, Xyz};
+use crate::{cheb::basis_f64, Layout, Observer, Spectrum, Tabulated, Uniform, Xyz};
+use core::marker::PhantomData;
 
-/// Precomputed moments for one (observer, light, breakpoints).
+/// Precomputed moments for one (observer, light) on the spans of layout `L`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Moments<const S: usize, const C: usize> {
-    breaks: Breaks<S>,
+pub struct Moments<const S: usize, const C: usize, L: Layout<S> = Uniform> {
     /// `m[axis][k][s]`, axis 0..3 = X, Y, Z.
     m: [[[f32; S]; C]; 3],
     white: Xyz,
+    layout: PhantomData<L>,
 }
 
-impl<const S: usize, const C: usize> Moments<S, C> {
+impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     /// Computes the moments (f64 accumulation, 401 wavelengths).
-    pub fn new(observer: Observer, light: &Tabulated<'_>, breaks: Breaks<S>) -> Self {
-        Self::from_fn(observer, |nm| light.at(nm), breaks)
+    pub fn new(observer: Observer, light: &Tabulated<'_>) -> Self {
+        Self::from_fn(observer, |nm| light.at(nm))
     }
 
     /// Computes the moments of a light given as a function of wavelength (nm), sampled at the
     /// same 401 wavelengths: for computed spectra such as a Planckian radiator or CIE daylight.
-    pub fn from_fn(observer: Observer, light: impl Fn(f64) -> f64, breaks: Breaks<S>) -> Self {
+    pub fn from_fn(observer: Observer, light: impl Fn(f64) -> f64) -> Self {
         let mut acc = [[[0.0f64; S]; C]; 3];
         let mut white = [0.0f64; 3];
         let mut t_k = [0.0f64; C];
@@ -50,7 +51,7 @@ impl<const S: usize, const C: usize> Moments<S, C> {
                 *w += v;
             }
             for s in 0..S {
-                let (a, b) = breaks.span(s);
+                let (a, b) = L::BREAKS.span(s);
                 let (a, b) = (a as f64, b as f64);
                 if nm < a || nm > b {
                     continue;
@@ -79,36 +80,42 @@ impl<const S: usize, const C: usize> Moments<S, C> {
                 }
             }
         }
-        Self {
-            breaks,
+        Self::from_parts(
             m,
-            white: Xyz::new((white[0] * norm) as f32, 100.0, (white[2] * norm) as f32),
+            Xyz::new((white[0] * norm) as f32, 100.0, (white[2] * norm) as f32),
+        )
+    }
+
+    /// Moments from their values: `m[axis][k][s]` (axis 0..3 = X, Y, Z) and the XYZ of the
+    /// perfect reflector. For tables computed ahead of time (the firmware's `build.rs` writes
+    /// the output of [`Self::new`] as `const` calls of this).
+    pub const fn from_parts(m: [[[f32; S]; C]; 3], white: Xyz) -> Self {
+        Self {
+            m,
+            white,
+            layout: PhantomData,
         }
     }
 
-    /// The breakpoints these moments belong to.
-    pub fn breaks(&self) -> &Breaks<S> {
-        &self.breaks
+    /// The moments, `m[axis][k][s]`, axis 0..3 = X, Y, Z.
+    pub const fn moments(&self) -> &[[[f32; S]; C]; 3] {
+        &self.m
     }
 
     /// XYZ of the perfect reflector under this light (`Y = 100`).
-    pub fn white(&self) -> Xyz {
+    pub const fn white(&self) -> Xyz {
         self.white
     }
 
-    /// The weighted sum `Σ wᵢ·Mᵢ` of moments on the same breakpoints (and their whites).
+    /// The weighted sum `Σ wᵢ·Mᵢ` of moments (and of their whites).
     ///
     /// Moments are linear in the light, so for lights `Sᵢ` with unnormalised luminous sums
     /// `Yᵢ = Σ_λ Sᵢ ȳ` and weights `wᵢ = dᵢ·Yᵢ / Σⱼ dⱼ·Yⱼ` this is exactly the normalised moments of
     /// the mixture `Σ dᵢ·Sᵢ` (used for multi-channel LED mixing, `crate::light::mix`).
-    pub fn blend(parts: &[(f32, &Self)]) -> Result<Self, Error> {
-        let (_, first) = parts.first().ok_or(Error::Empty)?;
+    pub fn blend(parts: &[(f32, &Self)]) -> Self {
         let mut m = [[[0.0f32; S]; C]; 3];
         let mut white = [0.0f32; 3];
         for (w, p) in parts {
-            if p.breaks != first.breaks {
-                return Err(Error::BreaksMismatch);
-            }
             for axis in 0..3 {
                 for k in 0..C {
                     for s in 0..S {
@@ -120,22 +127,23 @@ impl<const S: usize, const C: usize> Moments<S, C> {
                 *o += w * v;
             }
         }
-        Ok(Self {
-            breaks: first.breaks,
-            m,
-            white: Xyz::from_array(white),
-        })
+        Self::from_parts(m, Xyz::from_array(white))
     }
 
     /// XYZ of `r` as a reflectance under the light: three dot products of length `S·C`.
     #[inline]
-    pub fn xyz(&self, r: &Spectrum<S, C>) -> Xyz {
-        debug_assert!(self.breaks == *r.breaks(), "moments for other breakpoints");
+    pub fn xyz(&self, r: &Spectrum<S, C, L>) -> Xyz {
+        const { assert!(C > 0) };
         let c = r.coefficients();
         let mut out = [0.0f32; 3];
         for (o, m) in out.iter_mut().zip(self.m.iter()) {
+            // S lane accumulators (vectorised), started from the k = 0 products rather than
+            // from zero (`0.0 + p` cannot be folded in IEEE arithmetic).
             let mut acc = [0.0f32; S];
-            for k in 0..C {
+            for s in 0..S {
+                acc[s] = m[0][s] * c[0][s];
+            }
+            for k in 1..C {
                 for s in 0..S {
                     acc[s] += m[k][s] * c[k][s];
                 }

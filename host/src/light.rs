@@ -3,7 +3,7 @@
 //! shapes the printed records (`specpoly light`, `specpoly mix`).
 
 use crate::error::{CliError, Result};
-use crate::spectra::{self, Named};
+use crate::spectrum_names::{self, Named};
 use serde::Serialize;
 use specpoly_core::light::{
     cct::Cct,
@@ -164,7 +164,7 @@ pub fn load_channel(s: &str) -> Result<Channel> {
     }
     Ok(Channel {
         name: name.trim().to_string(),
-        spd: spectra::light(spec)?,
+        spd: spectrum_names::light(spec)?,
     })
 }
 

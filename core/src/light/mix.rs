@@ -110,30 +110,14 @@ fn make(channels: &[Source], d: &[f64]) -> Result<Mix, LightError> {
     })
 }
 
-/// Solves `M·x = r` for a 3×3 (or, with `n = 2`, the leading 2×2) system by Cramer's rule;
-/// `None` when nearly singular relative to `scale`.
-fn solve<const K: usize>(m: [[f64; K]; K], r: [f64; K], scale: f64) -> Option<[f64; K]> {
-    let det = |m: &[[f64; K]; K]| -> f64 {
-        if K == 2 {
-            m[0][0] * m[1][1] - m[0][1] * m[1][0]
-        } else {
-            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-        }
-    };
-    let d = det(&m);
-    if !(d.abs() > 1e-12 * libm::pow(scale, K as f64)) {
-        return None;
+/// Solves the `K × K` system `m·x = r` with the core's one solver; `None` when singular.
+fn solve<const K: usize>(m: [[f64; K]; K], r: [f64; K]) -> Option<[f64; K]> {
+    let mut a = [0.0f64; 9];
+    for (row, v) in m.iter().enumerate() {
+        a[row * K..row * K + K].copy_from_slice(v);
     }
-    let mut x = [0.0; K];
-    for c in 0..K {
-        let mut mc = m;
-        for row in 0..K {
-            mc[row][c] = r[row];
-        }
-        x[c] = det(&mc) / d;
-    }
+    let mut x = r;
+    crate::solve::solve(&mut a[..K * K], &mut x).ok()?;
     Some(x)
 }
 
@@ -200,7 +184,7 @@ impl<'c> Problem<'c> {
                     let rhs: [f64; 2] =
                         core::array::from_fn(|r| -(0..n).map(|i| self.b[r][i] * d[i]).sum::<f64>());
                     let m = [[self.b[0][p], self.b[0][q]], [self.b[1][p], self.b[1][q]]];
-                    let Some([dp, dq]) = solve(m, rhs, 1.0) else {
+                    let Some([dp, dq]) = solve(m, rhs) else {
                         continue;
                     };
                     if in_unit(dp) && in_unit(dq) {
@@ -235,7 +219,7 @@ impl<'c> Problem<'c> {
                             t[r] - (0..n).map(|i| self.a[r][i] * d[i]).sum::<f64>()
                         });
                         let m = core::array::from_fn(|r| free.map(|c| self.a[r][c]));
-                        let Some(x) = solve(m, rhs, 1.0) else {
+                        let Some(x) = solve(m, rhs) else {
                             continue;
                         };
                         if x.iter().all(|v| in_unit(*v)) {
@@ -347,7 +331,7 @@ fn search(
                 .map(|i| p.a[r][i] * d[i])
                 .sum::<f64>()
         });
-        match solve(m, rhs, 1.0) {
+        match solve(m, rhs) {
             Some(x) if x.iter().all(|v| in_unit(*v)) => {
                 for (k, c) in basis.iter().enumerate() {
                     d[*c] = x[k].clamp(0.0, 1.0);

@@ -8,7 +8,7 @@
 
 use crate::illuminant::WAVELENGTHS_5NM;
 use crate::observer::{CES99, TCS14};
-use crate::{Breaks, DefaultSpectrum, Tabulated};
+use crate::{DefaultSpectrum, Tabulated};
 
 /// `N` fitted reflectance samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,12 +18,11 @@ pub struct Samples<const N: usize> {
 }
 
 fn fit_all<const N: usize>(table: &[[f32; 81]; N]) -> [DefaultSpectrum; N] {
-    let breaks = Breaks::uniform();
     core::array::from_fn(|i| {
         Tabulated::new(&WAVELENGTHS_5NM, &table[i])
-            .and_then(|t| DefaultSpectrum::fit(breaks, &t))
+            .and_then(|t| DefaultSpectrum::fit(&t))
             // The built-in tables are finite, increasing and inside 380–780 nm (unit test below).
-            .unwrap_or_else(|_| DefaultSpectrum::zero(breaks))
+            .unwrap_or(DefaultSpectrum::ZERO)
     })
 }
 

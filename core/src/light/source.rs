@@ -7,7 +7,7 @@
 //! `wᵢ = dᵢ·Yᵢ / Σⱼ dⱼ·Yⱼ` (per observer).
 
 use super::LightError;
-use crate::{Breaks, Moments, Observer, Tabulated, DEFAULT_COEFFS, DEFAULT_SPANS};
+use crate::{Moments, Observer, Tabulated, DEFAULT_COEFFS, DEFAULT_SPANS};
 
 /// Moments on the default layout (8 cubic spans), against which the fitted samples integrate.
 pub type LightMoments = Moments<DEFAULT_SPANS, DEFAULT_COEFFS>;
@@ -55,10 +55,9 @@ impl Source {
         if !ok(raw_xyz[1]) || !ok(raw_y10) || !raw_xyz.iter().all(|v| v.is_finite()) {
             return Err(LightError::Dark);
         }
-        let breaks = Breaks::uniform();
         Ok(Self {
-            m2: Moments::from_fn(Observer::Cie1931, &light, breaks),
-            m10: Moments::from_fn(Observer::Cie1964, &light, breaks),
+            m2: Moments::from_fn(Observer::Cie1931, &light),
+            m10: Moments::from_fn(Observer::Cie1964, &light),
             raw_xyz,
             raw_y10,
             radiant,
@@ -93,8 +92,8 @@ impl Source {
             w10[i] = ((d * s.raw_y10 / raw_y10) as f32, &s.m10);
         }
         Ok(Self {
-            m2: Moments::blend(&w2[..parts.len()])?,
-            m10: Moments::blend(&w10[..parts.len()])?,
+            m2: Moments::blend(&w2[..parts.len()]),
+            m10: Moments::blend(&w10[..parts.len()]),
             raw_xyz,
             raw_y10,
             radiant,

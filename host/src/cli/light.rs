@@ -1,9 +1,10 @@
 //! `specpoly light`: colorimetry and colour rendering of a light source's SPD
 //! (computations in [`crate::light`] and `specpoly_core::light`).
 
-use crate::error::{CliError, Result};
+use crate::cli::args::print_json;
+use crate::error::Result;
 use crate::light::{report, LightReport};
-use crate::spectra;
+use crate::spectrum_names;
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly light`.
@@ -57,12 +58,10 @@ pub fn text(name: &str, r: &LightReport) -> String {
 
 /// Runs `specpoly light`.
 pub fn run(a: &LightArgs) -> Result<()> {
-    let named = spectra::light(&a.spd)?;
+    let named = spectrum_names::light(&a.spd)?;
     let r = report(&named)?;
     if a.json {
-        let s =
-            serde_json::to_string_pretty(&r).map_err(|e| CliError::data(format!("JSON: {e}")))?;
-        return crate::io::stdout::print(&format!("{s}\n"));
+        return print_json(&r);
     }
     crate::io::stdout::print(&text(&named.name, &r))
 }

@@ -1,6 +1,7 @@
 //! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
 //! (computations in [`crate::light`] and `specpoly_core::light::mix`).
 
+use crate::cli::args::print_json;
 use crate::error::{CliError, Result};
 use crate::light::{self, describe, load_channel, parse_target, Optimize};
 use specpoly_core::light::Target;
@@ -62,9 +63,7 @@ pub fn run(a: &MixArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let r = light::mix(&channels, a.target, a.luminance, a.optimize, a.bits)?;
     if a.json {
-        let s =
-            serde_json::to_string_pretty(&r).map_err(|e| CliError::data(format!("JSON: {e}")))?;
-        return crate::io::stdout::print(&format!("{s}\n"));
+        return print_json(&r);
     }
     let mut o = String::new();
     let _ = writeln!(
