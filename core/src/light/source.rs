@@ -31,9 +31,20 @@ pub struct Source {
 }
 
 impl Source {
-    /// A source from its tabulated SPD (linear interpolant, as everywhere in the project).
+    /// A source from its tabulated SPD: the linear interpolant, as everywhere in the project,
+    /// but zero outside the tabulated range (a light emits nothing where it was not measured:
+    /// CIE 224:2017 fills missing values with zeros; holding the end values, the convention
+    /// for reflectances, would invent light).
     pub fn new(light: &Tabulated<'_>) -> Result<Self, LightError> {
-        Self::from_fn(|nm| light.at(nm))
+        let w = light.wavelengths();
+        let (lo, hi) = (w[0] as f64, w[w.len() - 1] as f64);
+        Self::from_fn(|nm| {
+            if nm < lo || nm > hi {
+                0.0
+            } else {
+                light.at(nm)
+            }
+        })
     }
 
     /// A source from a computed SPD (a function of wavelength in nm).
@@ -141,5 +152,31 @@ impl Source {
     /// Radiant sum `Σ S` over 380–780 nm at 1 nm.
     pub fn radiant_sum(&self) -> f64 {
         self.radiant
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_light_outside_the_data() {
+        let nm = [500.0, 600.0];
+        let short = Source::new(&Tabulated::new(&nm, &[1.0, 1.0]).unwrap()).unwrap();
+        let nm_full = [380.0, 499.0, 500.0, 600.0, 601.0, 780.0];
+        let v = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0];
+        let full = Source::new(&Tabulated::new(&nm_full, &v).unwrap()).unwrap();
+        assert_eq!(short.xyz(), full.xyz());
+        assert_eq!(short.radiant_sum(), 101.0);
+    }
+
+    #[test]
+    fn dark_lights_are_errors() {
+        let nm = [380.0, 780.0];
+        assert_eq!(
+            Source::new(&Tabulated::new(&nm, &[0.0, 0.0]).unwrap()),
+            Err(LightError::Dark)
+        );
+        assert_eq!(Source::from_fn(|_| f64::NAN).unwrap_err(), LightError::Dark);
     }
 }
