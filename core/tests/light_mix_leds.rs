@@ -12,7 +12,7 @@ use specpoly_core::light::{
     tm30::tm30,
     LightError, Samples, Source,
 };
-use specpoly_core::{Observer, Tabulated};
+use specpoly_core::{Observer, Tabulated, Transfer};
 
 /// Δu′v′ between target and mix before quantisation (issue 15).
 const CHROMA_TOL: f64 = 0.0005;
@@ -141,10 +141,19 @@ fn chromaticity_before_and_after_quantisation() {
                     solved += 1;
                     let want = target_uv_prime(t);
                     let e = dist(uv_prime_1nm(set, m.duties()), want);
-                    let q = m.quantized(&ch, 16).unwrap();
-                    let eq = dist(uv_prime_1nm(set, q.duties()), want);
+                    let q = m.drive(&ch, &Transfer::Linear, Some(16)).unwrap();
+                    let eq = dist(uv_prime_1nm(set, q.drive()), want);
                     assert!(e <= CHROMA_TOL, "{name} {t:?}: Δu′v′ {e}");
                     assert!(eq <= QUANT_TOL, "{name} {t:?}: quantised Δu′v′ {eq}");
+                    // through a gamma-2.2 channel response: the light is drive^2.2
+                    let g = m.drive(&ch, &Transfer::Gamma(2.2), Some(16)).unwrap();
+                    let light: Vec<f64> = g.drive().iter().map(|v| v.powf(2.2)).collect();
+                    let eg = dist(uv_prime_1nm(set, &light), want);
+                    assert!(
+                        eg <= QUANT_TOL,
+                        "{name} {t:?}: gamma 2.2 quantised Δu′v′ {eg}"
+                    );
+                    worst.1 = worst.1.max(eg);
                     assert!(m.duties().iter().all(|d| (0.0..=1.0).contains(d)));
                     assert!(m.duties().iter().any(|d| *d > 0.999 * lum) || lum < 1.0);
                     worst = (worst.0.max(e), worst.1.max(eq));

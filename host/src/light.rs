@@ -12,6 +12,7 @@ use specpoly_core::light::{
     tm30::tm30,
     LightError, Samples, Source,
 };
+use specpoly_core::Transfer;
 
 /// Rounds for printing: far below any visible difference, without f64 noise in the output.
 fn r6(v: f64) -> f64 {
@@ -173,7 +174,8 @@ pub fn load_channel(s: &str) -> Result<Channel> {
 pub struct MixReport {
     /// Channel names, in order.
     pub channels: Vec<String>,
-    /// Duties 0–1 in channel order (quantised when `--bits` is given).
+    /// Device values (PWM duties) 0–1 in channel order, through the transfer curve and
+    /// quantised when `--bits` is given.
     pub duties: Vec<f64>,
     /// CIE 1931 x of the mix.
     pub x: f64,
@@ -203,6 +205,7 @@ pub fn mix(
     target: Target,
     luminance: f64,
     optimize: Optimize,
+    transfer: &Transfer,
     bits: Option<u32>,
 ) -> Result<MixReport> {
     let sources = channels
@@ -231,14 +234,11 @@ pub fn mix(
         _ => CliError::data(format!("{e}")),
     };
     let m: Mix = solve_mix(&sources, target, luminance, objective).map_err(err)?;
-    let m = match bits {
-        Some(b) => m.quantized(&sources, b).map_err(err)?,
-        None => m,
-    };
-    let r = report_of(&m.light, &tcs, &ces);
+    let driven = m.drive(&sources, transfer, bits).map_err(err)?;
+    let r = report_of(&driven.mix.light, &tcs, &ces);
     Ok(MixReport {
         channels: channels.iter().map(|c| c.name.clone()).collect(),
-        duties: m.duties().iter().map(|d| r6(*d)).collect(),
+        duties: driven.drive().iter().map(|d| r6(*d)).collect(),
         x: r.x,
         y: r.y,
         u_prime: r.u_prime,
@@ -248,7 +248,7 @@ pub fn mix(
         ra: r.ra,
         rf: r.rf,
         rg: r.rg,
-        efficacy: (m.light.efficacy() * 1000.0).round() / 1000.0,
+        efficacy: (driven.mix.light.efficacy() * 1000.0).round() / 1000.0,
     })
 }
 

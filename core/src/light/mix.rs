@@ -19,10 +19,11 @@
 //!    diagonals, started at the centroid of the vertices, halfway from it to up to eight
 //!    vertices, and at the best vertex; steps from 0.1 halved to 10⁻⁴, infeasible steps rejected.
 //!
-//! With three channels the duties are unique. Channel transfer curves are not modelled: duties
-//! are linear in light output (PWM).
+//! With three channels the duties are unique. The duties are fractions of each channel's light;
+//! [`Mix::drive`] turns them into device values through a transfer curve and quantises them.
 
 use super::{cct, cri, source::Source, tm30, Cct, LightError, Samples};
+use crate::display::{quantize, Transfer};
 use heapless::Vec;
 
 /// Most channels in a mix.
@@ -81,18 +82,50 @@ impl Mix {
         &self.duties[..self.n]
     }
 
-    /// The same mix with duties rounded to `bits`-bit PWM steps (`round(d·(2ᵇ − 1))/(2ᵇ − 1)`),
-    /// and the light those make.
-    pub fn quantized(&self, channels: &[Source], bits: u32) -> Result<Mix, LightError> {
-        if !(1..=32).contains(&bits) {
-            return Err(LightError::BadTarget);
+    /// The device values that make this mix through the channels' transfer curve
+    /// (`transfer.encode` of each duty, the light fraction), quantised to `bits`-bit PWM steps
+    /// when asked ([`crate::display::quantize`]), and the light the device values make
+    /// (`transfer.decode`).
+    pub fn drive(
+        &self,
+        channels: &[Source],
+        transfer: &Transfer,
+        bits: Option<u32>,
+    ) -> Result<Driven, LightError> {
+        let max = match bits {
+            None => None,
+            Some(b @ 1..=16) => Some(((1u32 << b) - 1) as u16),
+            Some(_) => return Err(LightError::BadTarget),
+        };
+        let mut drive = [0.0; MAX_CHANNELS];
+        let mut light = [0.0; MAX_CHANNELS];
+        for i in 0..self.n {
+            let mut v = transfer.encode(self.duties[i] as f32);
+            if let Some(m) = max {
+                v = quantize(v, m) as f32 / m as f32;
+            }
+            drive[i] = v as f64;
+            light[i] = transfer.decode(v) as f64;
         }
-        let full = ((1u64 << bits) - 1) as f64;
-        let mut d = self.duties;
-        for v in d[..self.n].iter_mut() {
-            *v = libm::round(*v * full) / full;
-        }
-        make(channels, &d[..self.n])
+        Ok(Driven {
+            drive,
+            mix: make(channels, &light[..self.n])?,
+        })
+    }
+}
+
+/// Device values for the channels and the mix they make ([`Mix::drive`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Driven {
+    drive: [f64; MAX_CHANNELS],
+    /// The light the (quantised) device values make.
+    pub mix: Mix,
+}
+
+impl Driven {
+    /// The device values (PWM duties), in channel order, each in [0, 1].
+    pub fn drive(&self) -> &[f64] {
+        &self.drive[..self.mix.n]
     }
 }
 

@@ -27,7 +27,7 @@ pub mod tm30;
 
 pub use cct::Cct;
 pub use cri::Cri;
-pub use mix::{Mix, Objective, Target};
+pub use mix::{Driven, Mix, Objective, Target};
 pub use samples::Samples;
 pub use source::Source;
 pub use tm30::Tm30;

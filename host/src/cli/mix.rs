@@ -1,7 +1,7 @@
 //! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
 //! (computations in [`crate::light`] and `specpoly_core::light::mix`).
 
-use crate::cli::args::print_json;
+use crate::cli::args::{print_json, transfer, Curve};
 use crate::error::{CliError, Result};
 use crate::light::{self, describe, load_channel, parse_target, Optimize};
 use specpoly_core::light::Target;
@@ -36,8 +36,11 @@ pub struct MixArgs {
     /// minimise (power: the sum of duties).
     #[arg(long, value_enum, default_value = "rf")]
     pub optimize: Optimize,
+    /// The channels' response, device value → light: linear (PWM), srgb or gamma:G.
+    #[arg(long, default_value = "linear", value_parser = transfer, value_name = "linear|srgb|gamma:G")]
+    pub trc: Curve,
     /// Quantise the duties to this many PWM bits (and report what the quantised mix makes).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=32))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub bits: Option<u32>,
     /// Print JSON: {channels, duties, x, y, u_prime, v_prime, cct, duv, ra, rf, rg, efficacy}.
     #[arg(long)]
@@ -61,7 +64,14 @@ pub fn run(a: &MixArgs) -> Result<()> {
         .iter()
         .map(|c| load_channel(c))
         .collect::<Result<Vec<_>>>()?;
-    let r = light::mix(&channels, a.target, a.luminance, a.optimize, a.bits)?;
+    let r = light::mix(
+        &channels,
+        a.target,
+        a.luminance,
+        a.optimize,
+        &a.trc.into(),
+        a.bits,
+    )?;
     if a.json {
         return print_json(&r);
     }
