@@ -6,7 +6,7 @@
 //! `x̄, ȳ, z̄` has `X = K Σ_λ R(λ) S(λ) x̄(λ)` (likewise `Y`, `Z`), summed at 1 nm over
 //! 380–780 nm with `K = 100 / Σ_λ S(λ) ȳ(λ)`, so the perfect white has `Y = 100`. An
 //! inter-reflection chain `R₁ R₂ … Rₖ` is the product of the reflectances, wavelength by
-//! wavelength. The reference ([`reference`]) does exactly this in f64 on the linear
+//! wavelength. The reference ([`reference()`]) does exactly this in f64 on the linear
 //! interpolants of the tabulated data ([`specpoly_core::exact_xyz`]); a representation
 //! ([`Chains`]) converts every reflectance, multiplies with its own `Shade::mul` (degree
 //! reduction for polynomials, per-sample for sampling, per-channel for RGB) and integrates

@@ -99,13 +99,6 @@ impl From<Gamut> for GamutMap {
     }
 }
 
-/// Prints `value` as pretty JSON on stdout (`--json`).
-pub fn print_json<T: serde::Serialize + ?Sized>(value: &T) -> Result<()> {
-    let s =
-        serde_json::to_string_pretty(value).map_err(|e| CliError::data(format!("JSON: {e}")))?;
-    crate::io::stdout::print(&format!("{s}\n"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@ use crate::calibrate::fit::{self, FitOptions, MatrixFit};
 use crate::calibrate::{icc, verify};
 use crate::error::{CliError, Result};
 use crate::io::cgats;
-use crate::io::stdout::print;
+use crate::io::stdout::{print, print_json};
 use crate::stats::Stats;
 use std::io::BufRead;
 use std::path::PathBuf;
@@ -208,10 +208,7 @@ pub fn show_json(cal: &Calibration) -> serde_json::Value {
 fn show(a: &ShowArgs) -> Result<()> {
     let cal = file::load(&a.calibration)?;
     if a.json {
-        let v = show_json(&cal);
-        let s = serde_json::to_string_pretty(&v)
-            .map_err(|e| CliError::data(format!("cannot print JSON: {e}")))?;
-        return print(&(s + "\n"));
+        return print_json(&show_json(&cal));
     }
     let d = cal.data();
     let u = if cal.absolute() { "cd/m²" } else { "relative" };

@@ -1,9 +1,10 @@
 //! `specpoly fit`: fits spectra by a polynomial representation and prints what the fit costs
 //! ([`crate::fit_report`]): coefficients, per-span errors and the fit's ΔE00.
 
-use crate::cli::args::{print_json, Colorimetry};
+use crate::cli::args::Colorimetry;
 use crate::error::Result;
 use crate::fit_report::fit_one;
+use crate::io::stdout::print_json;
 use crate::repr::Repr;
 use crate::spectrum_names;
 use std::fmt::Write as _;

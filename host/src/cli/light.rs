@@ -1,8 +1,8 @@
 //! `specpoly light`: colorimetry and colour rendering of a light source's SPD
 //! (computations in [`crate::light`] and `specpoly_core::light`).
 
-use crate::cli::args::print_json;
 use crate::error::Result;
+use crate::io::stdout::print_json;
 use crate::light::{report, LightReport};
 use crate::spectrum_names;
 use std::fmt::Write as _;

@@ -1,8 +1,9 @@
 //! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
 //! (computations in [`crate::light`] and `specpoly_core::light::mix`).
 
-use crate::cli::args::{print_json, transfer, Curve};
+use crate::cli::args::{transfer, Curve};
 use crate::error::{CliError, Result};
+use crate::io::stdout::print_json;
 use crate::light::{self, describe, load_channel, parse_target, Optimize};
 use specpoly_core::light::Target;
 use std::fmt::Write as _;

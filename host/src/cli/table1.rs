@@ -1,7 +1,7 @@
 //! `specpoly table1`: prints the paper's Table 1 on our data ([`crate::table1`]).
 
-use crate::cli::args::print_json;
 use crate::error::Result;
+use crate::io::stdout::print_json;
 use crate::table1::compute;
 use std::fmt::Write as _;
 

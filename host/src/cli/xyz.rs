@@ -4,9 +4,10 @@
 //! Every representation runs the same generic code ([`crate::colour::Chains`] through
 //! [`crate::repr::dispatch`]); CIELAB is against the light's exact white (`Y = 100`).
 
-use crate::cli::args::{print_json, Colorimetry};
+use crate::cli::args::Colorimetry;
 use crate::colour::{self, Colour};
 use crate::error::{CliError, Result};
+use crate::io::stdout::print_json;
 use crate::repr::Repr;
 use crate::spectrum_names::{self, Named};
 use specpoly_core::Tabulated;
