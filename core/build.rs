@@ -1,5 +1,6 @@
 //! Turns the CSV reference data in `../data` into `const` tables (no_std, no parsing at run time).
-//! Observers are kept at 1 nm over 380–780 nm; illuminants at 5 nm over 380–780 nm.
+//! Observers are kept at 1 nm over 380–780 nm; illuminants, the CIE daylight components and the
+//! colour-rendering test samples at 5 nm over 380–780 nm.
 
 use std::{env, fmt::Write as _, fs, path::PathBuf};
 
@@ -51,6 +52,37 @@ fn main() {
                 .find(|r| r[0] as i32 == nm)
                 .expect("illuminant row");
             let _ = writeln!(out, "    {:e},", r[1]);
+        }
+        out.push_str("];\n");
+    }
+    // Multi-column 5 nm tables, one row of 81 values per column (light metrics, `light/`).
+    for (name, file, cols) in [
+        (
+            "DAYLIGHT_S012",
+            "illuminants/cie_daylight_components_5nm.csv",
+            3,
+        ),
+        ("TCS14", "reflectances/cie13_3_tcs14_5nm.csv", 14),
+        ("CES99", "reflectances/cie224_2017_ces99_5nm.csv", 99),
+    ] {
+        let p = data.join(file);
+        println!("cargo:rerun-if-changed={}", p.display());
+        let rows = read_csv(&p);
+        let _ = writeln!(out, "pub(crate) static {name}: [[f32; 81]; {cols}] = [");
+        for c in 1..=cols {
+            out.push_str("    [");
+            for i in 0..81 {
+                let nm = 380 + 5 * i;
+                let r = rows.iter().find(|r| r[0] as i32 == nm).expect("5 nm row");
+                assert_eq!(
+                    r.len(),
+                    cols + 1,
+                    "{file}: row {nm} has {} columns",
+                    r.len()
+                );
+                let _ = write!(out, "{:e}, ", r[c]);
+            }
+            out.push_str("],\n");
         }
         out.push_str("];\n");
     }

@@ -58,6 +58,7 @@ pub mod error;
 pub mod fit;
 pub mod illuminant;
 pub mod layout;
+pub mod light;
 mod math;
 pub mod matrix;
 pub mod moments;

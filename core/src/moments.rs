@@ -29,13 +29,19 @@ pub struct Moments<const S: usize, const C: usize, L: Layout<S> = Uniform> {
 impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     /// Computes the moments (f64 accumulation, 401 wavelengths).
     pub fn new(observer: Observer, light: &Tabulated<'_>) -> Self {
+        Self::from_fn(observer, |nm| light.at(nm))
+    }
+
+    /// Computes the moments of a light given as a function of wavelength (nm), sampled at the
+    /// same 401 wavelengths: for computed spectra such as a Planckian radiator or CIE daylight.
+    pub fn from_fn(observer: Observer, light: impl Fn(f64) -> f64) -> Self {
         let mut acc = [[[0.0f64; S]; C]; 3];
         let mut white = [0.0f64; 3];
         let mut t_k = [0.0f64; C];
         let table = observer.table();
         for (i, cmf) in table.iter().enumerate() {
             let nm = 380.0 + i as f64;
-            let power = light.at(nm);
+            let power = light(nm);
             let sw = [
                 power * cmf[0] as f64,
                 power * cmf[1] as f64,
@@ -99,6 +105,29 @@ impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     /// XYZ of the perfect reflector under this light (`Y = 100`).
     pub const fn white(&self) -> Xyz {
         self.white
+    }
+
+    /// The weighted sum `Σ wᵢ·Mᵢ` of moments (and of their whites).
+    ///
+    /// Moments are linear in the light, so for lights `Sᵢ` with unnormalised luminous sums
+    /// `Yᵢ = Σ_λ Sᵢ ȳ` and weights `wᵢ = dᵢ·Yᵢ / Σⱼ dⱼ·Yⱼ` this is exactly the normalised moments of
+    /// the mixture `Σ dᵢ·Sᵢ` (used for multi-channel LED mixing, `crate::light::mix`).
+    pub fn blend(parts: &[(f32, &Self)]) -> Self {
+        let mut m = [[[0.0f32; S]; C]; 3];
+        let mut white = [0.0f32; 3];
+        for (w, p) in parts {
+            for axis in 0..3 {
+                for k in 0..C {
+                    for s in 0..S {
+                        m[axis][k][s] += w * p.m[axis][k][s];
+                    }
+                }
+            }
+            for (o, v) in white.iter_mut().zip(p.white.to_array()) {
+                *o += w * v;
+            }
+        }
+        Self::from_parts(m, Xyz::from_array(white))
     }
 
     /// XYZ of `r` as a reflectance under the light: three dot products of length `S·C`.

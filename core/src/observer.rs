@@ -3,7 +3,7 @@
 //! Tables: CIE 015:2018, as shipped by colour-science 0.4.7 (`data/cmf/`), kept at 1 nm over
 //! 380–780 nm and compiled in as constants by `build.rs`.
 
-#[allow(clippy::excessive_precision)] // tables copied digit for digit from the CIE data
+#[allow(clippy::excessive_precision, clippy::approx_constant)] // tables copied digit for digit from the CIE data
 mod tables {
     include!(concat!(env!("OUT_DIR"), "/tables.rs"));
 }

@@ -29,6 +29,7 @@ pub mod figures;
 pub mod fit_report;
 pub mod io;
 pub mod led;
+pub mod light;
 pub mod measurement;
 pub mod plausible;
 pub mod plot;

@@ -10,6 +10,8 @@ pub mod calibrate;
 pub mod calibrate_run;
 pub mod fit;
 pub mod led;
+pub mod light;
+pub mod mix;
 pub mod plot;
 pub mod render;
 pub mod table1;
@@ -45,6 +47,10 @@ pub enum Command {
     Calibrate(calibrate::CalibrateCommand),
     /// Drive the RGB-LED controller firmware over a serial port.
     Led(led::LedArgs),
+    /// Colorimetry and colour rendering of a light: XYZ, xy, u′v′, CCT, Duv, Ra, R9, Rf, Rg.
+    Light(light::LightArgs),
+    /// Duties of 3–6 LED channels for a chromaticity or CCT target.
+    Mix(mix::MixArgs),
 }
 
 /// Runs a parsed command line.
@@ -58,5 +64,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(a) => render::run(&a),
         Command::Calibrate(c) => calibrate::run(c),
         Command::Led(a) => led::run(&a),
+        Command::Light(a) => light::run(&a),
+        Command::Mix(a) => mix::run(&a),
     }
 }

@@ -1,0 +1,79 @@
+//! CIE 13.3-1995 colour rendering index: the general index Ra (mean of R1–R8) and the special
+//! indices R1–R14 (R9: saturated red).
+//!
+//! For the test light `k` and the reference `r` at the same CCT ([`super::reference`]), each test
+//! colour sample `i` is taken to CIE 1960 (u, v) with `Y` relative to the light's white (100)
+//! under the CIE 1931 observer; the test colours get the von Kries transform of CIE 13.3 eq. (9)
+//! with `c = (4 − u − 10v)/v`, `d = (1.708v + 0.404 − 1.481u)/v`:
+//! `u′ = (10.872 + 0.404·c_r/c_k·c_ki − 4·d_r/d_k·d_ki) / (16.518 + 1.481·c_r/c_k·c_ki − d_r/d_k·d_ki)`,
+//! `v′ = 5.520 / (same denominator)`; both go to CIE 1964 `W* = 25Y^⅓ − 17`,
+//! `U* = 13W*(u − u_r)`, `V* = 13W*(v − v_r)`, and `Rᵢ = 100 − 4.6·ΔEᵢ` (the Euclidean U*V*W*
+//! difference).
+
+use super::{
+    cct, cct::Cct, reference::cri_reference, samples::Samples, source::Source, LightError,
+};
+
+/// The CIE 13.3 indices of a light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cri {
+    /// General colour rendering index (mean of R1–R8).
+    pub ra: f64,
+    /// Special indices R1–R14 (`r[8]` is R9).
+    pub r: [f64; 14],
+    /// CCT and Duv of the light (the reference's temperature).
+    pub cct: Cct,
+}
+
+fn cd(uv: [f64; 2]) -> (f64, f64) {
+    let [u, v] = uv;
+    (
+        (4.0 - u - 10.0 * v) / v,
+        (1.708 * v + 0.404 - 1.481 * u) / v,
+    )
+}
+
+fn uvw(y: f64, uv: [f64; 2], white: [f64; 2]) -> [f64; 3] {
+    let w = 25.0 * libm::cbrt(y) - 17.0;
+    [
+        13.0 * w * (uv[0] - white[0]),
+        13.0 * w * (uv[1] - white[1]),
+        w,
+    ]
+}
+
+/// The CIE 13.3 indices of `light` with the test colour samples `tcs`.
+pub fn cri(light: &Source, tcs: &Samples<14>) -> Result<Cri, LightError> {
+    let uv_k = light.uv();
+    let c = cct::cct_duv(uv_k)?;
+    let reference = cri_reference(c.cct)?;
+    let uv_r = reference.uv();
+    let (ck, dk) = cd(uv_k);
+    let (cr, dr) = cd(uv_r);
+    let mut r = [0.0; 14];
+    for (ri, s) in r.iter_mut().zip(tcs.spectra.iter()) {
+        let xyz_r = to64(reference.m2.xyz(s).to_array());
+        let xyz_k = to64(light.m2.xyz(s).to_array());
+        let ref_uvw = uvw(xyz_r[1], cct::uv_1960(xyz_r), uv_r);
+        let (cki, dki) = cd(cct::uv_1960(xyz_k));
+        let (cc, dd) = (cr / ck * cki, dr / dk * dki);
+        let den = 16.518 + 1.481 * cc - dd;
+        let adapted = [(10.872 + 0.404 * cc - 4.0 * dd) / den, 5.520 / den];
+        let test_uvw = uvw(xyz_k[1], adapted, uv_r);
+        let de = libm::sqrt(
+            (0..3)
+                .map(|k| (test_uvw[k] - ref_uvw[k]) * (test_uvw[k] - ref_uvw[k]))
+                .sum::<f64>(),
+        );
+        *ri = 100.0 - 4.6 * de;
+    }
+    Ok(Cri {
+        ra: r[..8].iter().sum::<f64>() / 8.0,
+        r,
+        cct: c,
+    })
+}
+
+pub(crate) fn to64(v: [f32; 3]) -> [f64; 3] {
+    v.map(|c| c as f64)
+}

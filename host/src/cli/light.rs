@@ -1,0 +1,67 @@
+//! `specpoly light`: colorimetry and colour rendering of a light source's SPD
+//! (computations in [`crate::light`] and `specpoly_core::light`).
+
+use crate::error::Result;
+use crate::io::stdout::print_json;
+use crate::light::{report, LightReport};
+use crate::spectrum_names;
+use std::fmt::Write as _;
+
+/// Arguments of `specpoly light`.
+#[derive(Debug, clap::Args)]
+pub struct LightArgs {
+    /// The light's spectral power distribution: FILE.csv, FILE.csv#COLUMN, or a built-in
+    /// illuminant (A, D50, D65, E, FL2, FL7, FL11).
+    #[arg(value_name = "SPD")]
+    pub spd: String,
+    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg}.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or("-".to_string(), |v| format!("{v:.prec$}"))
+}
+
+/// Formats the text output.
+pub fn text(name: &str, r: &LightReport) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "# {name}: XYZ = Km·ΣS·x̄Δλ (CIE 1931; lm for Y when the SPD is in W/nm); CCT, Duv; CIE 13.3 \
+         Ra, R9; CIE 224:2017 Rf, TM-30 Rg ('-': more than 0.05 Duv from the Planckian locus)"
+    );
+    let _ = writeln!(
+        o,
+        "{:>12} {:>12} {:>12} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6}",
+        "X", "Y", "Z", "x", "y", "u'", "v'", "cct", "duv", "ra", "r9", "rf", "rg"
+    );
+    let _ = writeln!(
+        o,
+        "{:>12.4} {:>12.4} {:>12.4} {:>7.4} {:>7.4} {:>7.4} {:>7.4} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6}",
+        r.big_x,
+        r.big_y,
+        r.big_z,
+        r.x,
+        r.y,
+        r.u_prime,
+        r.v_prime,
+        opt(r.cct, 1),
+        opt(r.duv, 5),
+        opt(r.ra, 1),
+        opt(r.r9, 1),
+        opt(r.rf, 1),
+        opt(r.rg, 1)
+    );
+    o
+}
+
+/// Runs `specpoly light`.
+pub fn run(a: &LightArgs) -> Result<()> {
+    let named = spectrum_names::light(&a.spd)?;
+    let r = report(&named)?;
+    if a.json {
+        return print_json(&r);
+    }
+    crate::io::stdout::print(&text(&named.name, &r))
+}

@@ -1,0 +1,115 @@
+//! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
+//! (computations in [`crate::light`] and `specpoly_core::light::mix`).
+
+use crate::cli::args::{transfer, Curve};
+use crate::error::{CliError, Result};
+use crate::io::stdout::print_json;
+use crate::light::{self, describe, load_channel, parse_target, Optimize};
+use specpoly_core::light::Target;
+use std::fmt::Write as _;
+
+fn luminance(s: &str) -> std::result::Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= 1.0 => Ok(v),
+        _ => Err(format!(
+            "`{s}`: the relative luminance is a number in (0, 1]"
+        )),
+    }
+}
+
+/// Arguments of `specpoly mix`.
+#[derive(Debug, clap::Args)]
+pub struct MixArgs {
+    /// A channel: NAME=FILE.csv[#COLUMN], its SPD at full drive; 3 to 6 of them, in order.
+    #[arg(
+        long = "channel",
+        required = true,
+        value_name = "NAME=FILE.csv[#COLUMN]"
+    )]
+    pub channels: Vec<String>,
+    /// The target: xy:X,Y (CIE 1931), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv offset).
+    #[arg(long, value_parser = parse_target, value_name = "xy:X,Y|cct:K[,duv:D]")]
+    pub target: Target,
+    /// Relative luminance: the fraction of the most the channels give at that chromaticity.
+    #[arg(long, default_value = "1", value_parser = luminance, value_name = "0..1")]
+    pub luminance: f64,
+    /// With more than three channels: what the free duties maximise (rf, ra, efficacy) or
+    /// minimise (power: the sum of duties).
+    #[arg(long, value_enum, default_value = "rf")]
+    pub optimize: Optimize,
+    /// The channels' response, device value → light: linear (PWM), srgb or gamma:G.
+    #[arg(long, default_value = "linear", value_parser = transfer, value_name = "linear|srgb|gamma:G")]
+    pub trc: Curve,
+    /// Quantise the duties to this many PWM bits (and report what the quantised mix makes).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub bits: Option<u32>,
+    /// Print JSON: {channels, duties, x, y, u_prime, v_prime, cct, duv, ra, rf, rg, efficacy}.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or("-".to_string(), |v| format!("{v:.prec$}"))
+}
+
+/// Runs `specpoly mix`.
+pub fn run(a: &MixArgs) -> Result<()> {
+    if !(3..=6).contains(&a.channels.len()) {
+        return Err(CliError::usage(format!(
+            "{} channels: a mix takes 3 to 6 --channel NAME=FILE.csv[#COLUMN]",
+            a.channels.len()
+        )));
+    }
+    let channels = a
+        .channels
+        .iter()
+        .map(|c| load_channel(c))
+        .collect::<Result<Vec<_>>>()?;
+    let r = light::mix(
+        &channels,
+        a.target,
+        a.luminance,
+        a.optimize,
+        &a.trc.into(),
+        a.bits,
+    )?;
+    if a.json {
+        return print_json(&r);
+    }
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "# target {} at {} of the most the channels give there; optimize {:?}; {}",
+        describe(&a.target),
+        a.luminance,
+        a.optimize,
+        a.bits.map_or("unquantised duties".to_string(), |b| format!(
+            "{b}-bit duties"
+        ))
+    );
+    let w = r.channels.iter().map(|c| c.len()).max().unwrap_or(7).max(7);
+    let _ = writeln!(o, "{:<w$} {:>9}", "channel", "duty");
+    for (c, d) in r.channels.iter().zip(&r.duties) {
+        let _ = writeln!(o, "{c:<w$} {d:>9.6}");
+    }
+    let _ = writeln!(
+        o,
+        "{:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9}",
+        "x", "y", "u'", "v'", "cct", "duv", "ra", "rf", "rg", "lm/W"
+    );
+    let _ = writeln!(
+        o,
+        "{:>7.4} {:>7.4} {:>7.4} {:>7.4} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9.1}",
+        r.x,
+        r.y,
+        r.u_prime,
+        r.v_prime,
+        opt(r.cct, 1),
+        opt(r.duv, 5),
+        opt(r.ra, 1),
+        opt(r.rf, 1),
+        opt(r.rg, 1),
+        r.efficacy
+    );
+    crate::io::stdout::print(&o)
+}
