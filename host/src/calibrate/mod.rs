@@ -2,6 +2,7 @@
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
 pub mod display;
+pub mod export;
 pub mod file;
 pub mod fit;
 pub mod icc;
