@@ -5,26 +5,27 @@
 //!
 //! 1. `d = decode[c]`: the source curve, linear light in Q15 (`1.0 = 32768`), 256 × u16;
 //! 2. `v = (Σⱼ mᵢⱼ dⱼ + round) >> shift`: the 3×3 `T` of [`linear_matrix`](super::source::linear_matrix)
-//!    in i32, giving the panel's linear drive `l` as `v = round(l · (N − 1) · 64) + 36`. The shift
+//!    in i32, giving the panel's linear drive `l` as `v = round(l · (N − 1) · 64) + 8`. The shift
 //!    is the largest that cannot overflow i32 for this `T` (chosen at construction);
 //! 3. the gamut map: [`GamutMap::Clip`] is the clamp of `v` to the table's range (one `usat` on
 //!    a Cortex-M4); [`GamutMap::Desaturate`] sends the rare out-of-gamut pixel through the core's
 //!    [`map_gamut`] in f32;
 //! 4. the panel's inverse curve by one table look-up per channel, without interpolation: the
-//!    table's first `F` entries are *fine* bins of 8 units of `v` (the dark end, `v < 8F`, where
-//!    the inverse curve is steep), the other `N − F/8` are *coarse* bins of 64 units; the index
-//!    is `min(v >> 3, (v >> 6) + 7F/8)`, which is the fine bin below `8F` and the coarse one
-//!    above (`LEN = F + N − F/8` entries, `N` coarse bins spanning `[0, 1]`). An entry is the
-//!    panel level of the light at its bin's centre (the bin holding `l = 0` is centred on it; the
-//!    last bin, holding `l = 1`, is full drive), so the emitted light is off by at most half a
-//!    bin: `1/(2·8·(N − 1))` at the dark end, `1/(2·(N − 1))` above `l = F/(8(N − 1))`.
+//!    table's first `F` entries are *fine* bins of 16 units of `v` (the dark end, `v < 16F`,
+//!    where the inverse curve is steep), the other `N − F/4` are *coarse* bins of 64 units; the
+//!    index is `min(v >> 4, (v >> 6) + 3F/4)`, which is the fine bin below `16F` and the coarse
+//!    one above (`LEN = F + N − F/4` entries, `N` coarse bins spanning `[0, 1]`). An entry is
+//!    the panel level of the light at its bin's centre (the bin holding `l = 0` is centred on
+//!    it; the last bin, holding `l = 1`, is full drive), so the emitted light is off by at most
+//!    half a bin: `1/(8(N − 1))` at the dark end, `1/(2(N − 1))` above `l = F/(4(N − 1))`.
 //!
 //! The entries are panel levels in Q8 (`q · 256 + f`, `f/256` of the way *in light* from level
 //! `q` to `q + 1`, by the panel's own curve at its own bit depth), so rounding or dithering to the
 //! panel's 5, 6 or 8 bits is an add and a shift.
 //!
-//! [`PanelTransform`] (`N = 1024`, `F = 128`, `LEN = 1136`) holds 7.2 KiB of tables (decode
-//! 512 B, curves 3 × 2272 B); its accuracy and speed are in docs/calibration.md and
+//! [`PanelTransform`] (`N = 1024`, `F = 256`, `LEN = 1216`) holds 7.7 KiB of tables (decode
+//! 512 B, matrix 36 B, curves 3 × 2432 B): the fine bins cover the darkest 1/16 of the range,
+//! where ΔE00 is most sensitive to light; its accuracy and speed are in docs/calibration.md and
 //! docs/performance.md.
 
 use super::source::linear_matrix;
@@ -35,9 +36,9 @@ use crate::Error;
 /// The decode table's linear 1.0 (Q15).
 pub const DECODE_ONE: i32 = 1 << 15;
 /// `v` of linear drive 0 (so that the fine bin holding it is centred on it).
-pub const BIAS: i32 = 36;
+pub const BIAS: i32 = 8;
 /// Fine bins are `2^FINE_SHIFT` units of `v` wide.
-pub const FINE_SHIFT: u32 = 3;
+pub const FINE_SHIFT: u32 = 4;
 /// Coarse bins are `2^COARSE_SHIFT` units of `v` wide.
 pub const COARSE_SHIFT: u32 = 6;
 
@@ -98,33 +99,33 @@ impl Options {
 }
 
 /// A source → panel pixel transform with `LEN` inverse-curve entries per channel, the first
-/// `F` of them fine: `F` a power of two ≥ 8, and `N = LEN − 7F/8` (the coarse bins spanning
-/// `[0, 1]`) a power of two with `16 ≤ N ≤ 4096` and `F < 8N` (checked at compile time).
+/// `F` of them fine: `F` a power of two ≥ 4, and `N = LEN − 3F/4` (the coarse bins spanning
+/// `[0, 1]`) a power of two with `16 ≤ N ≤ 4096` and `F < 4N` (checked at compile time).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PixelTransform<const LEN: usize, const F: usize> {
     t: Tables<LEN, F>,
 }
 
-/// The transform sized for ≤ 8 KiB of tables: 1024 coarse bins, 128 fine ones.
-pub type PanelTransform = PixelTransform<1136, 128>;
+/// The transform sized for ≤ 8 KiB of tables: 1024 coarse bins, 256 fine ones.
+pub type PanelTransform = PixelTransform<1216, 256>;
 
 // the firmware budget (issue 17): tables ≤ 8 KiB of flash
 const _: () = assert!(PanelTransform::TABLE_BYTES <= 8 * 1024);
 
 impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
     /// Coarse bins spanning `[0, 1]`.
-    pub const N: usize = LEN - 7 * F / 8;
+    pub const N: usize = LEN - 3 * F / 4;
     /// Added to a coarse bin's number to index the table.
-    const COARSE_BASE: usize = 7 * F / 8;
+    pub const COARSE_BASE: usize = 3 * F / 4;
     const SIZES_OK: () = assert!(
         F.is_power_of_two()
-            && F >= 8
-            && LEN > 7 * F / 8
-            && (LEN - 7 * F / 8).is_power_of_two()
-            && LEN - 7 * F / 8 >= 16
-            && LEN - 7 * F / 8 <= 4096
-            && F < 8 * (LEN - 7 * F / 8),
-        "PixelTransform<LEN, F>: F a power of two ≥ 8, LEN − 7F/8 a power of two in 16..=4096, F < 8(LEN − 7F/8)"
+            && F >= 4
+            && LEN > 3 * F / 4
+            && (LEN - 3 * F / 4).is_power_of_two()
+            && LEN - 3 * F / 4 >= 16
+            && LEN - 3 * F / 4 <= 4096
+            && F < 4 * (LEN - 3 * F / 4),
+        "PixelTransform<LEN, F>: F a power of two ≥ 4, LEN − 3F/4 a power of two in 16..=4096, F < 4(LEN − 3F/4)"
     );
     /// `v − BIAS` of linear drive 1.
     pub const ONE: i32 = ((Self::N - 1) << COARSE_SHIFT) as i32;
