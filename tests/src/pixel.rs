@@ -8,14 +8,17 @@ use specpoly_core::{Display, GamutMap, Transfer, Xyz};
 /// A 3×3 matrix, row-major.
 pub type M3 = [[f64; 3]; 3];
 
+/// `a · b`.
 pub fn mul(a: &M3, b: &M3) -> M3 {
     [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
+/// `m · v`.
 pub fn apply(m: &M3, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
 }
 
+/// The inverse (adjugate over determinant).
 pub fn inv(m: &M3) -> M3 {
     let c =
         |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
@@ -48,6 +51,7 @@ pub fn primaries_white(xy: [[f64; 2]; 3], white: [f64; 2]) -> M3 {
     primaries(xy, apply(&inv(&unit), w))
 }
 
+/// Bradford adaptation (Lam 1985) from white `from` to white `to`.
 pub fn bradford(from: [f64; 3], to: [f64; 3]) -> M3 {
     // Lam (1985)
     let b = [
@@ -65,6 +69,7 @@ pub fn bradford(from: [f64; 3], to: [f64; 3]) -> M3 {
 }
 
 #[derive(Clone)]
+/// A channel's transfer curve: device value → linear light.
 pub enum Curve {
     Srgb,
     Linear,
@@ -73,6 +78,7 @@ pub enum Curve {
 }
 
 impl Curve {
+    /// Device value in `[0, 1]` → linear light.
     pub fn decode(&self, v: f64) -> f64 {
         let v = v.clamp(0.0, 1.0);
         match self {
@@ -104,11 +110,13 @@ pub struct Panel {
 }
 
 impl Panel {
+    /// The emitted XYZ for linear drive `light`.
     pub fn xyz(&self, light: [f64; 3]) -> [f64; 3] {
         let x = apply(&self.m, light);
         [0, 1, 2].map(|i| x[i] + self.black[i])
     }
 
+    /// The white: full drive, black included.
     pub fn white(&self) -> [f64; 3] {
         self.xyz([1.0; 3])
     }

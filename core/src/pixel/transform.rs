@@ -5,28 +5,29 @@
 //!
 //! 1. `d = decode[c]`: the source curve, linear light in Q15 (`1.0 = 32768`), 256 × u16;
 //! 2. `v = (Σⱼ mᵢⱼ dⱼ + round) >> shift`: the 3×3 `T` of [`linear_matrix`](super::source::linear_matrix)
-//!    in i32, giving the panel's linear drive `l` as `v = round(l · (N − 1) · 64) + 8`. The shift
-//!    is the largest that cannot overflow i32 for this `T` (chosen at construction);
-//! 3. the gamut map: [`GamutMap::Clip`] is the clamp of `v` to the table's range (one `usat` on
-//!    a Cortex-M4); [`GamutMap::Desaturate`] sends the rare out-of-gamut pixel through the core's
+//!    in i32, giving the panel's linear drive `l` as `v = round(l · 65472) + 4`. The shift is the
+//!    largest that cannot overflow i32 for this `T` (chosen at construction);
+//! 3. the gamut map: [`GamutMap::Clip`] is the clamp of `v` to `0..=65535` (one `usat` on a
+//!    Cortex-M4); [`GamutMap::Desaturate`] sends the rare out-of-gamut pixel through the core's
 //!    [`map_gamut`] in f32;
-//! 4. the panel's inverse curve by one table look-up per channel, without interpolation: the
-//!    table's first `F` entries are *fine* bins of 16 units of `v` (the dark end, `v < 16F`,
-//!    where the inverse curve is steep), the other `N − F/4` are *coarse* bins of 64 units; the
-//!    index is `min(v >> 4, (v >> 6) + 3F/4)`, which is the fine bin below `16F` and the coarse
-//!    one above (`LEN = F + N − F/4` entries, `N` coarse bins spanning `[0, 1]`). An entry is
-//!    the panel level of the light at its bin's centre (the bin holding `l = 0` is centred on
-//!    it; the last bin, holding `l = 1`, is full drive), so the emitted light is off by at most
-//!    half a bin: `1/(8(N − 1))` at the dark end, `1/(2(N − 1))` above `l = F/(4(N − 1))`.
+//! 4. the panel's inverse curve by one table look-up per channel, without interpolation. The
+//!    table's bins widen in three tiers, because ΔE00 is most sensitive to light errors in dark
+//!    colours (CIELAB's slope grows as `Y^(−2/3)`, and below `Y ≈ 0.009` chroma is linear in
+//!    X, Y, Z): `F` *fine* bins of 8 units of `v` from 0, then `M` *middle* bins of 32, then the
+//!    rest (`C = LEN − F − M`) *coarse* bins of 128 up to 65536. The index is
+//!    `min(v >> 3, (v >> 5) + K₁, (v >> 7) + K₂)`: each tier's own formula is the smallest inside
+//!    it (no branch). An entry is the panel level of the light at its bin's centre (the bin
+//!    holding `l = 0` is centred on it; the bin holding `l = 1` is full drive), so the emitted
+//!    light is off by at most half a bin: 6.1·10⁻⁵ in the fine tier, 2.4·10⁻⁴ in the middle,
+//!    9.8·10⁻⁴ in the coarse.
 //!
 //! The entries are panel levels in Q8 (`q · 256 + f`, `f/256` of the way *in light* from level
 //! `q` to `q + 1`, by the panel's own curve at its own bit depth), so rounding or dithering to the
 //! panel's 5, 6 or 8 bits is an add and a shift.
 //!
-//! [`PanelTransform`] (`N = 1024`, `F = 256`, `LEN = 1216`) holds 7.7 KiB of tables (decode
-//! 512 B, matrix 36 B, curves 3 × 2432 B): the fine bins cover the darkest 1/16 of the range,
-//! where ΔE00 is most sensitive to light; its accuracy and speed are in docs/calibration.md and
-//! docs/performance.md.
+//! [`PanelTransform`] (`F = 256` fine bins to 1/32 of full drive, `M = 448` middle ones to 1/4,
+//! 384 coarse ones: `LEN = 1088`) holds 6.9 KiB of tables (decode 512 B, matrix 36 B, curves
+//! 3 × 2176 B); its accuracy and speed are in docs/calibration.md and docs/performance.md.
 
 use super::source::linear_matrix;
 use super::{level_lights, level_q8, Source, White};
@@ -36,16 +37,22 @@ use crate::Error;
 /// The decode table's linear 1.0 (Q15).
 pub const DECODE_ONE: i32 = 1 << 15;
 /// `v` of linear drive 0 (so that the fine bin holding it is centred on it).
-pub const BIAS: i32 = 8;
+pub const BIAS: i32 = 4;
+/// `v − BIAS` of linear drive 1.
+pub const ONE: i32 = 65472;
+/// The largest `v` (the clamp).
+pub const V_MAX: i32 = 65535;
 /// Fine bins are `2^FINE_SHIFT` units of `v` wide.
-pub const FINE_SHIFT: u32 = 4;
+pub const FINE_SHIFT: u32 = 3;
+/// Middle bins are `2^MID_SHIFT` units of `v` wide.
+pub const MID_SHIFT: u32 = 5;
 /// Coarse bins are `2^COARSE_SHIFT` units of `v` wide.
-pub const COARSE_SHIFT: u32 = 6;
+pub const COARSE_SHIFT: u32 = 7;
 
 /// Everything a [`PixelTransform`] computes with: what [`export`](super::export) writes out and
 /// [`PixelTransform::from_tables`] takes back (so firmware can keep it in flash).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Tables<const LEN: usize, const F: usize> {
+pub struct Tables<const LEN: usize> {
     /// Source code value → linear light, Q15.
     pub decode: [u16; 256],
     /// `T` scaled to `v` units and by `2^shift`, row-major.
@@ -54,7 +61,7 @@ pub struct Tables<const LEN: usize, const F: usize> {
     pub shift: u32,
     /// `(BIAS << shift) + (1 << (shift − 1))`: the bias and rounding.
     pub round: i32,
-    /// Per channel, the levels (Q8): `F` fine bins, then the coarse ones.
+    /// Per channel, the levels (Q8): the fine bins, the middle ones, the coarse ones.
     pub curve: [[u16; LEN]; 3],
     /// The panel's bits per channel (5, 6 or 8 for RGB565/666/888).
     pub bits: [u8; 3],
@@ -98,43 +105,55 @@ impl Options {
     pub const RGB888: [u8; 3] = [8, 8, 8];
 }
 
-/// A source → panel pixel transform with `LEN` inverse-curve entries per channel, the first
-/// `F` of them fine: `F` a power of two ≥ 4, and `N = LEN − 3F/4` (the coarse bins spanning
-/// `[0, 1]`) a power of two with `16 ≤ N ≤ 4096` and `F < 4N` (checked at compile time).
+/// A source → panel pixel transform with `LEN` inverse-curve entries per channel: `F` fine,
+/// `M` middle and `LEN − F − M` coarse bins, which must tile `0..65536` (`8F + 32M + 128C =
+/// 65536`, tier boundaries on the next tier's bins; checked at compile time).
 #[derive(Clone, Debug, PartialEq)]
-pub struct PixelTransform<const LEN: usize, const F: usize> {
-    t: Tables<LEN, F>,
+pub struct PixelTransform<const LEN: usize, const F: usize, const M: usize> {
+    t: Tables<LEN>,
 }
 
-/// The transform sized for ≤ 8 KiB of tables: 1024 coarse bins, 256 fine ones.
-pub type PanelTransform = PixelTransform<1216, 256>;
+/// The transform sized for ≤ 8 KiB of tables: fine bins to 1/32 of full drive, middle ones to
+/// 1/4, coarse ones above.
+pub type PanelTransform = PixelTransform<1088, 256, 448>;
 
 // the firmware budget (issue 17): tables ≤ 8 KiB of flash
 const _: () = assert!(PanelTransform::TABLE_BYTES <= 8 * 1024);
 
-impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
-    /// Coarse bins spanning `[0, 1]`.
-    pub const N: usize = LEN - 3 * F / 4;
-    /// Added to a coarse bin's number to index the table.
-    pub const COARSE_BASE: usize = 3 * F / 4;
+impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M> {
+    /// Coarse bins.
+    pub const C: usize = LEN - F - M;
+    /// Where the middle tier starts (`v`).
+    pub const MID_START: usize = F << FINE_SHIFT;
+    /// Where the coarse tier starts (`v`).
+    pub const COARSE_START: usize = Self::MID_START + (M << MID_SHIFT);
+    /// `K₁`: added to `v >> 5` to index the middle tier.
+    pub const K_MID: usize = F - (Self::MID_START >> MID_SHIFT);
+    /// `K₂`: added to `v >> 7` to index the coarse tier.
+    pub const K_COARSE: usize = F + M - (Self::COARSE_START >> COARSE_SHIFT);
     const SIZES_OK: () = assert!(
-        F.is_power_of_two()
-            && F >= 4
-            && LEN > 3 * F / 4
-            && (LEN - 3 * F / 4).is_power_of_two()
-            && LEN - 3 * F / 4 >= 16
-            && LEN - 3 * F / 4 <= 4096
-            && F < 4 * (LEN - 3 * F / 4),
-        "PixelTransform<LEN, F>: F a power of two ≥ 4, LEN − 3F/4 a power of two in 16..=4096, F < 4(LEN − 3F/4)"
+        F >= 4
+            && M >= 4
+            && LEN >= F + M + 2
+            && (F << FINE_SHIFT) % (1 << MID_SHIFT) == 0
+            && ((F << FINE_SHIFT) + (M << MID_SHIFT)) % (1 << COARSE_SHIFT) == 0
+            && (F << FINE_SHIFT) + (M << MID_SHIFT) + ((LEN - F - M) << COARSE_SHIFT) == 65536,
+        "PixelTransform<LEN, F, M>: 8F + 32M + 128(LEN − F − M) = 65536, F ≡ 0 mod 4, 8F + 32M ≡ 0 mod 128"
     );
-    /// `v − BIAS` of linear drive 1.
-    pub const ONE: i32 = ((Self::N - 1) << COARSE_SHIFT) as i32;
-    /// The largest `v` (the clamp).
-    pub const V_MAX: i32 = ((Self::N << COARSE_SHIFT) - 1) as i32;
-    /// Below this `v` the fine bins are used.
-    pub const FINE_LIMIT: i32 = (F << FINE_SHIFT) as i32;
     /// Bytes of tables (decode, matrix, curves).
     pub const TABLE_BYTES: usize = 256 * 2 + 9 * 4 + 3 * LEN * 2;
+
+    /// The centre of table entry `i`'s bin, in `v`.
+    pub fn centre(i: usize) -> i32 {
+        let c = if i < F {
+            (i << FINE_SHIFT) + (1 << (FINE_SHIFT - 1))
+        } else if i < F + M {
+            Self::MID_START + ((i - F) << MID_SHIFT) + (1 << (MID_SHIFT - 1))
+        } else {
+            Self::COARSE_START + ((i - F - M) << COARSE_SHIFT) + (1 << (COARSE_SHIFT - 1))
+        };
+        c as i32
+    }
 
     /// Builds the transform for `panel` (Cowan's model: primaries, black, curves).
     ///
@@ -154,7 +173,7 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
         }
 
         // the largest shift with |Σ m d| + round < 2^31 for every input
-        let k = Self::ONE as f64 / DECODE_ONE as f64;
+        let k = ONE as f64 / DECODE_ONE as f64;
         let row =
             t.0.iter()
                 .map(|r| r.iter().map(|v| v.abs() as f64).sum::<f64>() * k)
@@ -173,21 +192,15 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
 
         let mut curve = [[0u16; LEN]; 3];
         let mut lights = [0.0f32; 256];
-        let light = |centre: i32| ((centre - BIAS) as f32 / Self::ONE as f32).clamp(0.0, 1.0);
+        let white = Self::index(ONE + BIAS);
         for c in 0..3 {
             let n = level_lights(&panel.transfer()[c], opts.bits[c], &mut lights);
             let lv = &lights[..n];
-            for (j, e) in curve[c].iter_mut().enumerate() {
-                let l = if j < F {
-                    let lo = (j as i32) << FINE_SHIFT;
-                    light(lo + (1 << (FINE_SHIFT - 1)))
+            for (i, e) in curve[c].iter_mut().enumerate() {
+                let l = if i >= white {
+                    1.0 // the bin holding full drive (and everything above)
                 } else {
-                    let lo = ((j - Self::COARSE_BASE) as i32) << COARSE_SHIFT;
-                    if lo + (1 << COARSE_SHIFT) > Self::ONE + BIAS {
-                        1.0 // the bin holding full drive (and everything above)
-                    } else {
-                        light(lo + (1 << (COARSE_SHIFT - 1)))
-                    }
+                    ((Self::centre(i) - BIAS) as f32 / ONE as f32).clamp(0.0, 1.0)
                 };
                 *e = level_q8(lv, l);
             }
@@ -209,13 +222,13 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
     /// A transform from tables made by [`Self::new`] (and written out by
     /// [`export`](super::export)): `const`, so the tables can live in flash. The arithmetic
     /// wraps, so any tables are safe (if wrong).
-    pub const fn from_tables(t: Tables<LEN, F>) -> Self {
+    pub const fn from_tables(t: Tables<LEN>) -> Self {
         let () = Self::SIZES_OK;
         Self { t }
     }
 
     /// The tables.
-    pub fn tables(&self) -> &Tables<LEN, F> {
+    pub fn tables(&self) -> &Tables<LEN> {
         &self.t
     }
 
@@ -246,7 +259,7 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
     pub fn levels(&self, rgb: [u8; 3]) -> [u16; 3] {
         let mut v = self.drive(rgb);
         if self.t.map == GamutMap::Desaturate {
-            let one = Self::ONE as u32;
+            let one = ONE as u32;
             let outside = (v[0].wrapping_sub(BIAS) as u32 > one)
                 | (v[1].wrapping_sub(BIAS) as u32 > one)
                 | (v[2].wrapping_sub(BIAS) as u32 > one);
@@ -273,14 +286,15 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
         ]
     }
 
-    /// The table index of `v`: its fine bin below `8F`, its coarse bin above (one `min`, no
-    /// branch), after the clamp that is [`GamutMap::Clip`].
+    /// The table index of `v` after the clamp that is [`GamutMap::Clip`]: the smallest of the
+    /// three tiers' formulas, which is the tier `v` lies in (no branch; tested for every `v`).
     #[inline(always)]
     pub fn index(v: i32) -> usize {
-        let v = v.clamp(0, Self::V_MAX) as usize;
+        let v = v.clamp(0, V_MAX) as usize;
         let fine = v >> FINE_SHIFT;
-        let coarse = (v >> COARSE_SHIFT) + Self::COARSE_BASE;
-        fine.min(coarse)
+        let mid = (v >> MID_SHIFT) + Self::K_MID;
+        let coarse = (v >> COARSE_SHIFT) + Self::K_COARSE;
+        fine.min(mid).min(coarse)
     }
 
     #[inline(always)]
@@ -292,7 +306,7 @@ impl<const LEN: usize, const F: usize> PixelTransform<LEN, F> {
     #[cold]
     #[inline(never)]
     fn desaturate(&self, v: [i32; 3]) -> [i32; 3] {
-        let one = Self::ONE as f32;
+        let one = ONE as f32;
         let l = v.map(|x| (x - BIAS) as f32 / one);
         let (m, _) = map_gamut(l, self.t.weights, GamutMap::Desaturate);
         m.map(|x| (x * one + 0.5) as i32 + BIAS)
@@ -418,6 +432,31 @@ mod tests {
         let p = PanelTransform::new(&lcd(), opts).unwrap();
         let l = p.levels([255; 3]);
         assert!(l.iter().any(|v| *v < 255 << 8), "{l:?}");
+    }
+
+    #[test]
+    fn every_v_indexes_its_own_tier() {
+        type P = PanelTransform;
+        for v in 0..=V_MAX {
+            let u = v as usize;
+            let want = if u < P::MID_START {
+                u >> FINE_SHIFT
+            } else if u < P::COARSE_START {
+                256 + ((u - P::MID_START) >> MID_SHIFT)
+            } else {
+                256 + 448 + ((u - P::COARSE_START) >> COARSE_SHIFT)
+            };
+            assert_eq!(P::index(v), want, "v = {v}");
+            // and the entry's bin holds v
+            let half = match want {
+                i if i < 256 => 4,
+                i if i < 256 + 448 => 16,
+                _ => 64,
+            };
+            assert!((P::centre(want) - v).abs() <= half);
+        }
+        assert_eq!(P::index(-5), 0);
+        assert_eq!(P::index(1 << 20), 1087);
     }
 
     #[test]
