@@ -5,7 +5,7 @@
 use super::geometry::{Camera, Shape, V3};
 use super::upsample;
 use crate::error::{CliError, Result};
-use crate::spectra::{self, Named};
+use crate::spectrum_names::{self, Named};
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 use specpoly_core::Observer;
@@ -375,7 +375,7 @@ pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
     match spec {
         SpectrumSpec::Constant(v) => flat(format!("{v}"), finite(*v, "the value")?),
         SpectrumSpec::Name(n) => {
-            let mut v = spectra::resolve(n).map_err(data)?;
+            let mut v = spectrum_names::resolve(n).map_err(data)?;
             if v.len() != 1 {
                 return Err(CliError::data(format!(
                     "{what}: `{n}` names {} spectra; name one column",
@@ -467,6 +467,25 @@ impl SceneFile {
 
     /// Resolves names, checks values and builds the scene. `source` names the file in errors.
     pub fn resolve(&self, source: &str) -> Result<Scene> {
+        let observer = self.check_render(source)?;
+        let camera = self.camera(source)?;
+        let materials = self.materials(source)?;
+        let objects = self.objects(source)?;
+        let (lights, ambient, background) = self.lights(source)?;
+        Ok(Scene {
+            render: self.render.clone(),
+            observer,
+            camera,
+            ambient,
+            background,
+            lights,
+            materials,
+            objects,
+        })
+    }
+
+    /// Checks `[render]` and returns its observer.
+    fn check_render(&self, source: &str) -> Result<Observer> {
         let r = &self.render;
         let observer = Observer::from_name(&r.observer).ok_or_else(|| {
             CliError::data(format!(
@@ -496,6 +515,11 @@ impl SceneFile {
                 "{source}: render.cutoff must be ≥ 0"
             )));
         }
+        Ok(observer)
+    }
+
+    /// The checked camera.
+    fn camera(&self, source: &str) -> Result<Camera> {
         let c = &self.camera;
         let pos = v3(c.position, &format!("{source}: camera.position"))?;
         let at = v3(c.look_at, &format!("{source}: camera.look_at"))?;
@@ -511,8 +535,11 @@ impl SceneFile {
                 c.fov
             )));
         }
-        let camera = Camera::new(pos, at, up, c.fov);
+        Ok(Camera::new(pos, at, up, c.fov))
+    }
 
+    /// The materials, with their spectra resolved, in name order.
+    fn materials(&self, source: &str) -> Result<Vec<Material>> {
         let mut materials = Vec::new();
         for (name, m) in &self.materials {
             let w = |f: &str| format!("{source}: materials.{name}.{f}");
@@ -532,23 +559,30 @@ impl SceneFile {
                 ior: m.ior,
             });
         }
-        let material = |name: &str, what: &str| -> Result<usize> {
-            self.materials
-                .keys()
-                .position(|k| k == name)
-                .ok_or_else(|| {
-                    let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
-                    CliError::data(format!(
-                        "{source}: {what}: unknown material `{name}` (defined: {})",
-                        if known.is_empty() {
-                            "none".to_string()
-                        } else {
-                            known.join(", ")
-                        }
-                    ))
-                })
-        };
+        Ok(materials)
+    }
 
+    /// The index of material `name`, which `what` (e.g. `sphere 2`) uses.
+    fn material_index(&self, source: &str, name: &str, what: &str) -> Result<usize> {
+        self.materials
+            .keys()
+            .position(|k| k == name)
+            .ok_or_else(|| {
+                let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                CliError::data(format!(
+                    "{source}: {what}: unknown material `{name}` (defined: {})",
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                ))
+            })
+    }
+
+    /// Spheres, planes and boxes, checked, in that order.
+    fn objects(&self, source: &str) -> Result<Vec<Object>> {
+        let material = |name: &str, what: &str| self.material_index(source, name, what);
         let mut objects = Vec::new();
         for (i, s) in self.sphere.iter().enumerate() {
             let what = format!("sphere {}", i + 1);
@@ -612,7 +646,12 @@ impl SceneFile {
                 checker: None,
             });
         }
+        Ok(objects)
+    }
 
+    /// The point lights, the ambient light (the first light's spectrum at zero intensity if
+    /// the file has none) and the background.
+    fn lights(&self, source: &str) -> Result<(Vec<Light>, Light, Option<Named>)> {
         let mut lights = Vec::new();
         for (i, l) in self.light.iter().enumerate() {
             let what = format!("{source}: light {}", i + 1);
@@ -662,15 +701,6 @@ impl SceneFile {
                 )));
             }
         }
-        Ok(Scene {
-            render: self.render.clone(),
-            observer,
-            camera,
-            ambient,
-            background,
-            lights,
-            materials,
-            objects,
-        })
+        Ok((lights, ambient, background))
     }
 }
