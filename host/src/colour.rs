@@ -6,7 +6,7 @@
 //! `x̄, ȳ, z̄` has `X = K Σ_λ R(λ) S(λ) x̄(λ)` (likewise `Y`, `Z`), summed at 1 nm over
 //! 380–780 nm with `K = 100 / Σ_λ S(λ) ȳ(λ)`, so the perfect white has `Y = 100`. An
 //! inter-reflection chain `R₁ R₂ … Rₖ` is the product of the reflectances, wavelength by
-//! wavelength. The reference ([`reference`]) does exactly this in f64 on the linear
+//! wavelength. The reference ([`reference()`]) does exactly this in f64 on the linear
 //! interpolants of the tabulated data ([`specpoly_core::exact_xyz`]); a representation
 //! ([`Chains`]) converts every reflectance, multiplies with its own `Shade::mul` (degree
 //! reduction for polynomials, per-sample for sampling, per-channel for RGB) and integrates
@@ -30,13 +30,7 @@ pub struct Colour {
 impl Colour {
     /// Chromaticity `x, y` (paper eq. 8); black gets the white's chromaticity.
     pub fn xy(&self) -> [f64; 2] {
-        let chroma = |v: [f64; 3]| {
-            let s = v[0] + v[1] + v[2];
-            (s > 0.0).then(|| [v[0] / s, v[1] / s])
-        };
-        chroma(self.xyz)
-            .or_else(|| chroma(self.white))
-            .unwrap_or([1.0 / 3.0, 1.0 / 3.0])
+        specpoly_core::chromaticity(self.xyz, self.white)
     }
 
     /// CIELAB against the white.
