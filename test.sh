@@ -13,6 +13,7 @@ missing=()
 command -v qemu-system-arm >/dev/null 2>&1 || missing+=(qemu-system-arm)
 command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 command -v spotread >/dev/null 2>&1 || missing+=(argyll)
+command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing ${missing[*]} (apt)"
@@ -24,7 +25,7 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread targen; do
+for tool in qemu-system-arm chromium spotread dispread targen cc; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then
@@ -45,8 +46,8 @@ cargo clippy --workspace --all-targets -- -D warnings
 (cd firmware && cargo clippy --release --no-default-features --features stm32f4 --bin stm32f4 \
   --target-dir target/stm32f4 -- -D warnings)
 
-say "specpoly-core for a microcontroller (thumbv7em-none-eabihf)"
-cargo build -p specpoly-core --target thumbv7em-none-eabihf
+say "specpoly-core and specpoly-graphics for a microcontroller (thumbv7em-none-eabihf)"
+cargo build -p specpoly-core -p specpoly-graphics --target thumbv7em-none-eabihf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 cargo test --workspace --no-fail-fast

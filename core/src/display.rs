@@ -302,7 +302,7 @@ impl Display {
     }
 
     /// Each channel's share of the white's luminance (row Y of `M`, normalised).
-    fn luminance_weights(&self) -> [f32; 3] {
+    pub fn luminance_weights(&self) -> [f32; 3] {
         let r = self.to_xyz.0[1];
         let s = r[0] + r[1] + r[2];
         if s > 0.0 {

@@ -64,6 +64,7 @@ pub mod matrix;
 pub mod moments;
 pub mod observer;
 pub mod paper;
+pub mod pixel;
 pub mod shade;
 pub mod solve;
 pub mod spectrum;

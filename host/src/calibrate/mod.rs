@@ -1,6 +1,7 @@
 //! Monitor calibration: patch sets, where patches are shown, where readings come from, the
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
+pub mod export;
 pub mod file;
 pub mod fit;
 pub mod icc;

@@ -3,7 +3,7 @@
 
 use crate::calibrate::file::{self, Calibration, TransferKind};
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
-use crate::calibrate::{icc, verify};
+use crate::calibrate::{export, icc, verify};
 use crate::error::{CliError, Result};
 use crate::io::cgats;
 use crate::io::stdout::{print, print_json};
@@ -25,6 +25,8 @@ pub enum CalibrateCommand {
     Verify(VerifyArgs),
     /// Export an ICC v4 matrix/TRC display profile.
     Icc(IccArgs),
+    /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
+    Export(ExportArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
     Run(crate::cli::calibrate_run::RunArgs),
     /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
@@ -112,6 +114,32 @@ pub struct IccArgs {
     pub description: Option<String>,
 }
 
+/// `calibrate export`.
+#[derive(Debug, clap::Args)]
+pub struct ExportArgs {
+    /// The calibration file.
+    #[arg(long)]
+    pub calibration: PathBuf,
+    /// The colour space the firmware's UI draws in.
+    #[arg(long, value_enum, default_value_t = export::SourceArg::Srgb)]
+    pub source: export::SourceArg,
+    /// C header or Rust source.
+    #[arg(long, value_enum)]
+    pub format: export::Format,
+    /// The panel's bits per channel.
+    #[arg(long, value_enum, default_value_t = export::Bits::Rgb565)]
+    pub bits: export::Bits,
+    /// The source white: adapted to the panel's, or kept.
+    #[arg(long, value_enum, default_value_t = export::WhiteArg::Adapt)]
+    pub white: export::WhiteArg,
+    /// The tables' name prefix (a C/Rust identifier).
+    #[arg(long, default_value = "panel", value_parser = export::identifier)]
+    pub name: String,
+    /// The file to write.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
 /// Runs `specpoly calibrate`.
 pub fn run(c: CalibrateCommand) -> Result<()> {
     match c {
@@ -120,6 +148,7 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
         CalibrateCommand::Predict(a) => predict(&a),
         CalibrateCommand::Verify(a) => verify_cmd(&a),
         CalibrateCommand::Icc(a) => icc_cmd(&a),
+        CalibrateCommand::Export(a) => export_cmd(&a),
         CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
         CalibrateCommand::Patches(a) => patches_cmd(&a),
     }
@@ -370,4 +399,24 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
         a.output.display(),
         bytes.len()
     ))
+}
+
+fn export_cmd(a: &ExportArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let p = export::transform(&cal, a.source, a.white, a.bits)?;
+    let origin = format!(
+        "calibration {}, source {:?}, white {:?}, {:?}",
+        a.calibration.display(),
+        a.source,
+        a.white,
+        a.bits
+    );
+    let text = export::source_text(&p, a.format, &a.name, &origin)?;
+    crate::io::atomic::write(&a.output, text.as_bytes())?;
+    eprintln!(
+        "wrote {} ({} bytes of tables)",
+        a.output.display(),
+        specpoly_core::pixel::PanelTransform::TABLE_BYTES
+    );
+    Ok(())
 }

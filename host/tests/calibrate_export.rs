@@ -1,0 +1,185 @@
+//! `specpoly calibrate export`: the emitted C is compiled with the system C compiler (`cc`) and
+//! run; its panel levels and dithered RGB565 codes must equal the Rust transform's on a sample
+//! of pixels. The Rust form is compiled by the firmware's build (firmware/build.rs, QEMU tests).
+
+use specpoly::calibrate::file;
+use specpoly_core::pixel::{Dither, Options, PanelTransform, Source, White};
+use specpoly_core::GamutMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn specpoly(args: &[&std::ffi::OsStr]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_specpoly"))
+        .args(args)
+        .output()
+        .expect("specpoly runs")
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+fn acer_calibration(dir: &Path) -> PathBuf {
+    let toml = dir.join("acer.toml");
+    let ti3 = repo().join("data/ti3/acer-xb271hu-unit1_dispread_2068.ti3");
+    let out = specpoly(&[
+        "calibrate".as_ref(),
+        "fit".as_ref(),
+        "--ti3".as_ref(),
+        ti3.as_os_str(),
+        "-o".as_ref(),
+        toml.as_os_str(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    toml
+}
+
+const MAIN_C: &str = r#"
+#include <stdio.h>
+#include "acer.h"
+int main(void) {
+    for (int r = 0; r < 256; r += 3)
+        for (int g = 0; g < 256; g += 5)
+            for (int b = 0; b < 256; b += 7) {
+                uint16_t l[3];
+                acer_levels((uint8_t)r, (uint8_t)g, (uint8_t)b, l);
+                unsigned x = (unsigned)(r + g), y = (unsigned)b;
+                printf("%d %d %d %u %u %u %u\n", r, g, b, l[0], l[1], l[2],
+                       acer_rgb565((uint8_t)r, (uint8_t)g, (uint8_t)b, x, y));
+            }
+    return 0;
+}
+"#;
+
+#[test]
+fn c_tables_compute_what_the_rust_transform_computes() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml = acer_calibration(dir.path());
+    let header = dir.path().join("acer.h");
+    let out = specpoly(&[
+        "calibrate".as_ref(),
+        "export".as_ref(),
+        "--calibration".as_ref(),
+        toml.as_os_str(),
+        "--source".as_ref(),
+        "p3".as_ref(),
+        "--format".as_ref(),
+        "c-table".as_ref(),
+        "--name".as_ref(),
+        "acer".as_ref(),
+        "-o".as_ref(),
+        header.as_os_str(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).starts_with("wrote "));
+
+    std::fs::write(dir.path().join("main.c"), MAIN_C).unwrap();
+    let exe = dir.path().join("levels");
+    let cc = Command::new("cc")
+        .args(["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-o"])
+        .arg(&exe)
+        .arg(dir.path().join("main.c"))
+        .output()
+        .expect("the C compiler `cc` runs (apt-get install gcc)");
+    assert!(
+        cc.status.success(),
+        "cc: {}",
+        String::from_utf8_lossy(&cc.stderr)
+    );
+    let run = Command::new(&exe).output().unwrap();
+    assert!(run.status.success());
+
+    let cal = file::load(&toml).unwrap();
+    let opts = Options {
+        source: Source::DisplayP3,
+        white: White::Adapt,
+        map: GamutMap::Clip,
+        bits: Options::RGB565,
+    };
+    let p = PanelTransform::new(&cal.display(), opts).unwrap();
+    let mut n = 0;
+    for line in String::from_utf8(run.stdout).unwrap().lines() {
+        let v: Vec<u32> = line.split(' ').map(|t| t.parse().unwrap()).collect();
+        let rgb = [v[0] as u8, v[1] as u8, v[2] as u8];
+        let levels = p.levels(rgb);
+        assert_eq!([v[3], v[4], v[5]], levels.map(u32::from), "{rgb:?}");
+        let t = Dither::Ordered.threshold(v[0] + v[1], v[2]);
+        let c = p.apply(rgb, t);
+        let rgb565 = (c[0] as u32) << 11 | (c[1] as u32) << 5 | c[2] as u32;
+        assert_eq!(v[6], rgb565, "{rgb:?}");
+        n += 1;
+    }
+    assert_eq!(n, 86 * 52 * 37);
+}
+
+#[test]
+fn rust_source_and_bad_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml = acer_calibration(dir.path());
+    let rs = dir.path().join("panel.rs");
+    let out = specpoly(&[
+        "calibrate".as_ref(),
+        "export".as_ref(),
+        "--calibration".as_ref(),
+        toml.as_os_str(),
+        "--format".as_ref(),
+        "rust".as_ref(),
+        "--bits".as_ref(),
+        "rgb888".as_ref(),
+        "-o".as_ref(),
+        rs.as_os_str(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&rs).unwrap();
+    assert!(text.contains("pub static PANEL: specpoly_core::pixel::PixelTransform<1088, 256, 448>"));
+    assert!(text.contains("bits: [8, 8, 8]"));
+
+    // a name that is no identifier: usage error, nothing written
+    let bad = dir.path().join("bad.h");
+    let out = specpoly(&[
+        "calibrate".as_ref(),
+        "export".as_ref(),
+        "--calibration".as_ref(),
+        toml.as_os_str(),
+        "--format".as_ref(),
+        "c-table".as_ref(),
+        "--name".as_ref(),
+        "9lives".as_ref(),
+        "-o".as_ref(),
+        bad.as_os_str(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!bad.exists());
+    // a missing calibration: bad data, one line, nothing written
+    let out = specpoly(&[
+        "calibrate".as_ref(),
+        "export".as_ref(),
+        "--calibration".as_ref(),
+        dir.path().join("none.toml").as_os_str(),
+        "--format".as_ref(),
+        "c-table".as_ref(),
+        "-o".as_ref(),
+        bad.as_os_str(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim().lines().count(),
+        1
+    );
+    assert!(!bad.exists());
+}
