@@ -20,6 +20,16 @@ pub const TABLES: &[BuiltinTable] = &[
         about: "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
     },
     BuiltinTable {
+        name: "cornell",
+        csv: include_str!("../../data/cornell/cornell_box_reflectance.csv"),
+        about: "the Cornell box's measured white, green, red wall reflectances, 400-700 nm @ 4 nm",
+    },
+    BuiltinTable {
+        name: "cornell_light",
+        csv: include_str!("../../data/cornell/cornell_box_light.csv"),
+        about: "the Cornell box light's emission spectrum, 400-700 nm @ 100 nm",
+    },
+    BuiltinTable {
         name: "crt",
         csv: include_str!("../../data/displays/crt_brainard_1997.csv"),
         about:

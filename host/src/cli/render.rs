@@ -7,6 +7,8 @@
 //! statistics of each mode against the reference.
 
 use crate::error::{CliError, Result};
+use crate::render::output::{self as image_out, ExrSpace};
+use crate::render::tracer::Integrator;
 use crate::render::{self, builtin, Output};
 use crate::repr::Repr;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -40,8 +42,23 @@ pub struct RenderArgs {
     /// Render rgb, paper, poly, sampled:81 and the reference; write rgb, poly, reference and ΔE00 heat maps side by side.
     #[arg(long)]
     pub compare: bool,
-    /// Output PNG.
-    #[arg(short, long, value_name = "OUT.png")]
+    /// Light transport: whitted (the paper's model; default) or path (path tracing), overriding the scene's.
+    #[arg(long, value_parser = clap::value_parser!(Integrator))]
+    pub integrator: Option<Integrator>,
+    /// Path tracer: paths per pixel, overriding the scene's.
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    /// PNG bits per channel: 8 or 16.
+    #[arg(long, default_value_t = 8)]
+    pub bits: u8,
+    /// EXR contents: rgb (the display's linear RGB) or xyz.
+    #[arg(long, default_value = "rgb")]
+    pub exr_space: String,
+    /// Print the render statistics as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Output image: .png (8 or 16 bits, with sRGB or ICC colour metadata) or .exr (linear).
+    #[arg(short, long, value_name = "OUT.png|OUT.exr")]
     pub output: PathBuf,
 }
 
@@ -101,7 +118,18 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             return Err(CliError::usage(format!("--samples {n}: must be 1..16")));
         }
     }
+    if let Some(n) = a.spp {
+        if n == 0 || n > 1 << 20 {
+            return Err(CliError::usage(format!(
+                "--spp {n}: must be 1..{}",
+                1 << 20
+            )));
+        }
+    }
+    let format = image_out::format_for(&a.output, a.bits)?;
+    let space: ExrSpace = a.exr_space.parse()?;
     let display = render::display::load(&a.display)?;
+    let tag = image_out::colour_tag(&a.display)?;
     let mut scene = render::load(&a.scene)?;
     if let Some((w, h)) = size {
         scene.render.width = w;
@@ -109,6 +137,12 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     if let Some(n) = a.samples {
         scene.render.samples = n;
+    }
+    if let Some(i) = a.integrator {
+        scene.render.integrator = i;
+    }
+    if let Some(n) = a.spp {
+        scene.render.spp = n;
     }
     let out = Output::new(&scene, display, gamut);
     let (w, h) = (scene.render.width, scene.render.height);
@@ -129,14 +163,34 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     if let Some(pb) = pb {
         pb.finish_and_clear();
     }
-    let rgb = render::to_rgb8(&img, &out);
-    render::write_png(&a.output, w, h, &rgb)?;
-    println!(
-        "{}: {w}x{h}, {} rays/pixel, mode {mode}, {secs:.2} s → {}",
-        a.scene,
-        scene.render.samples * scene.render.samples,
-        a.output.display()
-    );
+    image_out::write(&a.output, &img, &out, format, &tag, space)?;
+    let paths = render::paths_per_pixel(&scene);
+    if a.json {
+        let v = serde_json::json!({
+            "scene": a.scene,
+            "width": w,
+            "height": h,
+            "integrator": scene.render.integrator.to_string(),
+            "mode": mode.to_string(),
+            "paths_per_pixel": paths,
+            "seconds": secs,
+            "output": a.output.display().to_string(),
+        });
+        crate::io::stdout::print(&format!("{v:#}\n"))?;
+    } else {
+        println!(
+            "{}: {w}x{h}, {paths} {} per pixel, {}, mode {mode}, {secs:.2} s → {}",
+            a.scene,
+            if scene.render.integrator == Integrator::Path {
+                "paths"
+            } else {
+                "rays"
+            },
+            scene.render.integrator,
+            a.output.display()
+        );
+    }
+    eprintln!("wrote {}", a.output.display());
     Ok(())
 }
 

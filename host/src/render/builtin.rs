@@ -28,6 +28,11 @@ pub const SCENES: &[Builtin] = &[
         toml: include_str!("../../../scenes/interreflection.toml"),
         about: "the paper's Figures 1-2: an orange sphere seen in a cyan mirror under FL11",
     },
+    Builtin {
+        name: "cornell",
+        toml: include_str!("../../../scenes/cornell.toml"),
+        about: "the Cornell box with its measured reflectances and light spectrum, path traced",
+    },
 ];
 
 /// The built-in called `name` (case-insensitive).

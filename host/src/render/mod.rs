@@ -9,7 +9,12 @@
 pub mod builtin;
 pub mod display;
 pub mod geometry;
+pub mod lights;
+pub mod mesh;
+pub mod output;
+pub mod path;
 pub mod scene;
+pub mod scene_geometry;
 pub mod tracer;
 pub mod upsample;
 
@@ -39,7 +44,15 @@ pub fn load(spec: &str) -> Result<Scene> {
     let looks_like_file = spec.ends_with(".toml") || spec.contains('/');
     if path.exists() && (looks_like_file || builtin::find(spec).is_none()) {
         let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
-        return SceneFile::parse(&text, spec)?.resolve(spec);
+        // file names in the scene are relative to the scene file's folder
+        let base = path.parent().map(|p| {
+            if p.as_os_str().is_empty() {
+                std::path::Path::new(".")
+            } else {
+                p
+            }
+        });
+        return SceneFile::parse(&text, spec)?.resolve_in(spec, base);
     }
     if let Some(b) = builtin::find(spec) {
         return SceneFile::parse(b.toml, b.name)?.resolve(b.name);
@@ -96,14 +109,18 @@ pub fn render(scene: &Scene, repr: Repr, progress: Option<Progress<'_>>) -> Resu
     repr::dispatch(repr, RenderVisit { scene, progress })
 }
 
-/// XYZ of the scene's white: the perfect reflector under its first point light (or the ambient
-/// light if it has none), `Y = 100`.
+/// Camera paths per pixel: `spp` for the path tracer, `samples²` for Whitted.
+pub fn paths_per_pixel(scene: &Scene) -> u32 {
+    match scene.render.integrator {
+        tracer::Integrator::Path => scene.render.spp,
+        tracer::Integrator::Whitted => scene.render.samples * scene.render.samples,
+    }
+}
+
+/// XYZ of the scene's white: the perfect reflector under its reference light
+/// ([`Scene::reference_spd`]), `Y = 100`.
 pub fn scene_white(scene: &Scene) -> Xyz {
-    let spd = scene
-        .lights
-        .first()
-        .map(|l| &l.spd)
-        .unwrap_or(&scene.ambient.spd);
+    let spd = scene.reference_spd();
     let (_, w) = specpoly_core::exact_xyz(scene.observer, &spd.tabulated(), |_| 1.0);
     Xyz::new(w[0] as f32, w[1] as f32, w[2] as f32)
 }
