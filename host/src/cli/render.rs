@@ -174,6 +174,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             "mode": mode.to_string(),
             "paths_per_pixel": paths,
             "seconds": secs,
+            "rays": img.rays,
+            "rays_per_second": img.rays as f64 / secs.max(1e-9),
             "output": a.output.display().to_string(),
         });
         crate::io::stdout::print(&format!("{v:#}\n"))?;

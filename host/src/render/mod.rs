@@ -23,7 +23,7 @@ use crate::repr::{self, Repr, Visitor};
 use rayon::prelude::*;
 use scene::{Scene, SceneFile};
 use specpoly_core::{bradford, delta_e2000, quantize8, Display, GamutMap, Lab, Mat3, Shade, Xyz};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use tracer::Compiled;
 
 /// An image of XYZ values (white `Y = 100`), row-major.
@@ -35,6 +35,8 @@ pub struct Image {
     pub height: u32,
     /// Pixels, row-major from the top-left.
     pub xyz: Vec<Xyz>,
+    /// Rays traced (camera, reflected, refracted and shadow rays).
+    pub rays: u64,
 }
 
 /// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`) or a TOML file.
@@ -89,10 +91,13 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
     let (w, h) = (c.width(), c.height());
     let mut xyz = vec![Xyz::default(); (w * h) as usize];
     let done = AtomicUsize::new(0);
+    let rays = AtomicU64::new(0);
     xyz.par_chunks_mut(w as usize)
         .enumerate()
         .for_each(|(y, row)| {
+            let before = tracer::rays_traced();
             c.row(y as u32, row);
+            rays.fetch_add(tracer::rays_traced() - before, Ordering::Relaxed);
             if let Some(p) = progress {
                 p(done.fetch_add(1, Ordering::Relaxed) + 1);
             }
@@ -101,6 +106,7 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
         width: w,
         height: h,
         xyz,
+        rays: rays.into_inner(),
     }
 }
 

@@ -227,11 +227,10 @@ pub fn colour_tag(display_spec: &str) -> Result<ColourTag> {
         return Ok(ColourTag::None);
     }
     let cal = crate::calibrate::file::load(path)?;
-    let desc = format!(
-        "specpoly: {}",
-        path.file_name()
-            .map(|n| n.to_string_lossy().to_string())
-            .unwrap_or_default()
-    );
+    // the description `specpoly calibrate icc` gives: the calibration file's stem
+    let desc = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "specpoly display".into());
     Ok(ColourTag::Icc(crate::calibrate::icc::profile(&cal, &desc)?))
 }

@@ -30,6 +30,21 @@ use specpoly_core::{Shade, Xyz};
 use std::f32::consts::PI;
 use std::sync::Arc;
 
+thread_local! {
+    /// Rays traced by this thread (statistics).
+    static RAYS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Rays traced so far by the calling thread; differences count a piece of work.
+pub fn rays_traced() -> u64 {
+    RAYS.with(|r| r.get())
+}
+
+#[inline]
+fn count_ray() {
+    RAYS.with(|r| r.set(r.get() + 1));
+}
+
 /// Phong lobes `(R·V)ⁿ` below this are dropped.
 pub(super) const PHONG_MIN: f32 = 1e-6;
 
@@ -362,6 +377,7 @@ impl<T: Shade> Compiled<T> {
     /// The nearest hit: `(t, outward normal, what)`: objects, triangles and area lights.
     #[inline]
     pub(super) fn nearest(&self, ray: &Ray) -> Option<(f32, V3, Surf)> {
+        count_ray();
         let mut best: Option<(f32, V3, usize)> = None;
         let mut t_max = f32::INFINITY;
         for (i, o) in self.objects.iter().enumerate() {
@@ -419,6 +435,7 @@ impl<T: Shade> Compiled<T> {
         dist: f32,
         refraction_blocks: bool,
     ) -> Option<Option<T>> {
+        count_ray();
         let ray = Ray { origin: p, dir };
         let mut filter: Option<T> = None;
         let passes = |m: &Mat<T>| match m.transmission {
