@@ -233,6 +233,32 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     ];
     let (cw, ch, px) = render::side_by_side(&panels, 4);
     render::write_png(&a.output, cw, ch, &px)?;
+    if a.json {
+        let modes: Vec<_> = rows
+            .iter()
+            .map(|(m, img, st, _, secs)| {
+                serde_json::json!({
+                    "mode": m.to_string(),
+                    "seconds": secs,
+                    "rays": img.rays,
+                    "delta_e00": { "mean": st.mean, "p95": st.p95, "max": st.max },
+                })
+            })
+            .collect();
+        let v = serde_json::json!({
+            "scene": a.scene,
+            "width": w,
+            "height": h,
+            "integrator": scene.render.integrator.to_string(),
+            "paths_per_pixel": render::paths_per_pixel(scene),
+            "reference_seconds": t_ref,
+            "modes": modes,
+            "output": a.output.display().to_string(),
+        });
+        crate::io::stdout::print(&format!("{v:#}\n"))?;
+        eprintln!("wrote {}", a.output.display());
+        return Ok(());
+    }
     println!(
         "{}: {w}x{h}, {} rays/pixel; ΔE00 (CIEDE2000) against the 1 nm reference ({t_ref:.2} s)",
         a.scene,
