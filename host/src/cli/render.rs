@@ -7,7 +7,7 @@
 //! statistics of each mode against the reference.
 
 use crate::error::{CliError, Result};
-use crate::render::output::{self as image_out, ExrSpace};
+use crate::render::image_file::{self as image_out, ExrSpace};
 use crate::render::tracer::Integrator;
 use crate::render::{self, builtin, Output};
 use crate::repr::Repr;

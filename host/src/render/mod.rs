@@ -9,9 +9,9 @@
 pub mod builtin;
 pub mod display;
 pub mod geometry;
+pub mod image_file;
 pub mod lights;
 pub mod mesh;
-pub mod output;
 pub mod path;
 pub mod scene;
 pub mod scene_geometry;
