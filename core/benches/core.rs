@@ -3,8 +3,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use specpoly_core::{
-    Breaks, Illuminant, Observer, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, Tabulated,
-    PAPER_BREAKS,
+    DefaultSpectrum, Illuminant, Observer, PaperSpectrum, Rgb, Sampled, Shade, Tabulated,
 };
 
 fn reflectances() -> (Vec<f32>, Vec<f32>, Vec<f32>) {
@@ -20,9 +19,9 @@ fn reflectances() -> (Vec<f32>, Vec<f32>, Vec<f32>) {
     (w, a, b)
 }
 
-fn bench_one<T: Shade>(c: &mut Criterion, name: &str, layout: T::Layout) {
+fn bench_one<T: Shade>(c: &mut Criterion, name: &str) {
     let (w, a, b) = reflectances();
-    let light = T::light(Observer::Cie1964, &Illuminant::FL11.tabulated(), layout);
+    let light = T::light(Observer::Cie1964, &Illuminant::FL11.tabulated());
     let x = T::from_reflectance(&Tabulated::new(&w, &a).unwrap(), &light).unwrap();
     let y = T::from_reflectance(&Tabulated::new(&w, &b).unwrap(), &light).unwrap();
     c.bench_with_input(BenchmarkId::new("multiply", name), &(x, y), |bn, (x, y)| {
@@ -34,12 +33,12 @@ fn bench_one<T: Shade>(c: &mut Criterion, name: &str, layout: T::Layout) {
 }
 
 fn all(c: &mut Criterion) {
-    bench_one::<Rgb>(c, "rgb", ());
-    bench_one::<PaperSpectrum>(c, "paper 2x3", PAPER_BREAKS);
-    bench_one::<Spectrum<8, 4>>(c, "default 8x3", Breaks::uniform());
-    bench_one::<Sampled<16>>(c, "sampled 16", ());
-    bench_one::<Sampled<41>>(c, "sampled 41", ());
-    bench_one::<Sampled<81>>(c, "sampled 81", ());
+    bench_one::<Rgb>(c, "rgb");
+    bench_one::<PaperSpectrum>(c, "paper 2x3");
+    bench_one::<DefaultSpectrum>(c, "default 8x3");
+    bench_one::<Sampled<16>>(c, "sampled 16");
+    bench_one::<Sampled<41>>(c, "sampled 41");
+    bench_one::<Sampled<81>>(c, "sampled 81");
 }
 
 criterion_group!(benches, all);

@@ -329,17 +329,17 @@ pub fn map_gamut(lin: [f32; 3], weights: [f32; 3], map: GamutMap) -> ([f32; 3], 
     }
 }
 
-/// Quantises a device value in `[0, 1]` to 8 bits: `round(v · 255)` (the paper's ×256 would
-/// overflow at 1.0).
-pub fn quantize8(v: f32) -> u8 {
+/// Quantises a device value in `[0, 1]` to a level `0 ..= max`: `round(v · max)`, half up;
+/// `v` is clamped to `[0, 1]` and NaN gives 0.
+pub fn quantize(v: f32, max: u16) -> u16 {
     let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
-    (v * 255.0 + 0.5) as u8
+    (v * max as f32 + 0.5) as u16
 }
 
-/// Quantises a device value in `[0, 1]` to 16 bits: `round(v · 65535)`.
-pub fn quantize16(v: f32) -> u16 {
-    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
-    (v * 65535.0 + 0.5) as u16
+/// Quantises a device value in `[0, 1]` to 8 bits: [`quantize`] with `max = 255` (the paper's
+/// ×256 would overflow at 1.0).
+pub fn quantize8(v: f32) -> u8 {
+    quantize(v, 255) as u8
 }
 
 #[cfg(test)]
@@ -391,6 +391,8 @@ mod tests {
         assert_eq!(quantize8(1.0), 255);
         assert_eq!(quantize8(0.5), 128);
         assert_eq!(quantize8(f32::NAN), 0);
-        assert_eq!(quantize16(1.0), 65535);
+        assert_eq!(quantize(1.0, 65535), 65535);
+        assert_eq!(quantize(0.5, 1000), 500);
+        assert_eq!(quantize(-3.0, 255), 0);
     }
 }

@@ -15,8 +15,6 @@ pub enum Error {
     NotIncreasing(usize),
     /// The data lie entirely outside 380–780 nm, or a breakpoint falls outside it.
     OutOfRange,
-    /// Two spectra with different breakpoints were combined.
-    BreaksMismatch,
     /// A singular matrix (a degenerate display primary set or fit).
     Singular,
     /// A table (transfer curve) holds too many or too few points for its capacity.
@@ -33,7 +31,6 @@ impl fmt::Display for Error {
                 write!(f, "wavelengths must be strictly increasing (sample {i})")
             }
             Error::OutOfRange => write!(f, "data lie outside 380-780 nm"),
-            Error::BreaksMismatch => write!(f, "spectra have different span breakpoints"),
             Error::Singular => write!(f, "singular matrix"),
             Error::Capacity => write!(f, "table size outside its capacity"),
         }

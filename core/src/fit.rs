@@ -10,9 +10,9 @@
 //! with spans much wider than the spacing the two agree closely.
 //!
 //! The normal equations are `C × C` and well conditioned in the Chebyshev basis on `[-1, 1]`;
-//! they are solved in f64 by Gaussian elimination with partial pivoting.
+//! they are solved in f64 by Gaussian elimination with partial pivoting ([`crate::solve`]).
 
-use crate::{cheb::basis_f64, Breaks, Error, Spectrum, Tabulated};
+use crate::{cheb::basis_f64, solve::solve, Error, Layout, Spectrum, Tabulated};
 
 /// Per-span fit errors, measured at the data samples that fall inside each span.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,17 +25,17 @@ pub struct FitErrors<const S: usize> {
     pub count: [u32; S],
 }
 
-impl<const S: usize, const C: usize> Spectrum<S, C> {
-    /// Fits the samples by least squares in each span of `breaks` (see the module docs).
-    pub fn fit(breaks: Breaks<S>, data: &Tabulated<'_>) -> Result<Self, Error> {
-        Self::fit_fn(breaks, |nm| data.at(nm))
+impl<const S: usize, const C: usize, L: Layout<S>> Spectrum<S, C, L> {
+    /// Fits the samples by least squares in each span of the layout (see the module docs).
+    pub fn fit(data: &Tabulated<'_>) -> Result<Self, Error> {
+        Self::fit_fn(|nm| data.at(nm))
     }
 
     /// Fits any function of wavelength (nm) by least squares on a ≤ 1 nm grid per span.
-    pub fn fit_fn(breaks: Breaks<S>, f: impl Fn(f64) -> f64) -> Result<Self, Error> {
-        let mut out = Self::zero(breaks);
+    pub fn fit_fn(f: impl Fn(f64) -> f64) -> Result<Self, Error> {
+        let mut out = Self::ZERO;
         for s in 0..S {
-            let (a, b) = breaks.span(s);
+            let (a, b) = L::BREAKS.span(s);
             let (a, b) = (a as f64, b as f64);
             let n = (libm::ceil(b - a) as usize + 1).max(2 * C).max(2);
             let mut ata = [[0.0f64; C]; C];
@@ -56,7 +56,8 @@ impl<const S: usize, const C: usize> Spectrum<S, C> {
                     }
                 }
             }
-            let x = solve(ata, aty)?;
+            let mut x = aty;
+            solve(ata.as_flattened_mut(), &mut x)?;
             for k in 0..C {
                 out.coefficients_mut()[k][s] = x[k] as f32;
             }
@@ -72,7 +73,7 @@ impl<const S: usize, const C: usize> Spectrum<S, C> {
         let mut count = [0u32; S];
         for (w, v) in data.wavelengths().iter().zip(data.values()) {
             for s in 0..S {
-                let (a, b) = self.breaks().span(s);
+                let (a, b) = L::BREAKS.span(s);
                 if *w >= a && *w <= b {
                     let t = (2.0 * w - (a + b)) / (b - a);
                     let e = (self.span(s).eval(t) - v).abs();
@@ -92,46 +93,10 @@ impl<const S: usize, const C: usize> Spectrum<S, C> {
     }
 }
 
-/// Solves `A x = y` (small dense system) by Gaussian elimination with partial pivoting.
-pub(crate) fn solve<const C: usize>(
-    mut a: [[f64; C]; C],
-    mut y: [f64; C],
-) -> Result<[f64; C], Error> {
-    for col in 0..C {
-        let mut piv = col;
-        for r in col + 1..C {
-            if a[r][col].abs() > a[piv][col].abs() {
-                piv = r;
-            }
-        }
-        if a[piv][col].abs() < 1e-300 {
-            return Err(Error::Singular);
-        }
-        a.swap(col, piv);
-        y.swap(col, piv);
-        for r in col + 1..C {
-            let f = a[r][col] / a[col][col];
-            for c in col..C {
-                a[r][c] -= f * a[col][c];
-            }
-            y[r] -= f * y[col];
-        }
-    }
-    let mut x = [0.0; C];
-    for r in (0..C).rev() {
-        let mut s = y[r];
-        for c in r + 1..C {
-            s -= a[r][c] * x[c];
-        }
-        x[r] = s / a[r][r];
-    }
-    Ok(x)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::PAPER_BREAKS;
+    use crate::{DefaultSpectrum, PaperSpectrum};
 
     #[test]
     fn a_cubic_is_fitted_exactly() {
@@ -139,7 +104,7 @@ mod tests {
             let x = (nm - 500.0) / 100.0;
             0.2 + 0.1 * x - 0.05 * x * x + 0.01 * x * x * x
         };
-        let p = Spectrum::<2, 4>::fit_fn(PAPER_BREAKS, f).unwrap();
+        let p = PaperSpectrum::fit_fn(f).unwrap();
         for nm in (380..=780).step_by(7) {
             assert!(
                 (p.eval(nm as f32) as f64 - f(nm as f64)).abs() < 1e-5,
@@ -153,7 +118,7 @@ mod tests {
         let w = [400.0, 500.0, 600.0, 700.0];
         let v = [0.5, 0.5, 0.5, 0.5];
         let t = Tabulated::new(&w, &v).unwrap();
-        let p = Spectrum::<8, 4>::fit(Breaks::uniform(), &t).unwrap();
+        let p = DefaultSpectrum::fit(&t).unwrap();
         assert!((p.eval(380.0) - 0.5).abs() < 1e-5);
         assert!((p.eval(780.0) - 0.5).abs() < 1e-5);
     }

@@ -8,20 +8,19 @@
 //! One flow:
 //!
 //! ```text
-//! tabulated data ─fit─▶ Spectrum<S, C> ─mul (+reduce)─▶ Spectrum<S, C> ─· Moments─▶ Xyz ─Display─▶ device RGB
+//! tabulated data ─fit─▶ Spectrum<S, C, L> ─mul (+reduce)─▶ Spectrum<S, C, L> ─· Moments─▶ Xyz ─Display─▶ device RGB
 //! ```
 //!
 //! ```
-//! use specpoly_core::{Breaks, DefaultSpectrum, Illuminant, Lab, Moments, Observer, Tabulated, delta_e2000};
+//! use specpoly_core::{DefaultSpectrum, Illuminant, Lab, Moments, Observer, Tabulated, delta_e2000};
 //!
 //! // A reflectance tabulated at 10 nm (a made-up red paint).
 //! let nm: Vec<f32> = (0..41).map(|i| 380.0 + 10.0 * i as f32).collect();
 //! let red: Vec<f32> = nm.iter().map(|w| 0.05 + 0.8 / (1.0 + ((600.0 - w) / 15.0).exp())).collect();
 //! let data = Tabulated::new(&nm, &red)?;
 //!
-//! let breaks = Breaks::uniform();
-//! let r = DefaultSpectrum::fit(breaks, &data)?;          // 8 cubic spans
-//! let light = Moments::new(Observer::Cie1964, &Illuminant::D65.tabulated(), breaks);
+//! let r = DefaultSpectrum::fit(&data)?;                   // 8 uniform cubic spans
+//! let light = Moments::new(Observer::Cie1964, &Illuminant::D65.tabulated());
 //! let twice = r.mul(&r);                                  // an inter-reflection, reduced to cubics
 //! let xyz = light.xyz(&twice);
 //! let lab = Lab::from(xyz, light.white());
@@ -36,31 +35,34 @@
 pub mod cheb;
 pub mod colorimetry;
 pub mod display;
+pub mod drive;
 pub mod error;
 pub mod fit;
 pub mod illuminant;
+pub mod layout;
 mod math;
 pub mod matrix;
 pub mod moments;
 pub mod observer;
 pub mod paper;
 pub mod shade;
+pub mod solve;
 pub mod spectrum;
 pub mod tabulated;
 
 pub use cheb::Cheb;
 pub use colorimetry::{bradford, delta_e2000, Lab, Xyy, Xyz};
-pub use display::{quantize16, quantize8, Display, Encoded, GamutMap, Transfer};
+pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
+pub use drive::Drive;
 pub use error::Error;
 pub use fit::FitErrors;
 pub use illuminant::Illuminant;
+pub use layout::{Breaks, Layout, Paper, Uniform, PAPER_BREAKS};
 pub use matrix::Mat3;
 pub use moments::{exact_xyz, Moments};
 pub use observer::Observer;
 pub use shade::{Rgb, RgbLight, Sampled, SampledLight, Shade};
-pub use spectrum::{
-    Breaks, DefaultSpectrum, PaperSpectrum, Spectrum, DEFAULT_COEFFS, DEFAULT_SPANS, PAPER_BREAKS,
-};
+pub use spectrum::{DefaultSpectrum, PaperSpectrum, Spectrum, DEFAULT_COEFFS, DEFAULT_SPANS};
 pub use tabulated::Tabulated;
 
 /// Short end of the domain (nm), as in the paper.

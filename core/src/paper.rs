@@ -14,7 +14,7 @@
 //! Monomials in raw nanometres are badly conditioned (λ⁶ ≈ 2·10¹⁷ at 780 nm): in f64 this
 //! module is good to ~1e-7 relative on the paper's spans; in f32 it would be unusable.
 
-use crate::{Breaks, Cheb, Observer, Spectrum, Tabulated, Xyz};
+use crate::{Cheb, Layout, Observer, Spectrum, Tabulated, Xyz};
 
 fn binom(n: usize, k: usize) -> f64 {
     let mut r = 1.0;
@@ -154,15 +154,12 @@ pub fn eval_monomial(p: &[f64], x: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, c| acc * x + c)
 }
 
-/// The colour matching functions fitted by `C`-coefficient polynomials on `breaks` (the
+/// The colour matching functions fitted by `C`-coefficient polynomials on the spans of `L` (the
 /// paper's cubic fits of x̄, ȳ, z̄, §5.3).
-pub fn cmf_fit<const S: usize, const C: usize>(
+pub fn cmf_fit<const S: usize, const C: usize, L: Layout<S>>(
     observer: Observer,
-    breaks: Breaks<S>,
-) -> [Spectrum<S, C>; 3] {
-    let fit = |k: usize| {
-        Spectrum::fit_fn(breaks, |nm| observer.cmf_at(nm)[k]).unwrap_or(Spectrum::zero(breaks))
-    };
+) -> [Spectrum<S, C, L>; 3] {
+    let fit = |k: usize| Spectrum::fit_fn(|nm| observer.cmf_at(nm)[k]).unwrap_or(Spectrum::ZERO);
     [fit(0), fit(1), fit(2)]
 }
 
@@ -170,16 +167,15 @@ pub fn cmf_fit<const S: usize, const C: usize>(
 /// the light fitted by cubics on the same spans, `Q = r · light` reduced (the renderer's
 /// product), then `X = K ∫ Q x̄ dλ` with x̄ the cubic fit and the degree-6 product integrated
 /// analytically (eq. 7), `K = 100 / ∫ light ȳ dλ`.
-pub fn xyz_paper_path<const S: usize>(
+pub fn xyz_paper_path<const S: usize, L: Layout<S>>(
     observer: Observer,
     light: &Tabulated<'_>,
-    r: &Spectrum<S, 4>,
+    r: &Spectrum<S, 4, L>,
 ) -> Xyz {
-    let breaks = *r.breaks();
-    let l = Spectrum::<S, 4>::fit(breaks, light).unwrap_or(Spectrum::zero(breaks));
-    let cmf = cmf_fit::<S, 4>(observer, breaks);
+    let l = Spectrum::<S, 4, L>::fit(light).unwrap_or(Spectrum::ZERO);
+    let cmf = cmf_fit::<S, 4, L>(observer);
     let q = r.mul(&l);
-    let integrate = |a: &Spectrum<S, 4>, b: &Spectrum<S, 4>| a.mul_exact::<7>(b).integral();
+    let integrate = |a: &Spectrum<S, 4, L>, b: &Spectrum<S, 4, L>| a.mul_exact::<7>(b).integral();
     let k = 100.0 / integrate(&l, &cmf[1]);
     Xyz::new(
         k * integrate(&q, &cmf[0]),

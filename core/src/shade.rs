@@ -13,7 +13,7 @@
 //!   (the paper's "RGB problem", §3).
 
 use crate::{
-    moments::exact_xyz, Breaks, Display, Error, Mat3, Moments, Observer, Spectrum, Tabulated, Xyz,
+    moments::exact_xyz, Display, Error, Layout, Mat3, Moments, Observer, Spectrum, Tabulated, Xyz,
     LAMBDA_MAX, LAMBDA_MIN,
 };
 
@@ -22,13 +22,11 @@ use crate::{
 ///
 /// `Send + Sync` (values and lights are plain data) so a renderer can share them across threads.
 pub trait Shade: Copy + Send + Sync {
-    /// What fixes the representation's layout beyond its type (breakpoints for spectra).
-    type Layout: Copy + PartialEq + core::fmt::Debug + Send + Sync;
     /// The per-light precomputation this representation integrates against.
     type Light: Send + Sync;
-    /// Precomputes a light (tabulated, never fitted) under an observer for this layout.
-    fn light(observer: Observer, light: &Tabulated<'_>, layout: Self::Layout) -> Self::Light;
-    /// The constant reflectance `v` (needs the light for layout, e.g. breakpoints).
+    /// Precomputes a light (tabulated, never fitted) under an observer for this representation.
+    fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light;
+    /// The constant reflectance `v`.
     fn constant(v: f32, light: &Self::Light) -> Self;
     /// Product (reduced to the representation's size where it would grow).
     fn mul(&self, o: &Self) -> Self;
@@ -44,15 +42,14 @@ pub trait Shade: Copy + Send + Sync {
     fn size() -> usize;
 }
 
-impl<const S: usize, const C: usize> Shade for Spectrum<S, C> {
-    type Layout = Breaks<S>;
-    type Light = Moments<S, C>;
-    fn light(observer: Observer, light: &Tabulated<'_>, layout: Breaks<S>) -> Self::Light {
-        Moments::new(observer, light, layout)
+impl<const S: usize, const C: usize, L: Layout<S>> Shade for Spectrum<S, C, L> {
+    type Light = Moments<S, C, L>;
+    fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light {
+        Moments::new(observer, light)
     }
     #[inline]
-    fn constant(v: f32, light: &Self::Light) -> Self {
-        Spectrum::constant(*light.breaks(), v)
+    fn constant(v: f32, _: &Self::Light) -> Self {
+        Spectrum::constant(v)
     }
     #[inline]
     fn mul(&self, o: &Self) -> Self {
@@ -70,8 +67,8 @@ impl<const S: usize, const C: usize> Shade for Spectrum<S, C> {
     fn xyz(&self, light: &Self::Light) -> Xyz {
         light.xyz(self)
     }
-    fn from_reflectance(r: &Tabulated<'_>, light: &Self::Light) -> Result<Self, Error> {
-        Spectrum::fit(*light.breaks(), r)
+    fn from_reflectance(r: &Tabulated<'_>, _: &Self::Light) -> Result<Self, Error> {
+        Spectrum::fit(r)
     }
     fn size() -> usize {
         S * C
@@ -121,9 +118,8 @@ impl<const N: usize> SampledLight<N> {
 }
 
 impl<const N: usize> Shade for Sampled<N> {
-    type Layout = ();
     type Light = SampledLight<N>;
-    fn light(observer: Observer, light: &Tabulated<'_>, _: ()) -> Self::Light {
+    fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light {
         SampledLight::new(observer, light)
     }
     #[inline]
@@ -224,9 +220,8 @@ impl RgbLight {
 }
 
 impl Shade for Rgb {
-    type Layout = ();
     type Light = RgbLight;
-    fn light(observer: Observer, light: &Tabulated<'_>, _: ()) -> Self::Light {
+    fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light {
         RgbLight::new(observer, light)
     }
     #[inline]

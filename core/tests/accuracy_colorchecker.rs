@@ -7,7 +7,7 @@
 //! reflectance, multiplies with degree reduction, and integrates against the light's moments.
 
 use specpoly_core::{
-    delta_e2000, Breaks, Illuminant, Lab, Moments, Observer, Spectrum, Tabulated, PAPER_BREAKS,
+    delta_e2000, Illuminant, Lab, Layout, Moments, Observer, Paper, Spectrum, Tabulated, Uniform,
 };
 
 struct Data {
@@ -110,12 +110,12 @@ fn chains(n: usize) -> Vec<Vec<usize>> {
 }
 
 /// (mean, max) ΔE00 per chain length 1..=3 for one representation.
-fn errors<const S: usize, const C: usize>(breaks: Breaks<S>) -> [(f64, f64); 3] {
+fn errors<const S: usize, const C: usize, L: Layout<S>>() -> [(f64, f64); 3] {
     let d = data();
-    let fits: Vec<Spectrum<S, C>> = d
+    let fits: Vec<Spectrum<S, C, L>> = d
         .raw
         .iter()
-        .map(|v| Spectrum::fit(breaks, &Tabulated::new(&d.wl, v).unwrap()).unwrap())
+        .map(|v| Spectrum::fit(&Tabulated::new(&d.wl, v).unwrap()).unwrap())
         .collect();
     let mut acc = [(0.0, 0.0, 0usize); 3];
     for (ill, file) in [
@@ -125,7 +125,7 @@ fn errors<const S: usize, const C: usize>(breaks: Breaks<S>) -> [(f64, f64); 3] 
         (Illuminant::FL11, "FL11"),
     ] {
         let light = light_1nm(file);
-        let m = Moments::new(Observer::Cie1964, &ill.tabulated(), breaks);
+        let m = Moments::<S, C, L>::new(Observer::Cie1964, &ill.tabulated());
         for chain in chains(d.refl.len()) {
             let r: Vec<f64> = (0..401)
                 .map(|i| chain.iter().map(|&c| d.refl[c].1[i]).product())
@@ -147,7 +147,7 @@ fn errors<const S: usize, const C: usize>(breaks: Breaks<S>) -> [(f64, f64); 3] 
 
 #[test]
 fn default_preset_meets_the_target() {
-    let e = errors::<8, 4>(Breaks::uniform());
+    let e = errors::<8, 4, Uniform>();
     eprintln!("default 8x3: {e:?}");
     for (len, (mean, max)) in e.iter().enumerate() {
         assert!(*mean <= 0.1, "chain {}: mean ΔE00 {mean}", len + 1);
@@ -157,8 +157,8 @@ fn default_preset_meets_the_target() {
 
 #[test]
 fn paper_preset_is_the_papers_accuracy_and_worse_than_the_default() {
-    let e = errors::<2, 4>(PAPER_BREAKS);
-    let d = errors::<8, 4>(Breaks::uniform());
+    let e = errors::<2, 4, Paper>();
+    let d = errors::<8, 4, Uniform>();
     eprintln!("paper 2x3: {e:?}");
     // measured here: mean ≈ 0.8–1.2 on single reflectances (issue's reference figure)
     assert!(

@@ -2,7 +2,7 @@
 //! polynomial times the light (read here from data/illuminants, linearly interpolated) and the
 //! observer (read here from data/cmf), normalised to Y = 100 for the perfect white.
 
-use specpoly_core::{Breaks, Illuminant, Moments, Observer, Spectrum, Tabulated};
+use specpoly_core::{DefaultSpectrum, Illuminant, Moments, Observer, Tabulated};
 
 fn csv(path: &str) -> Vec<Vec<f64>> {
     std::fs::read_to_string(format!("{}/../data/{path}", env!("CARGO_MANIFEST_DIR")))
@@ -38,9 +38,8 @@ fn moments_equal_the_1nm_sum_of_the_polynomial() {
             .map(|x| 0.5 + 0.4 * ((x - 380.0) / 37.0).sin())
             .collect();
         let t = Tabulated::new(&w, &v).unwrap();
-        let breaks = Breaks::<8>::uniform();
-        let p = Spectrum::<8, 4>::fit(breaks, &t).unwrap();
-        let m = Moments::new(Observer::Cie1964, &ill.tabulated(), breaks);
+        let p = DefaultSpectrum::fit(&t).unwrap();
+        let m = Moments::new(Observer::Cie1964, &ill.tabulated());
         let got = m.xyz(&p);
 
         let (mut xyz, mut wy) = ([0.0f64; 3], 0.0);

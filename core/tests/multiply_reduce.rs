@@ -3,13 +3,13 @@
 //! the dropped Chebyshev coefficients (|Tₖ| ≤ 1 on [-1, 1]).
 
 use proptest::prelude::*;
-use specpoly_core::{Breaks, Spectrum};
+use specpoly_core::Spectrum;
 
 type S8 = Spectrum<8, 4>;
 
 fn spectrum(max_coeffs: usize) -> impl Strategy<Value = S8> {
     prop::collection::vec(-1.0f32..1.0, 32).prop_map(move |v| {
-        let mut s = S8::zero(Breaks::uniform());
+        let mut s = S8::ZERO;
         for k in 0..4 {
             for sp in 0..8 {
                 s.coefficients_mut()[k][sp] = if k < max_coeffs { v[k * 8 + sp] } else { 0.0 };

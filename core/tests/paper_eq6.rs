@@ -7,7 +7,7 @@ use specpoly_core::{PaperSpectrum, PAPER_BREAKS};
 
 fn cubic() -> impl Strategy<Value = PaperSpectrum> {
     prop::collection::vec(-1.0f32..1.0, 8).prop_map(|v| {
-        let mut s = PaperSpectrum::paper_zero();
+        let mut s = PaperSpectrum::ZERO;
         for k in 0..4 {
             for sp in 0..2 {
                 s.coefficients_mut()[k][sp] = v[k * 2 + sp];

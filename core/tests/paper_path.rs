@@ -5,9 +5,7 @@
 //! lamp costs several ΔE00 — why the crate never fits lights (§7.1 of the paper).
 
 use specpoly_core::paper::xyz_paper_path;
-use specpoly_core::{
-    delta_e2000, Illuminant, Lab, Moments, Observer, PaperSpectrum, Tabulated, PAPER_BREAKS,
-};
+use specpoly_core::{delta_e2000, Illuminant, Lab, Moments, Observer, PaperSpectrum, Tabulated};
 
 fn patches() -> (Vec<f32>, Vec<Vec<f32>>) {
     let text = std::fs::read_to_string(format!(
@@ -30,10 +28,10 @@ fn patches() -> (Vec<f32>, Vec<Vec<f32>>) {
 fn mean_error(ill: Illuminant) -> f64 {
     let (wl, cols) = patches();
     let light = ill.tabulated();
-    let m = Moments::new(Observer::Cie1964, &light, PAPER_BREAKS);
+    let m = Moments::new(Observer::Cie1964, &light);
     let mut sum = 0.0;
     for c in &cols {
-        let r = PaperSpectrum::fit(PAPER_BREAKS, &Tabulated::new(&wl, c).unwrap()).unwrap();
+        let r = PaperSpectrum::fit(&Tabulated::new(&wl, c).unwrap()).unwrap();
         let ours = m.xyz(&r);
         let theirs = xyz_paper_path(Observer::Cie1964, &light, &r);
         sum += delta_e2000(Lab::from(ours, m.white()), Lab::from(theirs, m.white()));

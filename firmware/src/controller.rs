@@ -11,12 +11,12 @@
 //! No chromatic adaptation: under illuminant A a white paper is shown as A's colour.
 //! Out-of-gamut targets are mapped with [`GamutMap`] and the reply says so.
 
-use crate::{led::duty_of, lights};
+use crate::lights;
 use specpoly_core::{
     display::SRGB_PRIMARIES, Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
 use specpoly_protocol::{
-    ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut, Reflectance, Reply, StateReport,
+    ColourReport, Command, CurveSummary, ErrorCode, Fault, Reflectance, Reply, StateReport,
     PROTOCOL_VERSION,
 };
 
@@ -140,29 +140,13 @@ impl Controller {
         }
     }
 
-    /// Shows `target` (white `Y = 100`): gamut mapping, transfer curves, quantisation, and the
-    /// XYZ the LED then emits at those duties.
+    /// Shows `target` (white `Y = 100`): the core's drive step ([`Display::drive`]: gamut
+    /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties).
     pub fn colour(&mut self, target: Xyz) -> ColourReport {
-        let enc = self.display.encode_relative(target, self.map);
-        let duty = enc.device.map(|v| duty_of(v, self.max));
-        let shown = duty.map(|d| d as f32 / self.max as f32);
-        let emitted = self.display.device_to_xyz(shown);
-        let white = self.display.white().y;
-        let k = if white > 0.0 { 100.0 / white } else { 0.0 };
+        let drive = self.display.drive(target, self.map, self.max);
         self.target = target;
-        self.duty = duty;
-        ColourReport {
-            xyz: target,
-            led: emitted.scale(k),
-            linear: enc.linear,
-            duty,
-            max: self.max,
-            gamut: if enc.out_of_gamut {
-                Gamut::Out(self.map)
-            } else {
-                Gamut::In
-            },
-        }
+        self.duty = drive.level;
+        ColourReport::of(target, &drive, self.map, self.max)
     }
 
     fn state(&self) -> StateReport {
@@ -190,7 +174,8 @@ impl Controller {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use specpoly_core::{Breaks, DefaultSpectrum, Xyy};
+    use specpoly_core::{DefaultSpectrum, Xyy};
+    use specpoly_protocol::Gamut;
 
     fn run(c: &mut Controller, line: &str) -> Reply {
         c.handle(Command::parse(line))
@@ -244,7 +229,7 @@ mod tests {
     #[test]
     fn a_perfect_reflector_is_the_lights_white() {
         let mut c = Controller::new(65535);
-        let one = DefaultSpectrum::constant(Breaks::uniform(), 1.0);
+        let one = DefaultSpectrum::constant(1.0);
         let xyz = c.reflectance_xyz(Illuminant::D65, &Reflectance::Default(one));
         // D65 under the 1931 observer: (95.04, 100, 108.88)
         assert!((xyz.x - 95.04).abs() < 0.05 && (xyz.y - 100.0).abs() < 1e-3);

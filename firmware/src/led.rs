@@ -3,7 +3,7 @@
 //! An LED's light output is proportional to its PWM duty (the drive current is constant while
 //! on), so the duty *is* the linear drive of Cowan's model: the controller's transfer curve is
 //! `linear` unless a measured curve says otherwise. Duties are `round(v · max)` for a device
-//! value `v ∈ [0, 1]`, as [`specpoly_core::quantize16`] does for `max = 65535`.
+//! value `v ∈ [0, 1]` ([`specpoly_core::quantize`]).
 
 use embedded_hal::pwm::SetDutyCycle;
 
@@ -25,12 +25,6 @@ pub struct RgbLed<R, G, B> {
     b: B,
     max: u16,
     duty: [u16; 3],
-}
-
-/// `round(v · max)` for `v` clamped to `[0, 1]` (NaN gives 0).
-pub fn duty_of(v: f32, max: u16) -> u16 {
-    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
-    (v * max as f32 + 0.5) as u16
 }
 
 impl<R, G, B> RgbLed<R, G, B>
@@ -85,9 +79,10 @@ where
         Ok(())
     }
 
-    /// Sets device values in `[0, 1]`, quantised with [`duty_of`]; returns the duties.
+    /// Sets device values in `[0, 1]`, quantised with [`specpoly_core::quantize`]; returns the
+    /// duties.
     pub fn set_device(&mut self, device: [f32; 3]) -> Result<[u16; 3], LedError<R::Error>> {
-        let d = device.map(|v| duty_of(v, self.max));
+        let d = device.map(|v| specpoly_core::quantize(v, self.max));
         self.set(d)?;
         Ok(d)
     }
@@ -162,16 +157,5 @@ mod tests {
         r.done();
         g.done();
         b.done();
-    }
-
-    #[test]
-    fn quantises_like_the_core() {
-        for i in 0..=100 {
-            let v = i as f32 / 100.0;
-            assert_eq!(duty_of(v, 65535), specpoly_core::quantize16(v));
-        }
-        assert_eq!(duty_of(f32::NAN, 255), 0);
-        assert_eq!(duty_of(-3.0, 255), 0);
-        assert_eq!(duty_of(0.5, 255), 128);
     }
 }

@@ -6,7 +6,7 @@
 //! `x̄, ȳ, z̄` has `X = K Σ_λ R(λ) S(λ) x̄(λ)` (likewise `Y`, `Z`), summed at 1 nm over
 //! 380–780 nm with `K = 100 / Σ_λ S(λ) ȳ(λ)`, so the perfect white has `Y = 100`. An
 //! inter-reflection chain `R₁ R₂ … Rₖ` is the product of the reflectances, wavelength by
-//! wavelength. The reference ([`reference`]) does exactly this in f64 on the linear
+//! wavelength. The reference ([`reference()`]) does exactly this in f64 on the linear
 //! interpolants of the tabulated data ([`specpoly_core::exact_xyz`]); a representation
 //! ([`Chains`]) converts every reflectance, multiplies with its own `Shade::mul` (degree
 //! reduction for polynomials, per-sample for sampling, per-channel for RGB) and integrates
@@ -15,8 +15,7 @@
 
 use crate::repr::{Repr, Visitor};
 use specpoly_core::{
-    delta_e2000, exact_xyz, Breaks, Error, Lab, Observer, Shade, Spectrum, Tabulated, Xyz,
-    DEFAULT_COEFFS, DEFAULT_SPANS, PAPER_BREAKS,
+    delta_e2000, exact_xyz, Error, Lab, Observer, PaperSpectrum, Shade, Tabulated, Xyz,
 };
 
 /// A computed colour: XYZ and the white it is relative to (both with the white's `Y = 100`).
@@ -85,8 +84,8 @@ pub struct Chains<'a> {
 
 impl Visitor for Chains<'_> {
     type Output = Result<Vec<Colour>, Error>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output {
-        let light = T::light(self.observer, &self.light, layout);
+    fn visit<T: Shade>(self) -> Self::Output {
+        let light = T::light(self.observer, &self.light);
         let white = white(self.observer, &self.light);
         let reps = self
             .spectra
@@ -141,7 +140,7 @@ pub fn paper_path(
     let white = white(observer, light);
     let reps = spectra
         .iter()
-        .map(|r| Spectrum::<2, 4>::fit(PAPER_BREAKS, r))
+        .map(PaperSpectrum::fit)
         .collect::<Result<Vec<_>, Error>>()?;
     Ok(chains
         .iter()
@@ -158,93 +157,10 @@ pub fn paper_path(
         .collect())
 }
 
-/// Generic code over the polynomial representations only (`poly`, `paper`, `poly:SxD`), for
-/// what needs the `Spectrum` itself (coefficients, fit errors, evaluation for plots).
-pub trait PolyVisitor {
-    /// What the visit returns.
-    type Output;
-    /// Runs with `Spectrum<S, C>` on `breaks`.
-    fn visit<const S: usize, const C: usize>(self, breaks: Breaks<S>) -> Self::Output;
-}
-
-macro_rules! poly_by_coeffs {
-    ($s:literal, $c:expr, $v:expr) => {
-        match $c {
-            2 => $v.visit::<$s, 2>(Breaks::<$s>::uniform()),
-            3 => $v.visit::<$s, 3>(Breaks::<$s>::uniform()),
-            4 => $v.visit::<$s, 4>(Breaks::<$s>::uniform()),
-            5 => $v.visit::<$s, 5>(Breaks::<$s>::uniform()),
-            _ => $v.visit::<$s, 6>(Breaks::<$s>::uniform()),
-        }
-    };
-}
-
-/// Runs `v` with the `Spectrum` type of a polynomial `repr`; `None` for the others (sampled,
-/// RGB, exact). Supports what [`Repr`]'s parser accepts.
-pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
-    Some(match repr {
-        Repr::Paper => v.visit::<2, 4>(PAPER_BREAKS),
-        Repr::Poly {
-            spans: DEFAULT_SPANS,
-            coeffs: DEFAULT_COEFFS,
-        } => v.visit::<DEFAULT_SPANS, DEFAULT_COEFFS>(Breaks::uniform()),
-        Repr::Poly { spans, coeffs } => match spans {
-            1 => poly_by_coeffs!(1, coeffs, v),
-            2 => poly_by_coeffs!(2, coeffs, v),
-            3 => poly_by_coeffs!(3, coeffs, v),
-            4 => poly_by_coeffs!(4, coeffs, v),
-            6 => poly_by_coeffs!(6, coeffs, v),
-            8 => poly_by_coeffs!(8, coeffs, v),
-            12 => poly_by_coeffs!(12, coeffs, v),
-            _ => poly_by_coeffs!(16, coeffs, v),
-        },
-        Repr::Sampled(_) | Repr::Rgb | Repr::Exact => return None,
-    })
-}
-
-/// Summary statistics of colour differences.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Stats {
-    /// Number of values.
-    pub n: usize,
-    /// Mean.
-    pub mean: f64,
-    /// 95th percentile (nearest rank: the `⌈0.95 n⌉`-th smallest).
-    pub p95: f64,
-    /// Maximum.
-    pub max: f64,
-}
-
-impl Stats {
-    /// Statistics of `v` (all zero when empty).
-    pub fn of(v: &[f64]) -> Stats {
-        if v.is_empty() {
-            return Stats::default();
-        }
-        let mut s = v.to_vec();
-        s.sort_by(f64::total_cmp);
-        let n = s.len();
-        let rank = ((0.95 * n as f64).ceil() as usize).clamp(1, n);
-        Stats {
-            n,
-            mean: s.iter().sum::<f64>() / n as f64,
-            p95: s[rank - 1],
-            max: s[n - 1],
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use specpoly_core::Illuminant;
-
-    #[test]
-    fn stats_nearest_rank() {
-        let v: Vec<f64> = (1..=20).map(f64::from).collect();
-        let s = Stats::of(&v);
-        assert_eq!((s.n, s.mean, s.p95, s.max), (20, 10.5, 19.0, 20.0));
-    }
 
     #[test]
     fn exact_repr_matches_reference() {

@@ -2,36 +2,37 @@
 //! that the tests read (see data/README.md for sources). CIE observers and illuminants live in
 //! `specpoly-core` (compiled in as constants).
 
-/// A built-in table: its name on the command line, its CSV text and what it is.
-pub struct BuiltinTable {
-    /// Name used as `NAME` or `NAME#COLUMN`.
+/// A file compiled into the binary: its name on the command line, its text and what it is
+/// (spectral tables here, scenes in [`crate::render::builtin`]).
+pub struct Builtin {
+    /// The name used on the command line (`NAME` or `NAME#COLUMN` for a table).
     pub name: &'static str,
-    /// The CSV text.
-    pub csv: &'static str,
+    /// The file's text (CSV for a table, TOML for a scene).
+    pub text: &'static str,
     /// One-line description.
     pub about: &'static str,
 }
 
 /// Every built-in table besides the illuminants.
-pub const TABLES: &[BuiltinTable] = &[
-    BuiltinTable {
+pub const TABLES: &[Builtin] = &[
+    Builtin {
         name: "colorchecker",
-        csv: include_str!("../../data/reflectances/colorchecker_babelcolor_average.csv"),
+        text: include_str!("../../data/reflectances/colorchecker_babelcolor_average.csv"),
         about: "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
     },
-    BuiltinTable {
+    Builtin {
         name: "cornell",
-        csv: include_str!("../../data/cornell/cornell_box_reflectance.csv"),
+        text: include_str!("../../data/cornell/cornell_box_reflectance.csv"),
         about: "the Cornell box's measured white, green, red wall reflectances, 400-700 nm @ 4 nm",
     },
-    BuiltinTable {
+    Builtin {
         name: "cornell_light",
-        csv: include_str!("../../data/cornell/cornell_box_light.csv"),
+        text: include_str!("../../data/cornell/cornell_box_light.csv"),
         about: "the Cornell box light's emission spectrum, 400-700 nm @ 100 nm",
     },
-    BuiltinTable {
+    Builtin {
         name: "crt",
-        csv: include_str!("../../data/displays/crt_brainard_1997.csv"),
+        text: include_str!("../../data/displays/crt_brainard_1997.csv"),
         about:
             "a typical CRT's red, green, blue phosphor spectra (Brainard 1997), 380-780 nm @ 5 nm",
     },

@@ -91,6 +91,32 @@ const MARGIN_R: f64 = 30.0;
 const MARGIN_T: f64 = 50.0;
 const MARGIN_B: f64 = 70.0;
 
+/// The plot box in pixels (`pl`eft, `pr` right, `pt` top, `pb` bottom) and the data ranges it
+/// shows.
+#[derive(Clone, Copy, Debug)]
+struct PlotBox {
+    pl: f64,
+    pr: f64,
+    pt: f64,
+    pb: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+impl PlotBox {
+    /// Pixel column of data `x`.
+    fn px(&self, x: f64) -> f64 {
+        self.pl + (x - self.x0) / (self.x1 - self.x0) * (self.pr - self.pl)
+    }
+
+    /// Pixel row of data `y`.
+    fn py(&self, y: f64) -> f64 {
+        self.pb - (y - self.y0) / (self.y1 - self.y0) * (self.pb - self.pt)
+    }
+}
+
 /// "Nice" tick step for a range (1, 2 or 5 × 10ⁿ, about 5–10 ticks).
 fn tick_step(span: f64) -> f64 {
     let raw = span / 6.0;
@@ -144,35 +170,61 @@ impl Figure {
         ((lo / step).floor() * step, (hi * 1.02 / step).ceil() * step)
     }
 
-    fn prims(&self) -> Vec<Prim> {
+    /// The plot box and the mapping from data to pixels.
+    fn plot_box(&self) -> PlotBox {
         let (w, h) = (self.width as f64, self.height as f64);
         let (x0, x1) = self.x_range;
         let (y0, y1) = self.y_range();
-        let (pl, pr, pt, pb) = (MARGIN_L, w - MARGIN_R, MARGIN_T, h - MARGIN_B);
-        let px = move |x: f64| pl + (x - x0) / (x1 - x0) * (pr - pl);
-        let py = move |y: f64| pb - (y - y0) / (y1 - y0) * (pb - pt);
-        let black = [0, 0, 0];
-        let grey = [150, 150, 150];
+        PlotBox {
+            pl: MARGIN_L,
+            pr: w - MARGIN_R,
+            pt: MARGIN_T,
+            pb: h - MARGIN_B,
+            x0,
+            x1,
+            y0,
+            y1,
+        }
+    }
+
+    fn prims(&self) -> Vec<Prim> {
+        let p = self.plot_box();
         let mut v = Vec::new();
+        self.axes(&p, &mut v);
+        self.markers_and_series(&p, &mut v);
+        self.legend(&p, &mut v);
+        v
+    }
+
+    /// Frame, ticks, axis labels and title.
+    fn axes(&self, p: &PlotBox, v: &mut Vec<Prim>) {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let black = [0, 0, 0];
         // frame
         v.push(Prim::Line {
-            pts: vec![(pl, pt), (pr, pt), (pr, pb), (pl, pb), (pl, pt)],
+            pts: vec![
+                (p.pl, p.pt),
+                (p.pr, p.pt),
+                (p.pr, p.pb),
+                (p.pl, p.pb),
+                (p.pl, p.pt),
+            ],
             width: 1.0,
             colour: black,
             dash: None,
         });
         // ticks
-        let xs = tick_step(x1 - x0);
-        let mut t = (x0 / xs).ceil() * xs;
-        while t <= x1 + 1e-9 {
+        let xs = tick_step(p.x1 - p.x0);
+        let mut t = (p.x0 / xs).ceil() * xs;
+        while t <= p.x1 + 1e-9 {
             v.push(Prim::Line {
-                pts: vec![(px(t), pb), (px(t), pb + 6.0)],
+                pts: vec![(p.px(t), p.pb), (p.px(t), p.pb + 6.0)],
                 width: 1.0,
                 colour: black,
                 dash: None,
             });
             v.push(Prim::Text {
-                at: (px(t), pb + 24.0),
+                at: (p.px(t), p.pb + 24.0),
                 size: 14.0,
                 anchor: Anchor::Middle,
                 vertical: false,
@@ -180,17 +232,17 @@ impl Figure {
             });
             t += xs;
         }
-        let ys = tick_step(y1 - y0);
-        let mut t = (y0 / ys).ceil() * ys;
-        while t <= y1 + 1e-9 {
+        let ys = tick_step(p.y1 - p.y0);
+        let mut t = (p.y0 / ys).ceil() * ys;
+        while t <= p.y1 + 1e-9 {
             v.push(Prim::Line {
-                pts: vec![(pl - 6.0, py(t)), (pl, py(t))],
+                pts: vec![(p.pl - 6.0, p.py(t)), (p.pl, p.py(t))],
                 width: 1.0,
                 colour: black,
                 dash: None,
             });
             v.push(Prim::Text {
-                at: (pl - 10.0, py(t) + 5.0),
+                at: (p.pl - 10.0, p.py(t) + 5.0),
                 size: 14.0,
                 anchor: Anchor::End,
                 vertical: false,
@@ -200,14 +252,14 @@ impl Figure {
         }
         // labels
         v.push(Prim::Text {
-            at: (0.5 * (pl + pr), h - 20.0),
+            at: (0.5 * (p.pl + p.pr), h - 20.0),
             size: 16.0,
             anchor: Anchor::Middle,
             vertical: false,
             s: self.x_label.clone(),
         });
         v.push(Prim::Text {
-            at: (20.0, 0.5 * (pt + pb)),
+            at: (20.0, 0.5 * (p.pt + p.pb)),
             size: 16.0,
             anchor: Anchor::Middle,
             vertical: true,
@@ -225,25 +277,31 @@ impl Figure {
             vertical: false,
             s: self.title.clone(),
         });
+    }
+
+    /// Span markers (dashed grey) and the series, clipped to the plot box.
+    fn markers_and_series(&self, p: &PlotBox, v: &mut Vec<Prim>) {
+        let grey = [150, 150, 150];
         // markers
         for &m in &self.markers {
             v.push(Prim::Line {
-                pts: vec![(px(m), pt), (px(m), pb)],
+                pts: vec![(p.px(m), p.pt), (p.px(m), p.pb)],
                 width: 1.0,
                 colour: grey,
                 dash: Some(6.0),
             });
         }
         // series, clipped to the plot box
-        let inside =
-            |(x, y): (f64, f64)| x >= pl - 0.5 && x <= pr + 0.5 && y >= pt - 0.5 && y <= pb + 0.5;
+        let inside = |(x, y): (f64, f64)| {
+            x >= p.pl - 0.5 && x <= p.pr + 0.5 && y >= p.pt - 0.5 && y <= p.pb + 0.5
+        };
         for s in &self.series {
             let pts: Vec<(f64, f64)> = s
                 .points
                 .iter()
                 .filter(|(x, y)| x.is_finite() && y.is_finite())
-                .map(|&(x, y)| (px(x), py(y).clamp(pt, pb)))
-                .filter(|p| inside(*p))
+                .map(|&(x, y)| (p.px(x), p.py(y).clamp(p.pt, p.pb)))
+                .filter(|q| inside(*q))
                 .collect();
             match s.style {
                 Style::Line { width, dash } => v.push(Prim::Line {
@@ -259,6 +317,10 @@ impl Figure {
                 })),
             }
         }
+    }
+
+    /// The legend, in the corner of the plot box that hides the fewest data points.
+    fn legend(&self, p: &PlotBox, v: &mut Vec<Prim>) {
         // legend: in the corner of the plot box that hides the fewest data points
         let labels = self.series.iter().filter(|s| s.label.is_some()).count();
         let widest = self
@@ -269,17 +331,17 @@ impl Figure {
             .fold(0.0, f64::max);
         let (bw, bh) = (38.0 + widest + 12.0, 20.0 * labels as f64 + 10.0);
         let corners = [
-            (pr - 8.0 - bw, pt + 8.0),
-            (pl + 8.0, pt + 8.0),
-            (pr - 8.0 - bw, pb - 8.0 - bh),
-            (pl + 8.0, pb - 8.0 - bh),
+            (p.pr - 8.0 - bw, p.pt + 8.0),
+            (p.pl + 8.0, p.pt + 8.0),
+            (p.pr - 8.0 - bw, p.pb - 8.0 - bh),
+            (p.pl + 8.0, p.pb - 8.0 - bh),
         ];
         let hidden = |(x, y): (f64, f64)| {
             self.series
                 .iter()
                 .flat_map(|s| s.points.iter())
                 .filter(|&&(a, b)| {
-                    let (u, v) = (px(a), py(b));
+                    let (u, v) = (p.px(a), p.py(b));
                     u >= x && u <= x + bw && v >= y && v <= y + bh
                 })
                 .count()
@@ -320,20 +382,10 @@ impl Figure {
             });
             ly += 20.0;
         }
-        v
     }
 
-    /// The figure as an SVG document.
-    pub fn svg(&self) -> String {
-        let mut o = String::new();
-        let _ = writeln!(
-            o,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#,
-            w = self.width,
-            h = self.height
-        );
-        let _ = writeln!(o, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        let rgb = |c: [u8; 3]| format!("rgb({},{},{})", c[0], c[1], c[2]);
+    /// Draws every primitive on `surface`.
+    fn draw(&self, surface: &mut impl Surface) {
         for p in self.prims() {
             match p {
                 Prim::Line {
@@ -341,110 +393,39 @@ impl Figure {
                     width,
                     colour,
                     dash,
-                } => {
-                    if pts.len() < 2 {
-                        continue;
-                    }
-                    let d: Vec<String> =
-                        pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
-                    let dash = dash
-                        .map(|l| format!(r#" stroke-dasharray="{l:.1},{:.1}""#, l * 0.7))
-                        .unwrap_or_default();
-                    let _ = writeln!(
-                        o,
-                        r#"<polyline fill="none" stroke="{}" stroke-width="{width}" stroke-linejoin="round"{dash} points="{}"/>"#,
-                        rgb(colour),
-                        d.join(" ")
-                    );
-                }
-                Prim::Dot { c, r, colour } => {
-                    let _ = writeln!(
-                        o,
-                        r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
-                        c.0,
-                        c.1,
-                        rgb(colour)
-                    );
-                }
-                Prim::Box { lo, hi } => {
-                    let _ = writeln!(
-                        o,
-                        r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="white" stroke="rgb(150,150,150)"/>"#,
-                        lo.0,
-                        lo.1,
-                        hi.0 - lo.0,
-                        hi.1 - lo.1
-                    );
-                }
+                } => surface.draw_line(&pts, width, colour, dash),
+                Prim::Dot { c, r, colour } => surface.draw_dot(c, r, colour),
+                Prim::Box { lo, hi } => surface.draw_box(lo, hi),
                 Prim::Text {
                     at,
                     size,
                     anchor,
                     vertical,
                     s,
-                } => {
-                    let a = match anchor {
-                        Anchor::Start => "start",
-                        Anchor::Middle => "middle",
-                        Anchor::End => "end",
-                    };
-                    let rot = if vertical {
-                        format!(r#" transform="rotate(-90 {:.1} {:.1})""#, at.0, at.1)
-                    } else {
-                        String::new()
-                    };
-                    let _ = writeln!(
-                        o,
-                        r#"<text x="{:.1}" y="{:.1}" font-size="{size}" text-anchor="{a}"{rot}>{}</text>"#,
-                        at.0,
-                        at.1,
-                        xml_escape(&s)
-                    );
-                }
+                } => surface.draw_text(at, size, anchor, vertical, &s),
             }
         }
-        o.push_str("</svg>\n");
-        o
+    }
+
+    /// The figure as an SVG document.
+    pub fn svg(&self) -> String {
+        let mut o = Svg(String::new());
+        let _ = writeln!(
+            o.0,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#,
+            w = self.width,
+            h = self.height
+        );
+        let _ = writeln!(o.0, r#"<rect width="100%" height="100%" fill="white"/>"#);
+        self.draw(&mut o);
+        o.0.push_str("</svg>\n");
+        o.0
     }
 
     /// The figure as RGB pixels (row-major, 3 bytes per pixel).
     pub fn rgb_pixels(&self) -> Vec<u8> {
         let mut c = Canvas::new(self.width as usize, self.height as usize);
-        for p in self.prims() {
-            match p {
-                Prim::Line {
-                    pts,
-                    width,
-                    colour,
-                    dash,
-                } => c.polyline(&pts, width, colour, dash),
-                Prim::Dot { c: at, r, colour } => c.dot(at, r, colour),
-                Prim::Box { lo, hi } => {
-                    let (x0, y0, x1, y1) = c.region(lo, hi);
-                    for y in y0..=y1 {
-                        for x in x0..=x1 {
-                            c.cover(x, y, 1.0);
-                        }
-                    }
-                    c.flush([255, 255, 255]);
-                    let edge = vec![
-                        (lo.0, lo.1),
-                        (hi.0, lo.1),
-                        (hi.0, hi.1),
-                        (lo.0, hi.1),
-                        (lo.0, lo.1),
-                    ];
-                    c.polyline(&edge, 1.0, [150, 150, 150], None);
-                }
-                Prim::Text {
-                    at,
-                    size,
-                    anchor,
-                    vertical,
-                    s,
-                } => c.text(at, size, anchor, vertical, &s),
-            }
-        }
+        self.draw(&mut c);
         c.to_rgb8()
     }
 
@@ -673,6 +654,116 @@ fn glyph(c: char) -> [u8; 8] {
         _ => '?',
     };
     font8x8::legacy::BASIC_LEGACY[c as usize]
+}
+
+/// Where a figure's primitives are drawn: the SVG writer and the PNG canvas.
+trait Surface {
+    /// A polyline (dashed when `dash` gives the dash length).
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>);
+    /// A filled disc.
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]);
+    /// A white box with a grey border (the legend's background).
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64));
+    /// Text at `at` (the baseline), `size` px, anchored by `anchor`, rotated when `vertical`.
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str);
+}
+
+/// An SVG document being written.
+struct Svg(String);
+
+fn svg_rgb(c: [u8; 3]) -> String {
+    format!("rgb({},{},{})", c[0], c[1], c[2])
+}
+
+impl Surface for Svg {
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
+        if pts.len() < 2 {
+            return;
+        }
+        let d: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
+        let dash = dash
+            .map(|l| format!(r#" stroke-dasharray="{l:.1},{:.1}""#, l * 0.7))
+            .unwrap_or_default();
+        let _ = writeln!(
+            self.0,
+            r#"<polyline fill="none" stroke="{}" stroke-width="{width}" stroke-linejoin="round"{dash} points="{}"/>"#,
+            svg_rgb(colour),
+            d.join(" ")
+        );
+    }
+
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
+        let _ = writeln!(
+            self.0,
+            r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
+            c.0,
+            c.1,
+            svg_rgb(colour)
+        );
+    }
+
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
+        let _ = writeln!(
+            self.0,
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="white" stroke="rgb(150,150,150)"/>"#,
+            lo.0,
+            lo.1,
+            hi.0 - lo.0,
+            hi.1 - lo.1
+        );
+    }
+
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
+        let a = match anchor {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        };
+        let rot = if vertical {
+            format!(r#" transform="rotate(-90 {:.1} {:.1})""#, at.0, at.1)
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            self.0,
+            r#"<text x="{:.1}" y="{:.1}" font-size="{size}" text-anchor="{a}"{rot}>{}</text>"#,
+            at.0,
+            at.1,
+            xml_escape(s)
+        );
+    }
+}
+
+impl Surface for Canvas {
+    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
+        self.polyline(pts, width, colour, dash);
+    }
+
+    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
+        self.dot(c, r, colour);
+    }
+
+    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
+        let (x0, y0, x1, y1) = self.region(lo, hi);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                self.cover(x, y, 1.0);
+            }
+        }
+        self.flush([255, 255, 255]);
+        let edge = [
+            (lo.0, lo.1),
+            (hi.0, lo.1),
+            (hi.0, hi.1),
+            (lo.0, hi.1),
+            (lo.0, lo.1),
+        ];
+        self.polyline(&edge, 1.0, [150, 150, 150], None);
+    }
+
+    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
+        self.text(at, size, anchor, vertical, s);
+    }
 }
 
 #[cfg(test)]

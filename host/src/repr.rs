@@ -2,8 +2,8 @@
 //! runtime choice to the generic code, which is monomorphised per representation so every
 //! mode runs the same code ([`specpoly_core::Shade`]).
 //!
-//! - `poly` — the project default, 8 uniform cubic spans ([`DefaultSpectrum`]);
-//! - `paper` — 2 cubic spans split at 550 nm ([`PaperSpectrum`]);
+//! - `poly` — the project default, 8 uniform cubic spans ([`specpoly_core::DefaultSpectrum`]);
+//! - `paper` — 2 cubic spans split at 550 nm ([`specpoly_core::PaperSpectrum`]);
 //! - `poly:SxD` — `S` uniform spans of degree `D`;
 //! - `sampled:N` — `N` point samples over 380–780 nm, the light and the colour matching
 //!   functions point-sampled at the same wavelengths;
@@ -12,20 +12,10 @@
 
 use crate::error::{CliError, Result};
 use specpoly_core::{
-    Breaks, DefaultSpectrum, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, DEFAULT_COEFFS,
-    DEFAULT_SPANS, PAPER_BREAKS,
+    Layout, Paper, Rgb, Sampled, Shade, Spectrum, Uniform, DEFAULT_COEFFS, DEFAULT_SPANS,
 };
 use std::fmt;
 use std::str::FromStr;
-
-/// Span counts supported by `poly:SxD`.
-pub const POLY_SPANS: &[usize] = &[1, 2, 3, 4, 6, 8, 12, 16];
-/// Degrees supported by `poly:SxD`.
-pub const POLY_DEGREES: &[usize] = &[1, 2, 3, 4, 5];
-/// Sample counts supported by `sampled:N`.
-pub const SAMPLED_N: &[usize] = &[
-    3, 4, 5, 8, 9, 11, 16, 21, 24, 32, 41, 48, 64, 81, 101, 201, 401,
-];
 
 /// A representation of spectra for shading.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -53,6 +43,22 @@ impl Repr {
         spans: DEFAULT_SPANS,
         coeffs: DEFAULT_COEFFS,
     };
+
+    /// Whether the representation is a piecewise polynomial (`poly`, `paper`, `poly:SxD`).
+    pub fn is_polynomial(&self) -> bool {
+        matches!(self, Repr::Poly { .. } | Repr::Paper)
+    }
+
+    /// `self` if it is polynomial, else the usage error saying that `command` needs one.
+    pub fn polynomial_for(self, command: &str) -> Result<Repr> {
+        if self.is_polynomial() {
+            Ok(self)
+        } else {
+            Err(CliError::usage(format!(
+                "`{command}` needs a polynomial representation (poly, paper, poly:SxD), not `{self}`"
+            )))
+        }
+    }
 
     /// Number of stored values per colour.
     pub fn size(&self) -> usize {
@@ -131,55 +137,106 @@ impl FromStr for Repr {
     }
 }
 
-/// Generic code run for one representation: `visit::<T>(layout)`.
+/// Generic code run for one representation: `visit::<T>()`.
 pub trait Visitor {
     /// What the visit returns.
     type Output;
-    /// Runs with the representation's type `T` and layout.
-    fn visit<T: Shade>(self, layout: T::Layout) -> Self::Output;
+    /// Runs with the representation's type `T`.
+    fn visit<T: Shade>(self) -> Self::Output;
 }
 
-macro_rules! by_coeffs {
-    ($s:literal, $c:expr, $v:expr) => {
-        match $c {
-            2 => $v.visit::<Spectrum<$s, 2>>(Breaks::<$s>::uniform()),
-            3 => $v.visit::<Spectrum<$s, 3>>(Breaks::<$s>::uniform()),
-            4 => $v.visit::<Spectrum<$s, 4>>(Breaks::<$s>::uniform()),
-            5 => $v.visit::<Spectrum<$s, 5>>(Breaks::<$s>::uniform()),
-            _ => $v.visit::<Spectrum<$s, 6>>(Breaks::<$s>::uniform()),
+/// Generic code over the polynomial representations only (`poly`, `paper`, `poly:SxD`), for
+/// what needs the `Spectrum` itself (coefficients, fit errors, evaluation for plots).
+pub trait PolyVisitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs with `Spectrum<S, C, L>` (breakpoints `L::BREAKS`).
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output;
+}
+
+/// Adapts a [`Visitor`] to a [`PolyVisitor`], so one table serves both dispatches.
+struct AsShade<V>(V);
+
+impl<V: Visitor> PolyVisitor for AsShade<V> {
+    type Output = V::Output;
+    fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> V::Output {
+        self.0.visit::<Spectrum<S, C, L>>()
+    }
+}
+
+/// The one list of supported layouts. From it come the parser's limits ([`POLY_SPANS`],
+/// [`POLY_DEGREES`], [`SAMPLED_N`]) and both dispatches ([`dispatch`], [`dispatch_poly`]):
+/// each listed layout is one monomorphised instance of the generic code.
+macro_rules! representations {
+    (spans: [$($s:literal),*]; coeffs: $cs:tt; sampled: [$($n:literal),*];) => {
+        /// Span counts supported by `poly:SxD`.
+        pub const POLY_SPANS: &[usize] = &[$($s),*];
+        /// Degrees supported by `poly:SxD`.
+        pub const POLY_DEGREES: &[usize] = &representations!(@degrees $cs);
+        /// Sample counts supported by `sampled:N`.
+        pub const SAMPLED_N: &[usize] = &[$($n),*];
+
+        fn uniform_poly<V: PolyVisitor>(spans: usize, coeffs: usize, v: V) -> Option<V::Output> {
+            match spans {
+                $($s => representations!(@coeffs $s, coeffs, v, $cs),)*
+                _ => None,
+            }
+        }
+
+        fn sampled<V: Visitor>(n: usize, v: V) -> Option<V::Output> {
+            match n {
+                $($n => Some(v.visit::<Sampled<$n>>()),)*
+                _ => None,
+            }
+        }
+    };
+    (@degrees [$($c:literal),*]) => { [$($c - 1),*] };
+    (@coeffs $s:literal, $coeffs:expr, $v:expr, [$($c:literal),*]) => {
+        match $coeffs {
+            $($c => Some($v.visit::<$s, $c, Uniform>()),)*
+            _ => None,
         }
     };
 }
 
-macro_rules! by_n {
-    ($n:expr, $v:expr; $($lit:literal),*) => {
-        match $n {
-            $($lit => $v.visit::<Sampled<$lit>>(()),)*
-            _ => $v.visit::<Sampled<401>>(()),
-        }
-    };
+representations! {
+    spans: [1, 2, 3, 4, 6, 8, 12, 16];
+    coeffs: [2, 3, 4, 5, 6];
+    sampled: [3, 4, 5, 8, 9, 11, 16, 21, 24, 32, 41, 48, 64, 81, 101, 201, 401];
 }
 
-/// Runs `v` with the type of `repr` (which [`Repr::from_str`] has validated).
-pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
+/// Runs `v` with the `Spectrum` type of a polynomial `repr`; a usage error naming `command`
+/// for the others (sampled, RGB, exact).
+pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, command: &str, v: V) -> Result<V::Output> {
+    let repr = repr.polynomial_for(command)?;
+    poly(repr, v).ok_or_else(|| CliError::usage(format!("`{repr}`: not a listed layout")))
+}
+
+/// [`dispatch_poly`] without the message: `None` for a representation that is not polynomial
+/// and for layouts outside the list (which [`Repr::from_str`] refuses).
+fn poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
     match repr {
-        Repr::Paper => v.visit::<PaperSpectrum>(PAPER_BREAKS),
-        r if r == Repr::DEFAULT => v.visit::<DefaultSpectrum>(Breaks::uniform()),
-        Repr::Poly { spans, coeffs } => match spans {
-            1 => by_coeffs!(1, coeffs, v),
-            2 => by_coeffs!(2, coeffs, v),
-            3 => by_coeffs!(3, coeffs, v),
-            4 => by_coeffs!(4, coeffs, v),
-            6 => by_coeffs!(6, coeffs, v),
-            8 => by_coeffs!(8, coeffs, v),
-            12 => by_coeffs!(12, coeffs, v),
-            _ => by_coeffs!(16, coeffs, v),
-        },
-        Repr::Sampled(n) => {
-            by_n!(n, v; 3, 4, 5, 8, 9, 11, 16, 21, 24, 32, 41, 48, 64, 81, 101, 201)
-        }
-        Repr::Rgb => v.visit::<Rgb>(()),
-        Repr::Exact => v.visit::<Sampled<401>>(()),
+        Repr::Paper => Some(v.visit::<2, 4, Paper>()),
+        Repr::Poly { spans, coeffs } => uniform_poly(spans, coeffs, v),
+        Repr::Sampled(_) | Repr::Rgb | Repr::Exact => None,
+    }
+}
+
+/// Runs `v` with the type of `repr`.
+///
+/// # Panics
+/// Never for a `Repr` from [`Repr::from_str`] or the constants: only a hand-built layout
+/// outside the list could reach the panic.
+pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
+    let out = match repr {
+        Repr::Rgb => Some(v.visit::<Rgb>()),
+        Repr::Exact => Some(v.visit::<Sampled<401>>()),
+        Repr::Sampled(n) => sampled(n, v),
+        Repr::Poly { .. } | Repr::Paper => poly(repr, AsShade(v)),
+    };
+    match out {
+        Some(o) => o,
+        None => unreachable!("{repr}: not in the list of representations"),
     }
 }
 

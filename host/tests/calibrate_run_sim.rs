@@ -113,7 +113,7 @@ fn readings_give_the_primaries_of_the_simulated_crt() {
         d.black
     );
     let v = d.fit.verification.expect("verification statistics");
-    assert_eq!(v.patches, 16);
+    assert_eq!(v.n, 16);
     assert!(v.mean < 1.0 && v.max < 3.0, "{v:?}");
     println!(
         "worst primary error: x {:.5}, y {:.5}, Y {:.3} %; verification ΔE00 mean {:.2}, max {:.2}",

@@ -9,9 +9,9 @@ mod common;
 mod pr655;
 
 use pr655::Faults;
-use specpoly::calibrate::display::sim::SimDisplay;
 use specpoly::calibrate::instrument::serial::{Pr6xx, SerialOptions};
 use specpoly::calibrate::instrument::Instrument;
+use specpoly::calibrate::patch_display::sim::SimDisplay;
 use specpoly::calibrate::patches;
 use specpoly::calibrate::run::measure_all;
 use specpoly::calibrate::sim::{SimHandle, SimModel};

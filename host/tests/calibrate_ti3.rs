@@ -4,9 +4,10 @@
 
 use specpoly::calibrate::file::{Calibration, TransferKind};
 use specpoly::calibrate::fit::{fit, fit_and_verify, is_ramp, FitOptions, MatrixFit};
-use specpoly::calibrate::measurement::Measurement;
 use specpoly::calibrate::verify;
 use specpoly::io::cgats::read_ti3;
+use specpoly::measurement::Measurement;
+use specpoly::stats::Stats;
 
 fn acer() -> Vec<Measurement> {
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
@@ -40,7 +41,7 @@ fn report(name: &str, cal: &Calibration) -> (f64, f64) {
     let v = cal.data().fit.verification.unwrap();
     eprintln!(
         "{name}: held out {}: mean {:.3} p95 {:.3} max {:.3}",
-        v.patches, v.mean, v.p95, v.max
+        v.n, v.mean, v.p95, v.max
     );
     (v.mean, v.max)
 }
@@ -86,11 +87,11 @@ fn pure_cowan_from_the_ramps_alone() {
         ..Default::default()
     };
     let cal = fit(&ramps, &opts).unwrap();
-    let s = verify::stats(&verify::delta_e(&cal, &rest));
+    let s = Stats::of(&verify::delta_e(&cal, &rest));
     eprintln!(
         "Cowan from {} ramp patches, on the other {}: mean {:.3} p95 {:.3} max {:.3}",
         ramps.len(),
-        s.patches,
+        s.n,
         s.mean,
         s.p95,
         s.max

@@ -6,8 +6,9 @@
 #[path = "common/calibrate_run.rs"]
 mod common;
 
-use specpoly::calibrate::display::web::WebDisplay;
-use specpoly::calibrate::display::PatchDisplay;
+use specpoly::calibrate::patch_display::web::WebDisplay;
+use specpoly::calibrate::patch_display::PatchDisplay;
+use specpoly::io::device_spec::DeviceSpec;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -99,7 +100,7 @@ fn screenshot_shows_the_patch_colour() {
 #[test]
 fn live_page_follows_the_patches() {
     let dir = tempfile::tempdir().unwrap();
-    let mut d = WebDisplay::from_spec("web,wait=60,timeout=20").unwrap();
+    let mut d = WebDisplay::from_spec(&DeviceSpec::parse("web,wait=60,timeout=20")).unwrap();
     let _b = open_live(&d.url(), &dir.path().join("profile"));
     // each show() returns only once the page acknowledged the new colour
     for rgb in [

@@ -2,7 +2,7 @@
 //! default preset reaches mean ≤ 0.1 and max ≤ 0.5 ΔE00 on the validation set (spectra and
 //! lights it was not tuned on), for both observers.
 
-use specpoly::cli::accuracy::{self, Method};
+use specpoly::accuracy::{self, Method};
 use specpoly::repr::Repr;
 use specpoly_core::Observer;
 use std::process::Command;

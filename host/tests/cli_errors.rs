@@ -206,3 +206,29 @@ fn no_partial_output_files() {
         "nothing written into the directory"
     );
 }
+
+#[test]
+fn an_observer_name_is_judged_the_same_by_every_command() {
+    // CIE 015:2018 names the 1964 observer the "10°" observer: `10` is accepted everywhere
+    let xyz = specpoly(&["xyz", "colorchecker#red", "--observer", "10"]);
+    assert_eq!(xyz.code, 0, "{}", xyz.stderr);
+    assert!(xyz.stdout.contains("CIE 1964 observer"), "{}", xyz.stdout);
+    // `led` accepts it too: the failure is the port (exit 1), not the name (exit 2)
+    let led = specpoly(&[
+        "led",
+        "--port",
+        "/dev/no-such-port",
+        "--observer",
+        "10",
+        "state",
+    ]);
+    assert_eq!(led.code, 1, "{}", led.stderr);
+    // and an unknown name is the same usage error for both
+    for args in [
+        vec!["xyz", "colorchecker#red", "--observer", "1976"],
+        vec!["fit", "colorchecker#red", "--observer", "1976"],
+        vec!["led", "--port", "/dev/null", "--observer", "1976", "state"],
+    ] {
+        fails(&specpoly(&args), 2, &["unknown observer `1976`"]);
+    }
+}

@@ -26,7 +26,7 @@ fn scaled(c: &Colour, k: f64) -> Colour {
 
 #[test]
 fn reduction_error_grows_slowly_with_the_number_of_products() {
-    let named = specpoly::spectra::resolve("colorchecker#*").unwrap();
+    let named = specpoly::spectrum_names::resolve("colorchecker#*").unwrap();
     let tabs: Vec<_> = named.iter().map(|n| n.tabulated()).collect();
     let light = Illuminant::D65.tabulated();
     let obs = Observer::Cie1931;

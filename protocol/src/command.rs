@@ -5,8 +5,8 @@ use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
 use core::str::SplitAsciiWhitespace;
 use specpoly_core::{
-    display::TABLE_MAX, Breaks, DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum,
-    Spectrum, Transfer, Xyy, Xyz, PAPER_BREAKS,
+    display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Observer, PaperSpectrum,
+    Spectrum, Transfer, Xyy, Xyz,
 };
 
 /// Which transfer curves a `trc` command sets.
@@ -83,9 +83,9 @@ impl Reflectance {
     }
 }
 
-fn write_spectrum<W: Write, const S: usize, const C: usize>(
+fn write_spectrum<W: Write, const S: usize, const C: usize, L: Layout<S>>(
     w: &mut W,
-    s: &Spectrum<S, C>,
+    s: &Spectrum<S, C, L>,
 ) -> fmt::Result {
     let c = s.coefficients();
     for span in 0..S {
@@ -301,10 +301,10 @@ impl Command {
                 let illuminant =
                     Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
                 let (product, factors) = if paper {
-                    let (p, n) = read_product::<2, 4>(&mut w, PAPER_BREAKS)?;
+                    let (p, n) = read_product::<2, 4, _>(&mut w)?;
                     (Reflectance::Paper(p), n)
                 } else {
-                    let (p, n) = read_product::<8, 4>(&mut w, Breaks::uniform())?;
+                    let (p, n) = read_product::<8, 4, _>(&mut w)?;
                     (Reflectance::Default(p), n)
                 };
                 Command::Reflect {
@@ -376,14 +376,13 @@ impl Command {
 
 /// Reads `S·C` coefficients per factor, factors separated by `*`, folding them with the
 /// reduced product. Coefficients are span by span, each span's `c₀ … c_{C−1}`.
-fn read_product<const S: usize, const C: usize>(
+fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
-    breaks: Breaks<S>,
-) -> Result<(Spectrum<S, C>, u8), Fault> {
-    let mut product: Option<Spectrum<S, C>> = None;
+) -> Result<(Spectrum<S, C, L>, u8), Fault> {
+    let mut product: Option<Spectrum<S, C, L>> = None;
     let mut factors = 0u8;
     loop {
-        let mut f = Spectrum::<S, C>::zero(breaks);
+        let mut f = Spectrum::<S, C, L>::ZERO;
         for i in 0..S * C {
             let (tok, at) = w
                 .next()

@@ -8,7 +8,7 @@ use crate::command::{map_name, write_curve};
 use crate::number::{parse_f32, parse_u16, write_f32, write_int};
 use crate::{ErrorCode, Fault, PROTOCOL_VERSION};
 use core::fmt::{self, Write};
-use specpoly_core::{GamutMap, Observer, Transfer, Xyz};
+use specpoly_core::{Drive, GamutMap, Observer, Transfer, Xyz};
 
 /// How the last colour relates to the gamut.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,6 +34,25 @@ pub struct ColourReport {
     pub max: u16,
     /// In or out of gamut (`gamut=`).
     pub gamut: Gamut,
+}
+
+impl ColourReport {
+    /// The report of the core's drive step ([`specpoly_core::Display::drive`]) for `target`,
+    /// on levels `0 ..= max`, with gamut map `map`.
+    pub fn of(target: Xyz, drive: &Drive, map: GamutMap, max: u16) -> Self {
+        Self {
+            xyz: target,
+            led: drive.emitted,
+            linear: drive.linear,
+            duty: drive.level,
+            max,
+            gamut: if drive.out_of_gamut {
+                Gamut::Out(map)
+            } else {
+                Gamut::In
+            },
+        }
+    }
 }
 
 /// A transfer curve's summary in `state` replies.

@@ -7,8 +7,7 @@
 
 use proptest::prelude::*;
 use specpoly_core::{
-    Breaks, DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum, Spectrum, Transfer,
-    Xyy, Xyz, PAPER_BREAKS,
+    DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum, Transfer, Xyy, Xyz,
 };
 use specpoly_protocol::{
     write_reflect, Channels, ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut,
@@ -89,7 +88,7 @@ const WORDS: &[&str] = &[
 ];
 
 fn spectrum_default(seed: f32) -> DefaultSpectrum {
-    let mut s = Spectrum::<8, 4>::zero(Breaks::uniform());
+    let mut s = DefaultSpectrum::ZERO;
     for k in 0..4 {
         for sp in 0..8 {
             s.coefficients_mut()[k][sp] = seed * (0.3 + 0.05 * sp as f32) / (1.0 + k as f32);
@@ -220,7 +219,7 @@ fn every_command_round_trips() {
         }),
         Command::Reflect {
             illuminant: Illuminant::D65,
-            product: Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 0.5)),
+            product: Reflectance::Paper(PaperSpectrum::constant(0.5)),
             factors: 1,
         },
         Command::Reflect {
@@ -264,7 +263,7 @@ fn products_are_folded_with_the_reduced_product() {
     // mixed presets cannot be written
     let mixed = [
         Reflectance::Default(a),
-        Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 1.0)),
+        Reflectance::Paper(PaperSpectrum::constant(1.0)),
     ];
     assert!(write_reflect(&mut String::new(), Illuminant::D65, &mixed).is_err());
 }

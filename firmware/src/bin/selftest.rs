@@ -15,8 +15,7 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use heapless::String;
 use specpoly_core::{
-    Breaks, DefaultSpectrum, Illuminant, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
-    PAPER_BREAKS,
+    DefaultSpectrum, Illuminant, Layout, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
 };
 use specpoly_firmware::board::{icount::Counter, stack};
 use specpoly_firmware::Controller;
@@ -25,8 +24,8 @@ use specpoly_protocol::{
 };
 
 /// A smooth test reflectance: a sigmoid-like ramp, as Chebyshev coefficients per span.
-fn ramp<const S: usize>(breaks: Breaks<S>, level: f32) -> Spectrum<S, 4> {
-    let mut s = Spectrum::<S, 4>::zero(breaks);
+fn ramp<const S: usize, L: Layout<S>>(level: f32) -> Spectrum<S, 4, L> {
+    let mut s = Spectrum::<S, 4, L>::ZERO;
     for sp in 0..S {
         let c = s.coefficients_mut();
         c[0][sp] = level * (0.2 + 0.6 * sp as f32 / S as f32);
@@ -90,7 +89,7 @@ fn main() -> ! {
         Reply::Colour(r) if r.gamut != Gamut::In);
     checks.check("out-of-gamut-reported", out);
 
-    let one = DefaultSpectrum::constant(Breaks::uniform(), 1.0);
+    let one = DefaultSpectrum::constant(1.0);
     let d65 = c.reflectance_xyz(Illuminant::D65, &Reflectance::Default(one));
     checks.check(
         "perfect-reflector-is-d65-white",
@@ -99,7 +98,7 @@ fn main() -> ! {
             && (d65.z - 108.88).abs() < 0.05,
     );
 
-    let half = Reflectance::Paper(PaperSpectrum::constant(PAPER_BREAKS, 0.5));
+    let half = Reflectance::Paper(PaperSpectrum::constant(0.5));
     line.clear();
     let _ = write_reflect(&mut line, Illuminant::A, &[half, half]);
     let quarter = matches!(handle(&mut c, &line),
@@ -151,21 +150,20 @@ fn main() -> ! {
     hprintln!("insns calibration delay-100000 {}", cal);
     let n = 20;
     let ill = Illuminant::D65.tabulated();
-    let m_paper = Moments::<2, 4>::new(Observer::Cie1931, &ill, PAPER_BREAKS);
-    let m_default = Moments::<8, 4>::new(Observer::Cie1931, &ill, Breaks::uniform());
-    let rp = ramp(PAPER_BREAKS, 0.9);
-    let rd = ramp(Breaks::<8>::uniform(), 0.9);
+    let m_paper = Moments::new(Observer::Cie1931, &ill);
+    let m_default = Moments::new(Observer::Cie1931, &ill);
+    let rp: PaperSpectrum = ramp(0.9);
+    let rd: DefaultSpectrum = ramp(0.9);
     let disp = c.display().clone();
     let insns = counter.insns_per_call(2, || {
-        core::hint::black_box(Moments::<2, 4>::new(Observer::Cie1931, &ill, PAPER_BREAKS));
+        core::hint::black_box(Moments::<2, 4, specpoly_core::Paper>::new(
+            Observer::Cie1931,
+            &ill,
+        ));
     });
     hprintln!("insns paper moments {}", insns);
     let insns = counter.insns_per_call(2, || {
-        core::hint::black_box(Moments::<8, 4>::new(
-            Observer::Cie1931,
-            &ill,
-            Breaks::uniform(),
-        ));
+        core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill));
     });
     hprintln!("insns default moments {}", insns);
     let insns = counter.insns_per_call(n * 50, || {

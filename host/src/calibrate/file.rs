@@ -115,18 +115,8 @@ impl TransferCurves {
     }
 }
 
-/// ΔE00 statistics over a set of patches.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Stats {
-    /// Number of patches.
-    pub patches: usize,
-    /// Mean ΔE00.
-    pub mean: f64,
-    /// 95th percentile.
-    pub p95: f64,
-    /// Maximum.
-    pub max: f64,
-}
+/// ΔE00 statistics over a set of patches (`patches`, `mean`, `p95`, `max` in the file).
+pub use crate::stats::Stats;
 
 /// How well the model fits.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -31,9 +31,10 @@ use super::file::{
     Calibration, CalibrationData, FitReport, Primaries, Primary, Provenance, TransferCurves,
     TransferKind, FORMAT, VERSION,
 };
-use super::measurement::Measurement;
 use super::verify;
 use crate::error::{CliError, Result};
+use crate::measurement::Measurement;
+use crate::stats::Stats;
 
 /// How the matrix `M` is found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -72,6 +73,26 @@ impl Default for FitOptions {
             iterations: 3,
         }
     }
+}
+
+/// Splits measurements for a hold-out check: every ramp patch (black, white, single-channel
+/// steps) and every other remaining patch to the fit, the rest to verification, in order.
+pub fn hold_out(meas: Vec<Measurement>) -> (Vec<Measurement>, Vec<Measurement>) {
+    let (mut fit, mut verify) = (Vec::new(), Vec::new());
+    let mut k = 0;
+    for m in meas {
+        if is_ramp(&m) {
+            fit.push(m);
+        } else {
+            if k % 2 == 0 {
+                fit.push(m)
+            } else {
+                verify.push(m)
+            }
+            k += 1;
+        }
+    }
+    (fit, verify)
 }
 
 /// Whether a patch is one the pure Cowan model is built from: black, white, or a
@@ -171,27 +192,10 @@ fn fit_gamma(v: &[f64], l: &[f64]) -> f64 {
     0.5 * (a + b)
 }
 
-/// Solves the 3×3 system `A x = b` (Cramer's rule, f64); `None` if singular.
-fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(a);
-    let scale = a.iter().flatten().fold(0.0f64, |s, v| s.max(v.abs()));
-    if !d.is_finite() || d.abs() <= 1e-14 * scale.powi(3) {
-        return None;
-    }
-    let mut x = [0.0; 3];
-    for (c, xc) in x.iter_mut().enumerate() {
-        let mut m = a;
-        for r in 0..3 {
-            m[r][c] = b[r];
-        }
-        *xc = det(m) / d;
-    }
-    Some(x)
+/// Solves the 3×3 system `A x = b` (f64, [`specpoly_core::solve`]); `None` if singular.
+fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    specpoly_core::solve::solve(a.as_flattened_mut(), &mut b).ok()?;
+    Some(b)
 }
 
 /// Fits the model to measurements (device values 0–1, XYZ in cd/m² or relative — say which in
@@ -199,6 +203,44 @@ fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
 /// give the curves. The returned calibration's provenance is empty except for the patch
 /// counts; the caller fills in the source.
 pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
+    check_input(meas, opts)?;
+    let g = groups(meas);
+    let (black, p) = primaries(&g)?;
+    let (tables, gamma) = curves(&g, black, p, opts.table_points);
+    let white = find(&g, [1.0; 3]);
+    let model = Model {
+        opts,
+        black,
+        white,
+        gamma,
+    };
+    let mut cal = model.calibration(p, &tables, "cowan")?;
+    if opts.matrix == MatrixFit::LeastSquares {
+        cal = model.least_squares(&cal, &g, p, tables)?;
+    }
+    let residual = Stats::of(&verify::delta_e(&cal, meas));
+    let (additivity_delta_e00, additivity_luminance_percent) = match white {
+        Some(w) => {
+            let pred = model.white_of(p);
+            (
+                Some(verify::delta_e00(pred, w, w)),
+                Some((pred[1] / w[1] - 1.0) * 100.0),
+            )
+        }
+        None => (None, None),
+    };
+    let (report, prov) = cal.report_mut();
+    report.residual = residual;
+    report.additivity_delta_e00 = additivity_delta_e00;
+    report.additivity_luminance_percent = additivity_luminance_percent;
+    prov.patches_fit = meas.len();
+    prov.patches_total = meas.len();
+    prov.created = super::file::now_utc();
+    Ok(cal)
+}
+
+/// A usage error for a bad table size, a data error for a measurement that is not finite.
+fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
     if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
         return Err(CliError::usage(format!(
             "table points {} must be 2–{}",
@@ -215,8 +257,13 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             i + 1
         )));
     }
-    let g = groups(meas);
-    let black = find(&g, [0.0; 3]).ok_or_else(|| {
+    Ok(())
+}
+
+/// Black and the three primaries' XYZ at full drive minus black (Cowan 1983), from the
+/// grouped patches.
+fn primaries(g: &[Measurement]) -> Result<([f64; 3], [[f64; 3]; 3])> {
+    let black = find(g, [0.0; 3]).ok_or_else(|| {
         CliError::data("no black patch (device 0 0 0): Cowan's model needs the black level")
     })?;
     let names = ["red", "green", "blue"];
@@ -224,7 +271,7 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
     for c in 0..3 {
         let mut dev = [0.0; 3];
         dev[c] = 1.0;
-        let full = find(&g, dev).ok_or_else(|| {
+        let full = find(g, dev).ok_or_else(|| {
             CliError::data(format!(
                 "no full-drive {} patch (device {} {} {})",
                 names[c], dev[0], dev[1], dev[2]
@@ -238,8 +285,17 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             )));
         }
     }
-    // ramps → tables and gammas
-    let n = opts.table_points;
+    Ok((black, p))
+}
+
+/// Each channel's transfer table (`n` points, monotone, 0 and 1 at the ends: PCHIP through the
+/// ramp's linear light along its primary) and its best pure power law.
+fn curves(
+    g: &[Measurement],
+    black: [f64; 3],
+    p: [[f64; 3]; 3],
+    n: usize,
+) -> ([Vec<f64>; 3], [f64; 3]) {
     let mut tables: [Vec<f64>; 3] = Default::default();
     let mut gamma = [0.0; 3];
     for c in 0..3 {
@@ -271,24 +327,52 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             )
         };
     }
-    let white = find(&g, [1.0; 3]);
-    let build = |p: [[f64; 3]; 3], tables: &[Vec<f64>; 3], matrix: &str| -> Result<Calibration> {
+    (tables, gamma)
+}
+
+/// What every candidate calibration of one fit shares: options, black, the measured white
+/// and the power-law gammas.
+struct Model<'a> {
+    opts: &'a FitOptions,
+    black: [f64; 3],
+    white: Option<[f64; 3]>,
+    gamma: [f64; 3],
+}
+
+impl Model<'_> {
+    /// The white the model predicts for primaries `p`: their sum plus black.
+    fn white_of(&self, p: [[f64; 3]; 3]) -> [f64; 3] {
+        [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + self.black[r])
+    }
+
+    /// The calibration with primaries `p` (as XYZ) and curves `tables`, its matrix found by
+    /// `matrix`.
+    fn calibration(
+        &self,
+        p: [[f64; 3]; 3],
+        tables: &[Vec<f64>; 3],
+        matrix: &str,
+    ) -> Result<Calibration> {
         let prim = p.map(Primary::from_xyz);
-        let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]);
         Calibration::new(CalibrationData {
             format: FORMAT.into(),
             version: VERSION,
-            units: if opts.absolute { "cd/m2" } else { "relative" }.into(),
-            black,
-            white: white.unwrap_or(model_white),
+            units: if self.opts.absolute {
+                "cd/m2"
+            } else {
+                "relative"
+            }
+            .into(),
+            black: self.black,
+            white: self.white.unwrap_or(self.white_of(p)),
             primaries: Primaries {
                 red: prim[0],
                 green: prim[1],
                 blue: prim[2],
             },
             transfer: TransferCurves {
-                kind: opts.transfer,
-                gamma,
+                kind: self.opts.transfer,
+                gamma: self.gamma,
                 red: tables[0].clone(),
                 green: tables[1].clone(),
                 blue: tables[2].clone(),
@@ -299,52 +383,38 @@ pub fn fit(meas: &[Measurement], opts: &FitOptions) -> Result<Calibration> {
             },
             provenance: Provenance::default(),
         })
-    };
-    let mut cal = build(p, &tables, "cowan")?;
-    if opts.matrix == MatrixFit::LeastSquares {
-        let wxyz = white.unwrap_or([0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]));
-        let lsq = lsq_matrix(&cal, &g, black, wxyz).ok_or_else(|| {
-            CliError::data("least-squares matrix: the fit patches do not span three channels")
-        })?;
-        cal = build(lsq, &tables, "least-squares")?;
-        if opts.transfer == TransferKind::Table {
-            // alternate: tables given M, M given tables (a shaper/matrix fit)
+    }
+
+    /// The weighted least-squares matrix over every patch, starting from `cowan`'s curves;
+    /// with tabulated curves, alternately refits the tables given the matrix and the matrix
+    /// given the tables (a shaper/matrix fit), `opts.iterations` times.
+    fn least_squares(
+        &self,
+        cowan: &Calibration,
+        g: &[Measurement],
+        p: [[f64; 3]; 3],
+        mut tables: [Vec<f64>; 3],
+    ) -> Result<Calibration> {
+        let no_span =
+            || CliError::data("least-squares matrix: the fit patches do not span three channels");
+        let wxyz = self.white.unwrap_or(self.white_of(p));
+        let lsq = lsq_matrix(cowan, g, self.black, wxyz).ok_or_else(no_span)?;
+        let mut cal = self.calibration(lsq, &tables, "least-squares")?;
+        if self.opts.transfer == TransferKind::Table {
             let mut m = lsq;
-            for _ in 0..opts.iterations {
-                let Some(t) = refit_tables(&g, m, black, wxyz, n) else {
+            for _ in 0..self.opts.iterations {
+                let Some(t) = refit_tables(g, m, self.black, wxyz, self.opts.table_points) else {
                     break;
                 };
                 tables = t.0;
                 m = t.1;
-                cal = build(m, &tables, "least-squares")?;
-                m = lsq_matrix(&cal, &g, black, wxyz).ok_or_else(|| {
-                    CliError::data(
-                        "least-squares matrix: the fit patches do not span three channels",
-                    )
-                })?;
-                cal = build(m, &tables, "least-squares")?;
+                cal = self.calibration(m, &tables, "least-squares")?;
+                m = lsq_matrix(&cal, g, self.black, wxyz).ok_or_else(no_span)?;
+                cal = self.calibration(m, &tables, "least-squares")?;
             }
         }
+        Ok(cal)
     }
-    let residual = verify::stats(&verify::delta_e(&cal, meas));
-    let (additivity_delta_e00, additivity_luminance_percent) = match white {
-        Some(w) => {
-            let pred = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]);
-            (
-                Some(verify::delta_e00(pred, w, w)),
-                Some((pred[1] / w[1] - 1.0) * 100.0),
-            )
-        }
-        None => (None, None),
-    };
-    let (report, prov) = cal.report_mut();
-    report.residual = residual;
-    report.additivity_delta_e00 = additivity_delta_e00;
-    report.additivity_luminance_percent = additivity_luminance_percent;
-    prov.patches_fit = meas.len();
-    prov.patches_total = meas.len();
-    prov.created = super::file::now_utc();
-    Ok(cal)
 }
 
 /// Fits on `fit_set` and verifies on `verify_set` (may be empty), recording both in the
@@ -358,7 +428,7 @@ pub fn fit_and_verify(
     let v = if verify_set.is_empty() {
         None
     } else {
-        Some(verify::stats(&verify::delta_e(&cal, verify_set)))
+        Some(Stats::of(&verify::delta_e(&cal, verify_set)))
     };
     let (report, prov) = cal.report_mut();
     report.verification = v;
@@ -403,32 +473,11 @@ fn lsq_matrix(
     Some([0, 1, 2].map(|c| [rows[0][c], rows[1][c], rows[2][c]]))
 }
 
-/// Solves a dense symmetric system by Gaussian elimination with partial pivoting.
-fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    for c in 0..n {
-        let p = (c..n).max_by(|i, j| a[*i][c].abs().total_cmp(&a[*j][c].abs()))?;
-        if a[p][c].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            if f != 0.0 {
-                for k in c..n {
-                    a[r][k] -= f * a[c][k];
-                }
-                b[r] -= f * b[c];
-            }
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+/// Solves a dense system (rows of `a`) with the core's Gaussian elimination
+/// ([`specpoly_core::solve`]); `None` if singular or not finite.
+fn solve_dense(a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    specpoly_core::solve::solve(&mut a.concat(), &mut b).ok()?;
+    b.iter().all(|v| v.is_finite()).then_some(b)
 }
 
 /// Given `M` (as columns: `m[channel][xyz]`), the `n`-point tables that minimise the weighted squared XYZ error over all

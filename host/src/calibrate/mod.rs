@@ -1,13 +1,14 @@
 //! Monitor calibration: patch sets, where patches are shown, where readings come from, the
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
-pub mod display;
 pub mod file;
 pub mod fit;
 pub mod icc;
 pub mod instrument;
-pub mod measurement;
+pub mod patch_display;
 pub mod patches;
 pub mod run;
 pub mod sim;
 pub mod verify;
+
+pub use crate::measurement::Measurement;

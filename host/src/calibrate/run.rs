@@ -1,5 +1,5 @@
-//! `specpoly calibrate run`: show patches, read them, save the readings as CGATS .ti3 after
-//! every patch, fit Cowan's model and write the calibration.
+//! Measuring a display (`specpoly calibrate run`): show patches, read them, save the readings
+//! as CGATS .ti3 after every patch, fit Cowan's model and write the calibration.
 //!
 //! ```text
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
@@ -7,48 +7,17 @@
 //! writes `CAL.ti3` (all readings, rewritten atomically after each patch so an interrupted run
 //! keeps what it measured) and `CAL.toml` (the fit of the non-verification patches).
 
-use crate::calibrate::display::{self, PatchDisplay};
-use crate::calibrate::file;
+use crate::calibrate::file::Calibration;
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
 use crate::calibrate::instrument::{self, Instrument};
-use crate::calibrate::measurement::Measurement;
-use crate::calibrate::patches::{self, Patch};
+use crate::calibrate::patch_display::{self, PatchDisplay};
+use crate::calibrate::patches::Patch;
 use crate::error::{CliError, Result};
 use crate::io::cgats::{self, Ti3Info};
-use std::io::IsTerminal;
+use crate::io::progress;
+use crate::measurement::Measurement;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
-
-/// Arguments of `specpoly calibrate run`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct RunArgs {
-    /// Where patches are shown: `web[:PORT]` (a page on 127.0.0.1; open the printed URL),
-    /// `led:PORT` (the RGB-LED controller), `manual` (prints the RGB, waits for Enter),
-    /// `sim:SPD[,options]` (a simulated display, e.g. `sim:crt,noise=0.001`).
-    #[arg(long, value_name = "DISPLAY")]
-    pub display: String,
-    /// Where readings come from: `serial:PORT[,options]` (a PR-655/670 in remote mode), `sim`
-    /// (reads `--display sim:…`), `sim:SPD[,options]` (simulates what `--display` shows).
-    #[arg(long, value_name = "INSTRUMENT")]
-    pub instrument: String,
-    /// The calibration to write (TOML); the readings go beside it with extension `.ti3`.
-    #[arg(short, long, value_name = "CAL.toml")]
-    pub output: PathBuf,
-    /// Levels per channel ramp, 0 and 1 included (2–256).
-    #[arg(long, default_value_t = 9, value_name = "N")]
-    pub ramp_steps: usize,
-    /// Verification patches (spread over the RGB cube; measured, not fitted).
-    #[arg(long, default_value_t = 16, value_name = "N")]
-    pub verify: usize,
-    /// Wait after a patch is on screen before reading it, ms [default: 0 for sim and manual,
-    /// 100 for led, 500 for web].
-    #[arg(long, value_name = "MS")]
-    pub settle: Option<u64>,
-    /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
-    /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
-    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
-    pub matrix: MatrixFit,
-}
 
 /// Where the readings go: `CAL.toml` → `CAL.ti3`.
 pub fn ti3_path(output: &Path) -> PathBuf {
@@ -64,21 +33,6 @@ pub struct Interrupted {
     pub taken: Vec<Measurement>,
 }
 
-/// A progress bar with the patch count and the time left, drawn on stderr only when it is a
-/// terminal.
-fn progress_bar(n: usize) -> indicatif::ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return indicatif::ProgressBar::hidden();
-    }
-    let bar = indicatif::ProgressBar::new(n as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "measuring [{bar:30}] {pos}/{len} patches, {eta} left",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
-}
-
 /// Shows each patch, waits `settle`, reads it, and calls `save` with all readings so far after
 /// every patch. Stops at the first failure (of the display, the instrument or `save`).
 pub fn measure_all(
@@ -88,7 +42,7 @@ pub fn measure_all(
     settle: Duration,
     mut save: impl FnMut(&[Measurement]) -> Result<()>,
 ) -> std::result::Result<Vec<Measurement>, Interrupted> {
-    let bar = progress_bar(patches.len());
+    let bar = progress::bar(patches.len() as u64, "measuring", "patches");
     let mut taken: Vec<Measurement> = Vec::with_capacity(patches.len());
     for (i, p) in patches.iter().enumerate() {
         let at = |e: CliError| {
@@ -141,18 +95,8 @@ pub fn open(
     display_spec: &str,
     instrument_spec: &str,
 ) -> Result<(Box<dyn PatchDisplay>, Box<dyn Instrument>)> {
-    let d = display::open(display_spec)?;
+    let d = patch_display::open(display_spec)?;
     instrument::open(instrument_spec, d)
-}
-
-/// The chromaticity and luminance of an XYZ.
-fn xyy(p: [f64; 3]) -> [f64; 3] {
-    let s = p[0] + p[1] + p[2];
-    if s > 0.0 {
-        [p[0] / s, p[1] / s, p[1]]
-    } else {
-        [0.0, 0.0, p[1]]
-    }
 }
 
 /// The primaries as the raw readings give them: full channel minus black (what a fit must
@@ -176,104 +120,33 @@ pub fn raw_primaries(patches: &[Patch], m: &[Measurement]) -> Option<[[f64; 3]; 
     Some(out)
 }
 
-/// Runs `specpoly calibrate run`.
-pub fn run_cli(a: &RunArgs) -> Result<()> {
-    let set = patches::standard(a.ramp_steps, a.verify)?;
-    let ti3 = ti3_path(&a.output);
-    if ti3 == a.output {
-        return Err(CliError::usage(format!(
-            "-o {}: name the calibration `.toml`; the readings go to `.ti3` beside it",
-            a.output.display()
-        )));
-    }
-    let display = display::open(&a.display)?;
-    println!("display: {}", display.describe());
-    let (mut display, mut instrument) = instrument::open(&a.instrument, display)?;
-    println!("instrument: {}", instrument.describe());
-    let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
-    println!(
-        "{} patches ({} for the fit, {} to verify); readings → {}",
-        set.len(),
-        set.len() - n_verify,
-        n_verify,
-        ti3.display()
-    );
-    let settle = a
-        .settle
-        .map(Duration::from_millis)
-        .unwrap_or_else(|| display.default_settle());
-    let info = Ti3Info {
-        descriptor: "specpoly calibrate run".into(),
-        instrument: Some(instrument.describe()),
-        created: Some(file::now_utc()),
-        absolute: true,
-    };
-    let taken = measure_all(display.as_mut(), instrument.as_mut(), &set, settle, |m| {
-        save_ti3(&ti3, m, &info)
-    })
-    .map_err(|i| {
-        let kept = if i.taken.is_empty() {
-            "no readings taken".to_string()
-        } else {
-            format!("{} readings kept in {}", i.taken.len(), ti3.display())
-        };
-        match i.error {
-            CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
-            e => CliError::data(format!("{e}; {kept}")),
-        }
-    })?;
-    println!("measured {} patches → {}", taken.len(), ti3.display());
-    if let Some(p) = raw_primaries(&set, &taken) {
-        for (name, p) in ["red", "green", "blue"].iter().zip(p) {
-            let c = xyy(p);
-            println!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (reading − black)",
-                c[0], c[1], c[2]
-            );
-        }
-    }
-    if let Some(sim) = display.simulation() {
-        let m = sim.model();
-        for (name, p) in ["red", "green", "blue"].iter().zip(m.primaries) {
-            let c = xyy(p);
-            println!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
-                c[0], c[1], c[2]
-            );
-        }
-    }
-    let fit_set: Vec<Measurement> = set
-        .iter()
-        .zip(&taken)
-        .filter(|(p, _)| p.kind.for_fit())
-        .map(|(_, m)| *m)
-        .collect();
-    let verify_set: Vec<Measurement> = set
-        .iter()
-        .zip(&taken)
-        .filter(|(p, _)| !p.kind.for_fit())
-        .map(|(_, m)| *m)
-        .collect();
-    fit_and_write(&a.output, &ti3, &info, a.matrix, &fit_set, &verify_set)
-}
-
 /// Writes the readings so far as a CGATS .ti3 (A's writer: ArgyllCMS's layout, normalised to
 /// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
 /// measured), atomically.
-fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
+pub fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
     crate::io::atomic::write(path, cgats::write_ti3(m, info).as_bytes())
 }
 
-/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, writes `out` and prints the
-/// result.
-fn fit_and_write(
+/// The readings of the fit patches and of the verification patches of `set`, in order.
+pub fn split(set: &[Patch], taken: &[Measurement]) -> (Vec<Measurement>, Vec<Measurement>) {
+    let (fit, verify): (Vec<_>, Vec<_>) =
+        set.iter().zip(taken).partition(|(p, _)| p.kind.for_fit());
+    (
+        fit.into_iter().map(|(_, m)| *m).collect(),
+        verify.into_iter().map(|(_, m)| *m).collect(),
+    )
+}
+
+/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, records where the readings
+/// came from and writes the calibration to `out`.
+pub fn fit_and_save(
     out: &Path,
     ti3: &Path,
     info: &Ti3Info,
     matrix: MatrixFit,
     fit_set: &[Measurement],
     verify_set: &[Measurement],
-) -> Result<()> {
+) -> Result<Calibration> {
     let opts = FitOptions {
         matrix,
         ..FitOptions::default()
@@ -286,24 +159,5 @@ fn fit_and_write(
         prov.measured = info.created.clone().unwrap_or_default();
     }
     cal.save(out)?;
-    let d = cal.data();
-    println!("fit ({} matrix) → {}", d.fit.matrix, out.display());
-    for (name, p) in ["red", "green", "blue"].iter().zip(d.primaries.array()) {
-        println!(
-            "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (fit)",
-            p.x, p.y, p.luminance
-        );
-    }
-    let r = &d.fit.residual;
-    println!(
-        "  ΔE00 on the {} fit patches: mean {:.2}, max {:.2}",
-        r.patches, r.mean, r.max
-    );
-    if let Some(v) = &d.fit.verification {
-        println!(
-            "  ΔE00 on the {} verification patches: mean {:.2}, 95th percentile {:.2}, max {:.2}",
-            v.patches, v.mean, v.p95, v.max
-        );
-    }
-    Ok(())
+    Ok(cal)
 }

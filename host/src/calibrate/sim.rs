@@ -20,7 +20,8 @@
 //! `XYZ = Σᵢ Lᵢ · Pᵢ + black + flare`, with `Lᵢ` the transfer curve of `rgbᵢ` after crosstalk.
 
 use crate::error::{CliError, Result};
-use crate::spectra;
+use crate::io::device_spec::DeviceSpec;
+use crate::spectrum_names;
 use specpoly_core::{exact_xyz, Illuminant, Observer, Tabulated, Transfer};
 use std::sync::{Arc, Mutex};
 
@@ -41,6 +42,56 @@ pub struct SimOptions {
     pub noise: f64,
     /// Noise seed.
     pub seed: u64,
+}
+
+impl SimOptions {
+    /// The options of `sim:SPD[,KEY=VALUE...]` (see the module docs).
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let mut o = SimOptions::default();
+        for &(k, v) in &spec.options {
+            match k {
+                "white" => {
+                    o.white = spec.non_negative(k, v)?;
+                    if o.white == 0.0 {
+                        return Err(spec.bad(k, v, "must be > 0"));
+                    }
+                }
+                "gamma" => o.transfer = gamma(spec, v)?,
+                "srgb" if v.is_empty() => o.transfer = Transfer::Srgb,
+                "black" => o.black = spec.non_negative(k, v)?,
+                "flare" => o.flare = spec.non_negative(k, v)?,
+                "crosstalk" => {
+                    o.crosstalk = spec.non_negative(k, v)?;
+                    if o.crosstalk >= 1.0 {
+                        return Err(spec.bad(k, v, "must be < 1"));
+                    }
+                }
+                "noise" => o.noise = spec.non_negative(k, v)?,
+                "seed" => o.seed = spec.integer(k, v)?,
+                _ => {
+                    return Err(
+                        spec.unknown(k, "white, gamma, black, flare, crosstalk, noise, seed")
+                    )
+                }
+            }
+        }
+        Ok(o)
+    }
+}
+
+/// `gamma=`: a number 0.1–10 (pure power law), `srgb` or `linear`.
+fn gamma(spec: &DeviceSpec<'_>, v: &str) -> Result<Transfer> {
+    Ok(match v {
+        "srgb" | "sRGB" => Transfer::Srgb,
+        "linear" | "1" => Transfer::Linear,
+        _ => {
+            let g = spec.number("gamma", v)?;
+            if !(0.1..=10.0).contains(&g) {
+                return Err(spec.bad("gamma", v, "expected 0.1–10, `srgb` or `linear`"));
+            }
+            Transfer::Gamma(g as f32)
+        }
+    })
 }
 
 impl Default for SimOptions {
@@ -125,82 +176,17 @@ impl SimModel {
 
     /// Parses `SPD[,KEY=VALUE...]` (the part after `sim:`).
     pub fn parse(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let base = parts.next().unwrap_or("").trim();
-        if base.is_empty() {
-            return Err(CliError::usage(
-                "`sim:` needs the primaries' spectra: `sim:crt` or `sim:FILE.csv` (columns red, green, blue)",
-            ));
-        }
-        let mut o = SimOptions::default();
-        for p in parts {
-            let p = p.trim();
-            if p.is_empty() {
-                continue;
-            }
-            let (k, v) = p.split_once('=').unwrap_or((p, ""));
-            let num = |v: &str| -> Result<f64> {
-                v.parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| CliError::usage(format!("sim:{base}: `{k}={v}`: not a number")))
-            };
-            let nonneg = |v: &str| -> Result<f64> {
-                let x = num(v)?;
-                if x < 0.0 {
-                    return Err(CliError::usage(format!(
-                        "sim:{base}: `{k}={v}`: must be ≥ 0"
-                    )));
-                }
-                Ok(x)
-            };
-            match k {
-                "white" => {
-                    o.white = nonneg(v)?;
-                    if o.white == 0.0 {
-                        return Err(CliError::usage(format!("sim:{base}: `white` must be > 0")));
-                    }
-                }
-                "gamma" => {
-                    o.transfer = match v {
-                        "srgb" | "sRGB" => Transfer::Srgb,
-                        "linear" | "1" => Transfer::Linear,
-                        _ => {
-                            let g = num(v)?;
-                            if !(0.1..=10.0).contains(&g) {
-                                return Err(CliError::usage(format!(
-                                    "sim:{base}: `gamma={v}`: expected 0.1–10, `srgb` or `linear`"
-                                )));
-                            }
-                            Transfer::Gamma(g as f32)
-                        }
-                    }
-                }
-                "srgb" if v.is_empty() => o.transfer = Transfer::Srgb,
-                "black" => o.black = nonneg(v)?,
-                "flare" => o.flare = nonneg(v)?,
-                "crosstalk" => {
-                    o.crosstalk = nonneg(v)?;
-                    if o.crosstalk >= 1.0 {
-                        return Err(CliError::usage(format!(
-                            "sim:{base}: `crosstalk` must be < 1"
-                        )));
-                    }
-                }
-                "noise" => o.noise = nonneg(v)?,
-                "seed" => {
-                    o.seed = v.parse().map_err(|_| {
-                        CliError::usage(format!("sim:{base}: `seed={v}`: not an integer"))
-                    })?
-                }
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "sim:{base}: unknown option `{p}` (white, gamma, black, flare, crosstalk, noise, seed)"
-                    )))
-                }
-            }
-        }
-        let (source, table) = spectra::load_table(base)?;
+        Self::from_spec(&DeviceSpec::parse(&format!("sim:{spec}")))
+    }
+
+    /// Builds the model of `sim:SPD[,KEY=VALUE...]`.
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let base = spec.required_arg(
+            "the primaries' spectra",
+            "sim:crt` or `sim:FILE.csv` (columns red, green, blue)",
+        )?;
+        let o = SimOptions::from_spec(spec)?;
+        let (source, table) = spectrum_names::load_table(base)?;
         let find = |name: &str| {
             table
                 .columns

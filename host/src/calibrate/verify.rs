@@ -6,8 +6,9 @@
 //! Dalal 2005). Tolerances are DisplayCAL's for a measurement report: nominal mean ≤ 1.5,
 //! max ≤ 4; recommended mean ≤ 1, max ≤ 3.
 
-use super::file::{Calibration, Stats};
-use super::measurement::Measurement;
+use super::file::Calibration;
+use crate::error::{CliError, Result};
+use crate::measurement::Measurement;
 use specpoly_core::{delta_e2000, Lab};
 
 /// DisplayCAL's nominal tolerance: (mean, max).
@@ -29,23 +30,31 @@ pub fn delta_e(cal: &Calibration, meas: &[Measurement]) -> Vec<f64> {
         .collect()
 }
 
-/// Mean, 95th percentile (nearest rank) and maximum.
-pub fn stats(de: &[f64]) -> Stats {
-    if de.is_empty() {
-        return Stats::default();
-    }
-    let mut s = de.to_vec();
-    s.sort_by(f64::total_cmp);
-    let rank = ((0.95 * s.len() as f64).ceil() as usize).clamp(1, s.len());
-    Stats {
-        patches: s.len(),
-        mean: s.iter().sum::<f64>() / s.len() as f64,
-        p95: s[rank - 1],
-        max: s[s.len() - 1],
-    }
-}
-
-/// Whether statistics meet a (mean, max) tolerance.
-pub fn passes(s: &Stats, tol: (f64, f64)) -> bool {
-    s.mean <= tol.0 && s.max <= tol.1
+/// The .ti3's measurements in the calibration's units: absolute if both can be; otherwise
+/// relative ones scaled by the calibration's white (see docs/calibration.md).
+pub fn measurements_for(
+    cal: &Calibration,
+    ti3: &crate::io::cgats::Ti3,
+) -> Result<Vec<Measurement>> {
+    let (m, abs) = ti3.best_units();
+    let k = match (cal.absolute(), abs) {
+        (true, true) | (false, false) => 1.0,
+        // relative (white Y = 100) → the calibration's cd/m²
+        (true, false) => cal.data().white[1] / 100.0,
+        // absolute → relative: the file's own white patch to Y = 100
+        (false, true) => {
+            let w = crate::io::cgats::white_patch(&m).ok_or_else(|| {
+                CliError::data(
+                    "the .ti3 is absolute, the calibration relative, and the .ti3 has no white patch to normalise by",
+                )
+            })?;
+            100.0 / w[1]
+        }
+    };
+    Ok(m.into_iter()
+        .map(|p| Measurement {
+            device: p.device,
+            xyz: p.xyz.map(|v| v * k),
+        })
+        .collect())
 }

@@ -3,12 +3,13 @@
 
 use crate::calibrate::file::{self, Calibration, TransferKind};
 use crate::calibrate::fit::{self, FitOptions, MatrixFit};
-use crate::calibrate::measurement::Measurement;
 use crate::calibrate::{icc, verify};
 use crate::error::{CliError, Result};
-use crate::io::cgats::{self, Ti3};
-use std::io::{BufRead, Write};
-use std::path::{Path, PathBuf};
+use crate::io::cgats;
+use crate::io::stdout::{print, print_json};
+use crate::stats::Stats;
+use std::io::BufRead;
+use std::path::PathBuf;
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -24,7 +25,7 @@ pub enum CalibrateCommand {
     /// Export an ICC v4 matrix/TRC display profile.
     Icc(IccArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
-    Run(crate::calibrate::run::RunArgs),
+    Run(crate::cli::calibrate_run::RunArgs),
 }
 
 /// `calibrate fit`.
@@ -101,44 +102,15 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
         CalibrateCommand::Predict(a) => predict(&a),
         CalibrateCommand::Verify(a) => verify_cmd(&a),
         CalibrateCommand::Icc(a) => icc_cmd(&a),
-        CalibrateCommand::Run(a) => crate::calibrate::run::run_cli(&a),
+        CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
     }
-}
-
-/// Writes text to stdout; a closed pipe ends quietly.
-fn print(text: &str) -> Result<()> {
-    let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::io("stdout", e)),
-        _ => Ok(()),
-    }
-}
-
-/// Reads a .ti3 file.
-pub fn read_ti3_file(path: &Path) -> Result<Ti3> {
-    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
-    cgats::read_ti3(&text, &path.display().to_string())
 }
 
 fn fit_cmd(a: &FitArgs) -> Result<()> {
-    let ti3 = read_ti3_file(&a.ti3)?;
+    let ti3 = cgats::read_ti3_file(&a.ti3)?;
     let (meas, absolute) = ti3.best_units();
-    let (fit_set, verify_set): (Vec<Measurement>, Vec<Measurement>) = if a.hold_out {
-        let mut k = 0;
-        let (mut f, mut v) = (Vec::new(), Vec::new());
-        for m in meas {
-            if fit::is_ramp(&m) {
-                f.push(m);
-            } else {
-                if k % 2 == 0 {
-                    f.push(m)
-                } else {
-                    v.push(m)
-                }
-                k += 1;
-            }
-        }
-        (f, v)
+    let (fit_set, verify_set) = if a.hold_out {
+        fit::hold_out(meas)
     } else {
         (meas, Vec::new())
     };
@@ -188,7 +160,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     if let Some(v) = d.fit.verification {
         s.push_str(&format!(
             "held-out ΔE00 ({} patches): mean {:.3}, p95 {:.3}, max {:.3}\n",
-            v.patches, v.mean, v.p95, v.max
+            v.n, v.mean, v.p95, v.max
         ));
     }
     if let (Some(de), Some(pc)) = (
@@ -236,10 +208,7 @@ pub fn show_json(cal: &Calibration) -> serde_json::Value {
 fn show(a: &ShowArgs) -> Result<()> {
     let cal = file::load(&a.calibration)?;
     if a.json {
-        let v = show_json(&cal);
-        let s = serde_json::to_string_pretty(&v)
-            .map_err(|e| CliError::data(format!("cannot print JSON: {e}")))?;
-        return print(&(s + "\n"));
+        return print_json(&show_json(&cal));
     }
     let d = cal.data();
     let u = if cal.absolute() { "cd/m²" } else { "relative" };
@@ -266,12 +235,12 @@ fn show(a: &ShowArgs) -> Result<()> {
     ));
     s.push_str(&format!(
         "matrix {}; fit ΔE00 mean {:.3}, max {:.3} over {} patches\n",
-        d.fit.matrix, d.fit.residual.mean, d.fit.residual.max, d.fit.residual.patches
+        d.fit.matrix, d.fit.residual.mean, d.fit.residual.max, d.fit.residual.n
     ));
     if let Some(v) = d.fit.verification {
         s.push_str(&format!(
             "held-out ΔE00 mean {:.3}, p95 {:.3}, max {:.3} over {} patches\n",
-            v.mean, v.p95, v.max, v.patches
+            v.mean, v.p95, v.max, v.n
         ));
     }
     s.push_str(&format!(
@@ -321,40 +290,14 @@ fn predict(a: &PredictArgs) -> Result<()> {
     print(&out)
 }
 
-/// The .ti3's measurements in the calibration's units: absolute if both can be; otherwise
-/// relative ones scaled by the calibration's white (see docs/calibration.md).
-pub fn measurements_for(cal: &Calibration, ti3: &Ti3) -> Result<Vec<Measurement>> {
-    let (m, abs) = ti3.best_units();
-    let k = match (cal.absolute(), abs) {
-        (true, true) | (false, false) => 1.0,
-        // relative (white Y = 100) → the calibration's cd/m²
-        (true, false) => cal.data().white[1] / 100.0,
-        // absolute → relative: the file's own white patch to Y = 100
-        (false, true) => {
-            let w = cgats::white_patch(&m).ok_or_else(|| {
-                CliError::data(
-                    "the .ti3 is absolute, the calibration relative, and the .ti3 has no white patch to normalise by",
-                )
-            })?;
-            100.0 / w[1]
-        }
-    };
-    Ok(m.into_iter()
-        .map(|p| Measurement {
-            device: p.device,
-            xyz: p.xyz.map(|v| v * k),
-        })
-        .collect())
-}
-
 fn verify_cmd(a: &VerifyArgs) -> Result<()> {
     let cal = file::load(&a.calibration)?;
-    let ti3 = read_ti3_file(&a.ti3)?;
-    let m = measurements_for(&cal, &ti3)?;
+    let ti3 = cgats::read_ti3_file(&a.ti3)?;
+    let m = verify::measurements_for(&cal, &ti3)?;
     let de = verify::delta_e(&cal, &m);
-    let s = verify::stats(&de);
+    let s = Stats::of(&de);
     let pf = |t: (f64, f64)| {
-        if verify::passes(&s, t) {
+        if s.within(t) {
             "pass"
         } else {
             "FAIL"
@@ -369,7 +312,7 @@ fn verify_cmd(a: &VerifyArgs) -> Result<()> {
     let w = &m[worst];
     let text = format!(
         "{} patches of {} against {}\nΔE00 mean {:.3}  p95 {:.3}  max {:.3} (line {}: RGB {:.4} {:.4} {:.4})\nnominal     (mean ≤ {}, max ≤ {}): {}\nrecommended (mean ≤ {}, max ≤ {}): {}\n",
-        s.patches,
+        s.n,
         a.ti3.display(),
         a.calibration.display(),
         s.mean,

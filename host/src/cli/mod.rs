@@ -1,10 +1,13 @@
-//! Command-line interface: one file per command (parse, call, print), dispatched here.
+//! Command-line interface: one file per command (parse, call, print), dispatched here;
+//! arguments several commands share are parsed once in [`args`].
 
 use crate::error::Result;
 use clap::{Parser, Subcommand};
 
 pub mod accuracy;
+pub mod args;
 pub mod calibrate;
+pub mod calibrate_run;
 pub mod fit;
 pub mod led;
 pub mod plot;

@@ -4,11 +4,13 @@
 //! Every representation runs the same generic code ([`crate::colour::Chains`] through
 //! [`crate::repr::dispatch`]); CIELAB is against the light's exact white (`Y = 100`).
 
+use crate::cli::args::Colorimetry;
 use crate::colour::{self, Colour};
 use crate::error::{CliError, Result};
+use crate::io::stdout::print_json;
 use crate::repr::Repr;
-use crate::spectra::{self, Named};
-use specpoly_core::{Observer, Tabulated};
+use crate::spectrum_names::{self, Named};
+use specpoly_core::Tabulated;
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly xyz`.
@@ -17,30 +19,18 @@ pub struct XyzArgs {
     /// Reflectances: FILE, FILE#COLUMN, FILE#* or a built-in such as colorchecker#red.
     #[arg(required = true, value_name = "SPECTRUM")]
     pub spectra: Vec<String>,
-    /// The light: A, D50, D65, E, FL2, FL7, FL11, or FILE / FILE#COLUMN.
-    #[arg(long, short = 'i', default_value = "D65", value_name = "NAME|FILE")]
-    pub illuminant: String,
-    /// Standard observer: 1931 (2°) or 1964 (10°).
-    #[arg(long, default_value = "1964", value_name = "1931|1964")]
-    pub observer: String,
+    /// The light and the observer.
+    #[command(flatten)]
+    pub colorimetry: Colorimetry,
     /// Representation: poly, paper, poly:SxD, sampled:N, rgb, exact.
     #[arg(long, default_value = "poly", value_name = "REPR")]
-    pub repr: String,
+    pub repr: Repr,
     /// Multiply the spectra (an inter-reflection chain) and print one result.
     #[arg(long)]
     pub product: bool,
     /// Print JSON: a list of {name, X, Y, Z, x, y, L, a, b}.
     #[arg(long)]
     pub json: bool,
-}
-
-/// Parses `--observer`.
-pub fn parse_observer(s: &str) -> Result<Observer> {
-    Observer::from_name(s).ok_or_else(|| {
-        CliError::usage(format!(
-            "unknown observer `{s}` (1931 for the 2° observer, 1964 for the 10° observer)"
-        ))
-    })
 }
 
 /// One printed result.
@@ -84,10 +74,12 @@ impl XyzRow {
 
 /// Computes the rows `xyz` prints.
 pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
-    let repr: Repr = a.repr.parse()?;
-    let observer = parse_observer(&a.observer)?;
-    let light = spectra::light(&a.illuminant)?;
-    let named: Vec<Named> = spectra::resolve_all(&a.spectra)?;
+    let Colorimetry {
+        illuminant,
+        observer,
+    } = &a.colorimetry;
+    let light = spectrum_names::light(illuminant)?;
+    let named: Vec<Named> = spectrum_names::resolve_all(&a.spectra)?;
     let tabs: Vec<Tabulated<'_>> = named.iter().map(Named::tabulated).collect();
     let (chains, names): (Vec<Vec<usize>>, Vec<String>) = if a.product {
         let name = named
@@ -102,7 +94,7 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
             named.iter().map(|n| n.name.clone()).collect(),
         )
     };
-    let colours = colour::chains(repr, observer, &light.tabulated(), &tabs, &chains)
+    let colours = colour::chains(a.repr, *observer, &light.tabulated(), &tabs, &chains)
         .map_err(|e| CliError::data(format!("{}: {e}", a.repr)))?;
     Ok(names
         .into_iter()
@@ -115,16 +107,16 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
 pub fn run(a: &XyzArgs) -> Result<()> {
     let rows = compute(a)?;
     if a.json {
-        let s = serde_json::to_string_pretty(&rows)
-            .map_err(|e| CliError::data(format!("JSON: {e}")))?;
-        return crate::io::stdout::print(&format!("{s}\n"));
+        return print_json(&rows);
     }
     let mut o = String::new();
     let w = rows.iter().map(|r| r.name.len()).max().unwrap_or(4).max(4);
     let _ = writeln!(
         o,
         "# illuminant {}, CIE {} observer, repr {}; Lab against the illuminant's white (Y = 100)",
-        a.illuminant, a.observer, a.repr
+        a.colorimetry.illuminant,
+        a.colorimetry.observer.name(),
+        a.repr
     );
     let _ = writeln!(
         o,

@@ -15,8 +15,8 @@
 //! This is a small reader and writer of our own: the one CGATS crate on crates.io is
 //! GPL-3.0, which this project's licence cannot take.
 
-use crate::calibrate::measurement::Measurement;
 use crate::error::{CliError, Result};
+use crate::measurement::Measurement;
 
 /// One CGATS table.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -32,13 +32,31 @@ pub struct Table {
     pub rows: Vec<(usize, Vec<String>)>,
 }
 
+/// An error at the declaring line unless a declared count `(count, line)` matches `got`.
+fn check_count(
+    source: &str,
+    declared: Option<(usize, usize)>,
+    got: usize,
+    message: impl Fn(usize, usize) -> String,
+) -> Result<()> {
+    match declared {
+        Some((k, at)) if k != got => Err(bad(source, at, message(k, got))),
+        _ => Ok(()),
+    }
+}
+
+/// The value of keyword `name` in `(keyword, value)` pairs.
+fn keyword<'a>(keywords: &'a [(String, String)], name: &str) -> Option<&'a str> {
+    keywords
+        .iter()
+        .find(|(k, _)| k == name)
+        .map(|(_, v)| v.as_str())
+}
+
 impl Table {
     /// The value of a keyword.
     pub fn keyword(&self, name: &str) -> Option<&str> {
-        self.keywords
-            .iter()
-            .find(|(k, _)| k == name)
-            .map(|(_, v)| v.as_str())
+        keyword(&self.keywords, name)
     }
 
     /// The column of a field.
@@ -171,18 +189,9 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
                     if t.fields.is_empty() {
                         return Err(bad(source, n, "BEGIN_DATA before BEGIN_DATA_FORMAT"));
                     }
-                    if let Some((k, at)) = n_fields {
-                        if k != t.fields.len() {
-                            return Err(bad(
-                                source,
-                                at,
-                                format!(
-                                    "NUMBER_OF_FIELDS is {k} but the data format names {} fields",
-                                    t.fields.len()
-                                ),
-                            ));
-                        }
-                    }
+                    check_count(source, n_fields, t.fields.len(), |k, got| {
+                        format!("NUMBER_OF_FIELDS is {k} but the data format names {got} fields")
+                    })?;
                     state = State::Data;
                 }
                 "END_DATA" | "END_DATA_FORMAT" => {
@@ -208,18 +217,9 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
             }
             State::Data => {
                 if tok[0] == "END_DATA" && tok.len() == 1 {
-                    if let Some((k, at)) = n_sets {
-                        if k != t.rows.len() {
-                            return Err(bad(
-                                source,
-                                at,
-                                format!(
-                                    "NUMBER_OF_SETS is {k} but BEGIN_DATA…END_DATA holds {} rows",
-                                    t.rows.len()
-                                ),
-                            ));
-                        }
-                    }
+                    check_count(source, n_sets, t.rows.len(), |k, got| {
+                        format!("NUMBER_OF_SETS is {k} but BEGIN_DATA…END_DATA holds {got} rows")
+                    })?;
                     tables.push(std::mem::take(&mut t));
                     n_fields = None;
                     n_sets = None;
@@ -286,10 +286,7 @@ pub struct Ti3 {
 impl Ti3 {
     /// A keyword of the measurement table.
     pub fn keyword(&self, name: &str) -> Option<&str> {
-        self.keywords
-            .iter()
-            .find(|(k, _)| k == name)
-            .map(|(_, v)| v.as_str())
+        keyword(&self.keywords, name)
     }
 
     /// The factor that turns the file's XYZ into cd/m²: `Y_white / 100` for a normalised file
@@ -517,6 +514,12 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
     }
     let _ = writeln!(s, "END_DATA");
     s
+}
+
+/// Reads a .ti3 file.
+pub fn read_ti3_file(path: &std::path::Path) -> Result<Ti3> {
+    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    read_ti3(&text, &path.display().to_string())
 }
 
 #[cfg(test)]

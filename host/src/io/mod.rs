@@ -1,6 +1,9 @@
-//! File formats and output: CSV spectra, atomic file writes.
+//! Input and output: CSV spectra, CGATS measurements, atomic file writes, device strings
+//! (`KIND[:ARG][,KEY=VALUE...]`), stdout and the progress bar.
 
 pub mod atomic;
 pub mod cgats;
 pub mod csv;
+pub mod device_spec;
+pub mod progress;
 pub mod stdout;

@@ -1,4 +1,4 @@
-//! Printing a command's whole output at once. A closed pipe (`specpoly … | head`) is not an
+//! Printing a command's whole output at once (text, or `--json`). A closed pipe (`specpoly … | head`) is not an
 //! error: the reader has what it wanted, so the command ends quietly instead of panicking.
 
 use crate::error::{CliError, Result};
@@ -11,4 +11,11 @@ pub fn print(text: &str) -> Result<()> {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::io("stdout", e)),
         _ => Ok(()),
     }
+}
+
+/// Writes `value` as pretty JSON and a newline to stdout (`--json`).
+pub fn print_json<T: serde::Serialize + ?Sized>(value: &T) -> Result<()> {
+    let s =
+        serde_json::to_string_pretty(value).map_err(|e| CliError::data(format!("JSON: {e}")))?;
+    print(&format!("{s}\n"))
 }

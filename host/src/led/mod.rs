@@ -1,12 +1,16 @@
 //! The host side of the RGB-LED controller (`specpoly-firmware`): a serial [`link::Link`] that
-//! speaks the shared line protocol ([`specpoly_protocol`], `firmware/PROTOCOL.md`), and the
-//! host's own computation of what the controller must answer ([`model::Model`]), with the same
-//! `specpoly-core`, so `specpoly led --check` (and the QEMU tests) can verify the device.
+//! speaks the shared line protocol ([`specpoly_protocol`], `firmware/PROTOCOL.md`); the
+//! controller modelled with the same core calls ([`model::Model`], for playing a controller in
+//! tests); and the independent f64 reference with its tolerance table ([`check`]) that
+//! `specpoly led --check` and the QEMU tests verify a controller against.
 
+pub mod check;
 pub mod error;
+pub mod lines;
 pub mod link;
 pub mod model;
 
+pub use check::Oracle;
 pub use error::LedError;
 pub use link::Link;
 pub use model::Model;

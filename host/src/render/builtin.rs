@@ -1,36 +1,28 @@
 //! Built-in scenes: the TOML files in `scenes/`, compiled into the binary so
 //! `specpoly render example2` runs anywhere. Built-ins and files go through the same parser.
 
-/// A built-in scene.
-pub struct Builtin {
-    /// Its name on the command line.
-    pub name: &'static str,
-    /// The scene file.
-    pub toml: &'static str,
-    /// One line about it.
-    pub about: &'static str,
-}
+use crate::data::Builtin;
 
 /// Every built-in scene.
 pub const SCENES: &[Builtin] = &[
     Builtin {
         name: "example1",
-        toml: include_str!("../../../scenes/example1.toml"),
+        text: include_str!("../../../scenes/example1.toml"),
         about: "the paper's Example 1: two highly specular red spheres (red paint, Phong 60), D65",
     },
     Builtin {
         name: "example2",
-        toml: include_str!("../../../scenes/example2.toml"),
+        text: include_str!("../../../scenes/example2.toml"),
         about: "the paper's Example 2: the red spheres inside a transparent blue filter cube, D65",
     },
     Builtin {
         name: "interreflection",
-        toml: include_str!("../../../scenes/interreflection.toml"),
+        text: include_str!("../../../scenes/interreflection.toml"),
         about: "the paper's Figures 1-2: an orange sphere seen in a cyan mirror under FL11",
     },
     Builtin {
         name: "cornell",
-        toml: include_str!("../../../scenes/cornell.toml"),
+        text: include_str!("../../../scenes/cornell.toml"),
         about: "the Cornell box with its measured reflectances and light spectrum, path traced",
     },
 ];

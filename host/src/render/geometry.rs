@@ -171,18 +171,8 @@ impl Shape {
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         match *self {
             Shape::Sphere { center, radius } => {
-                let oc = ray.origin - center;
-                let b = oc.dot(ray.dir);
-                let c = oc.dot(oc) - radius * radius;
-                let disc = b * b - c;
-                if disc < 0.0 {
-                    return None;
-                }
-                let s = disc.sqrt();
-                let mut t = -b - s;
-                if t <= EPS {
-                    t = -b + s;
-                }
+                let (near, far) = sphere_roots(ray, center, radius)?;
+                let t = if near <= EPS { far } else { near };
                 if t <= EPS || t >= t_max {
                     return None;
                 }
@@ -233,17 +223,10 @@ impl Shape {
     pub fn crossings(&self, ray: &Ray, t_max: f32) -> u32 {
         let inside = |t: f32| (t > EPS && t < t_max) as u32;
         match *self {
-            Shape::Sphere { center, radius } => {
-                let oc = ray.origin - center;
-                let b = oc.dot(ray.dir);
-                let c = oc.dot(oc) - radius * radius;
-                let disc = b * b - c;
-                if disc < 0.0 {
-                    return 0;
-                }
-                let s = disc.sqrt();
-                inside(-b - s) + inside(-b + s)
-            }
+            Shape::Sphere { center, radius } => match sphere_roots(ray, center, radius) {
+                Some((near, far)) => inside(near) + inside(far),
+                None => 0,
+            },
             Shape::Plane { .. } => self.intersect(ray, t_max).is_some() as u32,
             Shape::Box { min, max } => match slabs(ray, min, max) {
                 Some((t0, _, t1, _)) => inside(t0) + inside(t1),
@@ -251,6 +234,22 @@ impl Shape {
             },
         }
     }
+}
+
+/// Where the ray's line meets the sphere, `t_near ≤ t_far` (roots of
+/// `|o + t·d − c|² = r²` with `|d| = 1`: `t = −b ± √(b² − c)`, `b = (o − c)·d`,
+/// `c = |o − c|² − r²`); `None` if it misses.
+#[inline]
+fn sphere_roots(ray: &Ray, center: V3, radius: f32) -> Option<(f32, f32)> {
+    let oc = ray.origin - center;
+    let b = oc.dot(ray.dir);
+    let c = oc.dot(oc) - radius * radius;
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    Some((-b - s, -b + s))
 }
 
 /// Slab test: entry and exit parameters and the axes they lie on, if the line meets the box.

@@ -14,7 +14,7 @@
 use super::{Image, Output};
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
-use specpoly_core::{quantize16, quantize8, Xyz};
+use specpoly_core::{quantize, quantize8, Xyz};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -133,7 +133,7 @@ pub fn write(
                 .xyz
                 .par_iter()
                 .flat_map_iter(|x| {
-                    let d = out.device(*x).map(quantize16);
+                    let d = out.device(*x).map(|v| quantize(v, u16::MAX));
                     [d[0].to_be_bytes(), d[1].to_be_bytes(), d[2].to_be_bytes()]
                         .into_iter()
                         .flatten()

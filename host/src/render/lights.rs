@@ -18,7 +18,7 @@
 //!   estimate exactly `D · L_env` when unoccluded.
 
 use super::geometry::{Ray, EPS, V3};
-use crate::spectra::Named;
+use crate::spectrum_names::Named;
 use std::f32::consts::PI;
 
 /// The shape of an area light.

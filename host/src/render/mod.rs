@@ -1,17 +1,17 @@
 //! The spectral ray tracer: scene files ([`scene`]), geometry ([`geometry`]), the Whitted tracer
 //! generic over the colour representation ([`tracer`]), built-in scenes ([`builtin`]), and the
-//! way from XYZ pixels to a display's PNG ([`to_rgb8`]) and to ΔE00 comparisons ([`compare`]).
+//! way from XYZ pixels to a display's PNG ([`output`]) and to ΔE00 comparisons ([`compare`]).
 //!
 //! ```text
 //! scene.toml ─resolve─▶ Scene (tabulated spectra) ─Compiled<T>─▶ XYZ image ─Display─▶ PNG
 //! ```
 
 pub mod builtin;
-pub mod display;
 pub mod geometry;
 pub mod image_file;
 pub mod lights;
 pub mod mesh;
+pub mod output;
 pub mod path;
 pub mod scene;
 pub mod scene_geometry;
@@ -20,11 +20,15 @@ pub mod upsample;
 
 use crate::error::{CliError, Result};
 use crate::repr::{self, Repr, Visitor};
+use crate::stats::Stats;
 use rayon::prelude::*;
 use scene::{Scene, SceneFile};
-use specpoly_core::{bradford, delta_e2000, quantize8, Display, GamutMap, Lab, Mat3, Shade, Xyz};
+use specpoly_core::{delta_e2000, Lab, Shade, Xyz};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::time::Instant;
 use tracer::Compiled;
+
+pub use output::{to_rgb8, Output};
 
 /// An image of XYZ values (white `Y = 100`), row-major.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,7 +61,7 @@ pub fn load(spec: &str) -> Result<Scene> {
         return SceneFile::parse(&text, spec)?.resolve_in(spec, base);
     }
     if let Some(b) = builtin::find(spec) {
-        return SceneFile::parse(b.toml, b.name)?.resolve(b.name);
+        return SceneFile::parse(b.text, b.name)?.resolve(b.name);
     }
     if looks_like_file {
         return Err(CliError::usage(format!("{spec}: no such scene file")));
@@ -78,8 +82,8 @@ struct RenderVisit<'a> {
 
 impl Visitor for RenderVisit<'_> {
     type Output = Result<Image>;
-    fn visit<T: Shade>(self, layout: T::Layout) -> Result<Image> {
-        let c = Compiled::<T>::new(self.scene, layout)
+    fn visit<T: Shade>(self) -> Result<Image> {
+        let c = Compiled::<T>::new(self.scene)
             .map_err(|e| CliError::data(format!("converting the scene's spectra: {e}")))?;
         Ok(render_compiled(&c, self.progress))
     }
@@ -131,56 +135,6 @@ pub fn scene_white(scene: &Scene) -> Xyz {
     Xyz::new(w[0] as f32, w[1] as f32, w[2] as f32)
 }
 
-/// How XYZ pixels become display values.
-#[derive(Clone, Debug)]
-pub struct Output {
-    /// The display.
-    pub display: Display,
-    /// Gamut mapping.
-    pub gamut: GamutMap,
-    /// XYZ multiplier before display.
-    pub exposure: f32,
-    /// Chromatic adaptation applied before display (Bradford, scene white → display white).
-    pub adapt: Mat3,
-}
-
-impl Output {
-    /// The output for `scene` on `display`: its exposure, and its white adapted to the display's
-    /// white when the scene asks for white balance.
-    pub fn new(scene: &Scene, display: Display, gamut: GamutMap) -> Self {
-        let adapt = if scene.render.white_balance {
-            let dw = display.white();
-            let dw = dw.scale(100.0 / dw.y);
-            bradford(scene_white(scene), dw)
-        } else {
-            Mat3::IDENTITY
-        };
-        Self {
-            display,
-            gamut,
-            exposure: scene.render.exposure,
-            adapt,
-        }
-    }
-
-    /// One pixel's 8-bit device values.
-    pub fn encode(&self, xyz: Xyz) -> [u8; 3] {
-        let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
-        let e = self.display.encode_relative(a, self.gamut);
-        e.device.map(quantize8)
-    }
-}
-
-/// The image as 8-bit RGB, row-major (in parallel: the transfer curve's powers cost about as
-/// much as tracing a simple scene).
-pub fn to_rgb8(img: &Image, out: &Output) -> Vec<u8> {
-    let mut rgb = vec![0u8; img.xyz.len() * 3];
-    rgb.par_chunks_mut(3)
-        .zip(img.xyz.par_iter())
-        .for_each(|(px, xyz)| px.copy_from_slice(&out.encode(*xyz)));
-    rgb
-}
-
 /// Writes 8-bit RGB as a PNG, whole or not at all. The PNG has no time stamp: the same pixels
 /// give the same bytes.
 pub fn write_png(path: &std::path::Path, width: u32, height: u32, rgb: &[u8]) -> Result<()> {
@@ -192,17 +146,6 @@ pub fn write_png(path: &std::path::Path, width: u32, height: u32, rgb: &[u8]) ->
         wr.write_image_data(rgb).map_err(std::io::Error::other)?;
         wr.finish().map_err(std::io::Error::other)
     })
-}
-
-/// ΔE00 statistics of one image against a reference.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Stats {
-    /// Mean.
-    pub mean: f64,
-    /// 95th percentile.
-    pub p95: f64,
-    /// Maximum.
-    pub max: f64,
 }
 
 /// Per-pixel CIEDE2000 between two XYZ images (CIELAB relative to `white`, after `exposure`).
@@ -217,25 +160,6 @@ pub fn delta_e(a: &Image, b: &Image, white: Xyz, exposure: f32) -> Vec<f64> {
             )
         })
         .collect()
-}
-
-/// Mean, 95th percentile (nearest rank) and maximum.
-pub fn stats(de: &[f64]) -> Stats {
-    if de.is_empty() {
-        return Stats {
-            mean: 0.0,
-            p95: 0.0,
-            max: 0.0,
-        };
-    }
-    let mut s = de.to_vec();
-    s.sort_by(f64::total_cmp);
-    let rank = ((0.95 * s.len() as f64).ceil() as usize).clamp(1, s.len());
-    Stats {
-        mean: s.iter().sum::<f64>() / s.len() as f64,
-        p95: s[rank - 1],
-        max: s[s.len() - 1],
-    }
 }
 
 /// Full scale of the ΔE00 heat map.
@@ -281,27 +205,57 @@ pub fn side_by_side(panels: &[(u32, u32, Vec<u8>)], gap: u32) -> (u32, u32, Vec<
     (w, h, out)
 }
 
-/// The result of [`compare`].
-pub struct Comparison {
-    /// `(mode, its image, ΔE00 per pixel against the reference, statistics)`.
-    pub modes: Vec<(Repr, Image, Vec<f64>, Stats)>,
-    /// The reference image.
-    pub reference: Image,
+/// One representation's render in a [`Comparison`].
+pub struct ModeResult {
+    /// The representation.
+    pub repr: Repr,
+    /// Its image.
+    pub image: Image,
+    /// ΔE00 per pixel against the reference.
+    pub delta_e: Vec<f64>,
+    /// Statistics of `delta_e`.
+    pub stats: Stats,
+    /// Render time, seconds.
+    pub seconds: f64,
 }
 
-/// Renders `modes` and the 1 nm reference, and the ΔE00 of each against the reference.
-pub fn compare(scene: &Scene, modes: &[Repr]) -> Result<Comparison> {
+/// The result of [`compare`].
+pub struct Comparison {
+    /// Each mode, in the order asked.
+    pub modes: Vec<ModeResult>,
+    /// The reference image.
+    pub reference: Image,
+    /// The reference's render time, seconds.
+    pub reference_seconds: f64,
+}
+
+/// Renders the 1 nm reference and `modes`, and the ΔE00 of each against the reference;
+/// `step` is called after each of the `1 + modes.len()` renders (for a progress bar).
+pub fn compare(scene: &Scene, modes: &[Repr], step: &dyn Fn()) -> Result<Comparison> {
+    let t0 = Instant::now();
     let reference = render(scene, Repr::Exact, None)?;
+    let reference_seconds = t0.elapsed().as_secs_f64();
+    step();
     let white = scene_white(scene);
     let mut out = Vec::new();
-    for &m in modes {
-        let img = render(scene, m, None)?;
-        let de = delta_e(&img, &reference, white, scene.render.exposure);
-        let s = stats(&de);
-        out.push((m, img, de, s));
+    for &repr in modes {
+        let t = Instant::now();
+        let image = render(scene, repr, None)?;
+        let seconds = t.elapsed().as_secs_f64();
+        let delta_e = delta_e(&image, &reference, white, scene.render.exposure);
+        let stats = Stats::of(&delta_e);
+        out.push(ModeResult {
+            repr,
+            image,
+            delta_e,
+            stats,
+            seconds,
+        });
+        step();
     }
     Ok(Comparison {
         modes: out,
         reference,
+        reference_seconds,
     })
 }

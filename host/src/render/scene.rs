@@ -5,7 +5,7 @@
 use super::geometry::{Camera, Shape, V3};
 use super::upsample;
 use crate::error::{CliError, Result};
-use crate::spectra::{self, Named};
+use crate::spectrum_names::{self, Named};
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 use specpoly_core::Observer;
@@ -325,6 +325,9 @@ pub struct SceneFile {
     pub area_light: Vec<super::scene_geometry::AreaLightSection>,
     /// The environment light.
     pub environment: Option<super::scene_geometry::EnvironmentSection>,
+    /// The folder file names resolve against (the scene file's; not in the file).
+    #[serde(skip)]
+    pub base: Option<std::path::PathBuf>,
 }
 
 /// A material with every spectrum resolved to tabulated data (`None` = zero).
@@ -424,7 +427,7 @@ pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
 
 /// `name` (`FILE`, `FILE#COLUMN`, or a built-in) with a relative `FILE` taken relative to
 /// `base`, the scene file's folder. Built-in names (illuminants, tables) stay as they are.
-pub fn rebase(name: &str, base: Option<&std::path::Path>) -> String {
+pub fn rebase(name: &str, base: Option<&Path>) -> String {
     let Some(base) = base else {
         return name.to_string();
     };
@@ -436,7 +439,7 @@ pub fn rebase(name: &str, base: Option<&std::path::Path>) -> String {
         || crate::data::TABLES
             .iter()
             .any(|t| t.name.eq_ignore_ascii_case(file));
-    let path = std::path::Path::new(file);
+    let path = Path::new(file);
     if builtin || path.is_absolute() {
         return name.to_string();
     }
@@ -448,11 +451,7 @@ pub fn rebase(name: &str, base: Option<&std::path::Path>) -> String {
 }
 
 /// [`resolve_spectrum`] with relative file names taken relative to `base`.
-pub fn resolve_spectrum_in(
-    spec: &SpectrumSpec,
-    what: &str,
-    base: Option<&std::path::Path>,
-) -> Result<Named> {
+pub fn resolve_spectrum_in(spec: &SpectrumSpec, what: &str, base: Option<&Path>) -> Result<Named> {
     let data = |e: CliError| CliError::data(format!("{what}: {e}"));
     let finite = |v: f32, field: &str| {
         if v.is_finite() {
@@ -464,7 +463,7 @@ pub fn resolve_spectrum_in(
     match spec {
         SpectrumSpec::Constant(v) => flat(format!("{v}"), finite(*v, "the value")?),
         SpectrumSpec::Name(n) => {
-            let mut v = spectra::resolve(&rebase(n, base)).map_err(data)?;
+            let mut v = spectrum_names::resolve(&rebase(n, base)).map_err(data)?;
             if v.len() != 1 {
                 return Err(CliError::data(format!(
                     "{what}: `{n}` names {} spectra; name one column",
@@ -554,15 +553,47 @@ impl SceneFile {
         })
     }
 
-    /// Resolves names, checks values and builds the scene. `source` names the file in errors;
-    /// file names in it are taken relative to the current folder.
+    /// Resolves names, checks values and builds the scene. `source` names the file in errors.
+    /// File names in it are taken relative to `self.base` (the current folder if `None`).
     pub fn resolve(&self, source: &str) -> Result<Scene> {
-        self.resolve_in(source, None)
+        let observer = self.check_render(source)?;
+        let camera = self.camera(source)?;
+        let materials = self.materials(source)?;
+        let objects = self.objects(source)?;
+        let base = self.base.as_deref();
+        let triangles = std::sync::Arc::new(super::scene_geometry::triangles(
+            self,
+            source,
+            base,
+            &|name: &str, what: &str| self.material_index(source, name, what),
+        )?);
+        let (area_lights, environment) = super::scene_geometry::lights(self, source, base)?;
+        let (lights, ambient, background) = self.lights(source, &area_lights, &environment)?;
+        Ok(Scene {
+            render: self.render.clone(),
+            observer,
+            camera,
+            ambient,
+            background,
+            lights,
+            materials,
+            objects,
+            triangles,
+            area_lights,
+            environment,
+        })
     }
 
     /// [`SceneFile::resolve`] with file names (spectra, meshes) relative to `base`, the scene
     /// file's folder.
     pub fn resolve_in(&self, source: &str, base: Option<&Path>) -> Result<Scene> {
+        let mut f = self.clone();
+        f.base = base.map(Path::to_path_buf);
+        f.resolve(source)
+    }
+
+    /// Checks `[render]` and returns its observer.
+    fn check_render(&self, source: &str) -> Result<Observer> {
         let r = &self.render;
         let observer = Observer::from_name(&r.observer).ok_or_else(|| {
             CliError::data(format!(
@@ -605,6 +636,11 @@ impl SceneFile {
                 "{source}: render.cutoff must be ≥ 0"
             )));
         }
+        Ok(observer)
+    }
+
+    /// The checked camera.
+    fn camera(&self, source: &str) -> Result<Camera> {
         let c = &self.camera;
         let pos = v3(c.position, &format!("{source}: camera.position"))?;
         let at = v3(c.look_at, &format!("{source}: camera.look_at"))?;
@@ -620,8 +656,11 @@ impl SceneFile {
                 c.fov
             )));
         }
-        let camera = Camera::new(pos, at, up, c.fov);
+        Ok(Camera::new(pos, at, up, c.fov))
+    }
 
+    /// The materials, with their spectra resolved, in name order.
+    fn materials(&self, source: &str) -> Result<Vec<Material>> {
         let mut materials = Vec::new();
         for (name, m) in &self.materials {
             let w = |f: &str| format!("{source}: materials.{name}.{f}");
@@ -633,31 +672,38 @@ impl SceneFile {
             }
             materials.push(Material {
                 name: name.clone(),
-                diffuse: optional(&m.diffuse, &w("diffuse"), base)?,
-                specular: optional(&m.specular, &w("specular"), base)?,
+                diffuse: optional(&m.diffuse, &w("diffuse"), self.base.as_deref())?,
+                specular: optional(&m.specular, &w("specular"), self.base.as_deref())?,
                 phong: m.phong,
-                mirror: optional(&m.mirror, &w("mirror"), base)?,
-                transmission: optional(&m.transmission, &w("transmission"), base)?,
+                mirror: optional(&m.mirror, &w("mirror"), self.base.as_deref())?,
+                transmission: optional(&m.transmission, &w("transmission"), self.base.as_deref())?,
                 ior: m.ior,
             });
         }
-        let material = |name: &str, what: &str| -> Result<usize> {
-            self.materials
-                .keys()
-                .position(|k| k == name)
-                .ok_or_else(|| {
-                    let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
-                    CliError::data(format!(
-                        "{source}: {what}: unknown material `{name}` (defined: {})",
-                        if known.is_empty() {
-                            "none".to_string()
-                        } else {
-                            known.join(", ")
-                        }
-                    ))
-                })
-        };
+        Ok(materials)
+    }
 
+    /// The index of material `name`, which `what` (e.g. `sphere 2`) uses.
+    fn material_index(&self, source: &str, name: &str, what: &str) -> Result<usize> {
+        self.materials
+            .keys()
+            .position(|k| k == name)
+            .ok_or_else(|| {
+                let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                CliError::data(format!(
+                    "{source}: {what}: unknown material `{name}` (defined: {})",
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                ))
+            })
+    }
+
+    /// Spheres, planes and boxes, checked, in that order.
+    fn objects(&self, source: &str) -> Result<Vec<Object>> {
+        let material = |name: &str, what: &str| self.material_index(source, name, what);
         let mut objects = Vec::new();
         for (i, s) in self.sphere.iter().enumerate() {
             let what = format!("sphere {}", i + 1);
@@ -721,7 +767,18 @@ impl SceneFile {
                 checker: None,
             });
         }
+        Ok(objects)
+    }
 
+    /// The point lights, the ambient light (the first light's spectrum at zero intensity if
+    /// the file has none) and the background.
+    fn lights(
+        &self,
+        source: &str,
+        area_lights: &[super::lights::AreaLight],
+        environment: &Option<super::lights::Environment>,
+    ) -> Result<(Vec<Light>, Light, Option<Named>)> {
+        let base = self.base.as_deref();
         let mut lights = Vec::new();
         for (i, l) in self.light.iter().enumerate() {
             let what = format!("{source}: light {}", i + 1);
@@ -734,15 +791,6 @@ impl SceneFile {
                 intensity: l.intensity,
             });
         }
-        let triangles = std::sync::Arc::new(super::scene_geometry::triangles(
-            self, source, base, &material,
-        )?);
-        let (area_lights, environment) = super::scene_geometry::lights(self, source, base)?;
-        let first_spd = lights
-            .first()
-            .map(|l| l.spd.clone())
-            .or_else(|| area_lights.first().map(|l| l.spd.clone()))
-            .or_else(|| environment.as_ref().map(|e| e.spd.clone()));
         let (ambient, background) = match &self.ambient {
             Some(a) => {
                 if !(a.intensity.is_finite() && a.intensity >= 0.0) {
@@ -770,8 +818,13 @@ impl SceneFile {
             None => (
                 Light {
                     position: V3::default(),
-                    spd: match first_spd {
-                        Some(s) => s,
+                    spd: match lights
+                        .first()
+                        .map(|l| &l.spd)
+                        .or_else(|| area_lights.first().map(|l| &l.spd))
+                        .or_else(|| environment.as_ref().map(|e| &e.spd))
+                    {
+                        Some(s) => s.clone(),
                         None => flat("E".into(), 1.0)?,
                     },
                     intensity: 0.0,
@@ -794,18 +847,6 @@ impl SceneFile {
                 )));
             }
         }
-        Ok(Scene {
-            render: self.render.clone(),
-            observer,
-            camera,
-            ambient,
-            background,
-            lights,
-            materials,
-            objects,
-            triangles,
-            area_lights,
-            environment,
-        })
+        Ok((lights, ambient, background))
     }
 }

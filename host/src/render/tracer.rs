@@ -221,10 +221,10 @@ pub struct Compiled<T: Shade> {
 }
 
 impl<T: Shade> Compiled<T> {
-    /// Converts `scene` to representation `T` with `layout`. Reflectances are converted under the
+    /// Converts `scene` to representation `T`. Reflectances are converted under the
     /// first point light (for RGB: each reflectance's exact colour under that light, the best an
     /// RGB renderer can know).
-    pub fn new(scene: &Scene, layout: T::Layout) -> Result<Self, specpoly_core::Error> {
+    pub fn new(scene: &Scene) -> Result<Self, specpoly_core::Error> {
         let obs = scene.observer;
         let lights: Vec<LightT<T>> = scene
             .lights
@@ -232,16 +232,16 @@ impl<T: Shade> Compiled<T> {
             .map(|l| LightT {
                 position: l.position,
                 intensity: l.intensity,
-                light: T::light(obs, &l.spd.tabulated(), layout),
+                light: T::light(obs, &l.spd.tabulated()),
             })
             .collect();
-        let ambient = T::light(obs, &scene.ambient.spd.tabulated(), layout);
+        let ambient = T::light(obs, &scene.ambient.spd.tabulated());
         let white = |l: &T::Light, k: f32| T::constant(1.0, l).xyz(l).scale(k);
         let area: Vec<AreaT<T>> = scene
             .area_lights
             .iter()
             .map(|l| {
-                let light = T::light(obs, &l.spd.tabulated(), layout);
+                let light = T::light(obs, &l.spd.tabulated());
                 AreaT {
                     shape: l.shape,
                     radiance: l.radiance,
@@ -251,22 +251,23 @@ impl<T: Shade> Compiled<T> {
             })
             .collect();
         let env = scene.environment.as_ref().map(|e| {
-            let light = T::light(obs, &e.spd.tabulated(), layout);
+            let light = T::light(obs, &e.spd.tabulated());
             EnvT {
                 radiance: e.radiance,
                 emit_xyz: white(&light, e.radiance),
                 light,
             }
         });
-        let reference_light = T::light(obs, &scene.reference_spd().tabulated(), layout);
+        let reference_light = T::light(obs, &scene.reference_spd().tabulated());
         let reference = &reference_light;
-        let conv = |n: &Option<crate::spectra::Named>| -> Result<Option<T>, specpoly_core::Error> {
-            n.as_ref()
-                .map(|n| T::from_reflectance(&n.tabulated(), reference))
-                .transpose()
-        };
+        let conv =
+            |n: &Option<crate::spectrum_names::Named>| -> Result<Option<T>, specpoly_core::Error> {
+                n.as_ref()
+                    .map(|n| T::from_reflectance(&n.tabulated(), reference))
+                    .transpose()
+            };
         let coef =
-            |n: &Option<crate::spectra::Named>| -> Result<Option<Coef<T>>, specpoly_core::Error> {
+            |n: &Option<crate::spectrum_names::Named>| -> Result<Option<Coef<T>>, specpoly_core::Error> {
                 let Some(v) = conv(n)? else {
                     return Ok(None);
                 };

@@ -7,9 +7,10 @@
 //! | `sim` | [`sim::SimInstrument`] reading the `--display sim:…` display |
 //! | `sim:SPD[,options]` | a simulated display that mirrors whatever `--display` shows (web, manual), read by [`sim::SimInstrument`] |
 
-use crate::calibrate::display::{Mirrored, PatchDisplay};
+use crate::calibrate::patch_display::{Mirrored, PatchDisplay};
 use crate::calibrate::sim::{SimHandle, SimModel};
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 
 pub mod serial;
 pub mod sim;
@@ -29,26 +30,28 @@ pub fn open(
     spec: &str,
     display: Box<dyn PatchDisplay>,
 ) -> Result<(Box<dyn PatchDisplay>, Box<dyn Instrument>)> {
-    if spec == "sim" {
-        let h = display.simulation().ok_or_else(|| {
-            CliError::usage(
-                "--instrument sim reads a simulated display: use it with --display sim:SPD, or name the spectra (--instrument sim:crt) to simulate what --display shows",
-            )
-        })?;
-        return Ok((display, Box::new(sim::SimInstrument::new(h))));
-    }
-    if let Some(rest) = spec.strip_prefix("sim:") {
-        if display.simulation().is_some() {
-            return Err(CliError::usage(
-                "--display is already simulated: use --instrument sim to read it",
-            ));
+    let d = DeviceSpec::parse(spec);
+    match (d.kind, d.arg) {
+        ("sim", None) if d.options.is_empty() => {
+            let h = display.simulation().ok_or_else(|| {
+                CliError::usage(
+                    "--instrument sim reads a simulated display: use it with --display sim:SPD, or name the spectra (--instrument sim:crt) to simulate what --display shows",
+                )
+            })?;
+            return Ok((display, Box::new(sim::SimInstrument::new(h))));
         }
-        let h = SimHandle::new(SimModel::parse(rest)?);
-        let d: Box<dyn PatchDisplay> = Box::new(Mirrored::new(display, h.clone()));
-        return Ok((d, Box::new(sim::SimInstrument::new(h))));
-    }
-    if let Some(rest) = spec.strip_prefix("serial:") {
-        return Ok((display, Box::new(serial::Pr6xx::from_spec(rest)?)));
+        ("sim", Some(_)) => {
+            if display.simulation().is_some() {
+                return Err(CliError::usage(
+                    "--display is already simulated: use --instrument sim to read it",
+                ));
+            }
+            let h = SimHandle::new(SimModel::from_spec(&d)?);
+            let m: Box<dyn PatchDisplay> = Box::new(Mirrored::new(display, h.clone()));
+            return Ok((m, Box::new(sim::SimInstrument::new(h))));
+        }
+        ("serial", _) => return Ok((display, Box::new(serial::Pr6xx::from_spec(&d)?))),
+        _ => {}
     }
     Err(CliError::usage(format!(
         "--instrument `{spec}`: expected `serial:PORT[,options]`, `sim` or `sim:SPD[,options]`"

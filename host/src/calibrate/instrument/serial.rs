@@ -27,6 +27,7 @@
 
 use super::Instrument;
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 use serialport::{ClearBuffer, SerialPort};
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
@@ -142,35 +143,16 @@ pub struct Pr6xx {
 impl Pr6xx {
     /// Parses `PORT[,baud=N][,timeout=SECS][,measure-timeout=SECS][,retries=N]`, opens the
     /// port and enters remote mode.
-    pub fn from_spec(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let path = parts.next().unwrap_or("").trim();
-        if path.is_empty() {
-            return Err(CliError::usage(
-                "--instrument serial: needs a port, e.g. serial:/dev/ttyACM0",
-            ));
-        }
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let path = spec.required_arg("a port", "serial:/dev/ttyACM0")?;
         let mut o = SerialOptions::default();
-        for p in parts {
-            let (k, v) = p.split_once('=').unwrap_or((p, ""));
-            let bad = || CliError::usage(format!("--instrument serial:{path}: bad option `{p}`"));
-            let secs = || {
-                v.parse::<f64>()
-                    .ok()
-                    .filter(|s| s.is_finite() && *s > 0.0)
-                    .map(Duration::from_secs_f64)
-                    .ok_or_else(bad)
-            };
+        for &(k, v) in &spec.options {
             match k {
-                "baud" => o.baud = v.parse().map_err(|_| bad())?,
-                "timeout" => o.timeout = secs()?,
-                "measure-timeout" => o.measure_timeout = secs()?,
-                "retries" => o.retries = v.parse().map_err(|_| bad())?,
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "--instrument serial:{path}: unknown option `{p}` (baud, timeout, measure-timeout, retries)"
-                    )))
-                }
+                "baud" => o.baud = spec.integer(k, v)?,
+                "timeout" => o.timeout = spec.seconds(k, v)?,
+                "measure-timeout" => o.measure_timeout = spec.seconds(k, v)?,
+                "retries" => o.retries = spec.integer(k, v)?,
+                _ => return Err(spec.unknown(k, "baud, timeout, measure-timeout, retries")),
             }
         }
         Self::open(path, o)

@@ -12,6 +12,8 @@
 
 use super::PatchDisplay;
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
+use crate::led::lines::line;
 use crate::led::{LedError, Link};
 use specpoly_core::{Display, GamutMap, Transfer, Xyz};
 use specpoly_protocol::{Channels, Command, Reply};
@@ -22,7 +24,7 @@ const XY: [[f32; 2]; 3] = [[0.64, 0.33], [0.30, 0.60], [0.15, 0.06]];
 const LUM: [f32; 3] = [0.2126, 0.7152, 0.0722];
 
 /// The LED controller showing patches.
-pub struct LedDisplay {
+pub struct LedControllerDisplay {
     link: Link<Box<dyn serialport::SerialPort>>,
     name: String,
     max: u16,
@@ -33,41 +35,15 @@ fn dev(e: LedError) -> CliError {
     CliError::data(format!("LED display: {e}"))
 }
 
-fn line(c: &Command) -> String {
-    let mut s = String::new();
-    // writing to a String cannot fail
-    let _ = c.write(&mut s);
-    s
-}
-
-impl LedDisplay {
-    /// Parses `PORT[,timeout=SECS]` (the part after `led:`) and opens the controller.
-    pub fn from_spec(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let path = parts.next().unwrap_or("").trim();
-        if path.is_empty() {
-            return Err(CliError::usage(
-                "--display led: needs the controller's port, e.g. led:/dev/ttyACM0",
-            ));
-        }
+impl LedControllerDisplay {
+    /// Opens the controller of `led:PORT[,timeout=SECS]`.
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let path = spec.required_arg("the controller's port", "led:/dev/ttyACM0")?;
         let mut timeout = Duration::from_secs(2);
-        for p in parts {
-            match p.split_once('=') {
-                Some(("timeout", v)) => {
-                    timeout = v
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|s| s.is_finite() && *s > 0.0)
-                        .map(Duration::from_secs_f64)
-                        .ok_or_else(|| {
-                            CliError::usage(format!("--display led:{spec}: bad `{p}`"))
-                        })?
-                }
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "--display led:{spec}: unknown option `{p}` (timeout)"
-                    )))
-                }
+        for &(k, v) in &spec.options {
+            match k {
+                "timeout" => timeout = spec.seconds(k, v)?,
+                _ => return Err(spec.unknown(k, "timeout")),
             }
         }
         Self::open(path, timeout)
@@ -102,7 +78,7 @@ impl LedDisplay {
     }
 }
 
-impl PatchDisplay for LedDisplay {
+impl PatchDisplay for LedControllerDisplay {
     fn describe(&self) -> String {
         format!(
             "LED controller on {} ({} duty steps per channel)",

@@ -18,6 +18,7 @@
 
 use super::PatchDisplay;
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 use specpoly_core::quantize8;
 use std::io::{BufRead, BufReader, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
@@ -88,43 +89,23 @@ impl WebDisplay {
     }
 
     /// Parses `web[:PORT][,wait=SECS][,timeout=SECS]` and starts serving.
-    pub fn from_spec(spec: &str) -> Result<Self> {
-        let mut parts = spec.split(',');
-        let head = parts.next().unwrap_or("web");
-        let port = match head.strip_prefix("web") {
-            Some("") => 0,
-            Some(p) => p
-                .strip_prefix(':')
-                .and_then(|p| p.parse::<u16>().ok())
-                .ok_or_else(|| {
-                    CliError::usage(format!("--display `{spec}`: expected `web` or `web:PORT`"))
-                })?,
-            None => {
-                return Err(CliError::usage(format!(
-                    "--display `{spec}`: not a web display"
-                )))
-            }
+    pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
+        let port = match spec.arg {
+            None => 0,
+            Some(p) => p.parse::<u16>().map_err(|_| {
+                CliError::usage(format!(
+                    "--display `{}`: expected `web` or `web:PORT`",
+                    spec.text
+                ))
+            })?,
         };
         let mut first_wait = Duration::from_secs(300);
         let mut timeout = Duration::from_secs(10);
-        for p in parts {
-            let (k, v) = p.split_once('=').unwrap_or((p, ""));
-            let secs = v
-                .parse::<f64>()
-                .ok()
-                .filter(|s| s.is_finite() && *s > 0.0)
-                .map(Duration::from_secs_f64)
-                .ok_or_else(|| {
-                    CliError::usage(format!("--display {spec}: `{p}`: expected seconds > 0"))
-                })?;
+        for &(k, v) in &spec.options {
             match k {
-                "wait" => first_wait = secs,
-                "timeout" => timeout = secs,
-                _ => {
-                    return Err(CliError::usage(format!(
-                        "--display {spec}: unknown option `{p}` (wait, timeout)"
-                    )))
-                }
+                "wait" => first_wait = spec.seconds(k, v)?,
+                "timeout" => timeout = spec.seconds(k, v)?,
+                _ => return Err(spec.unknown(k, "wait, timeout")),
             }
         }
         let mut d = Self::start(port)?;

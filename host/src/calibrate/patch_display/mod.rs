@@ -3,15 +3,16 @@
 //! | spec | implementation |
 //! |---|---|
 //! | `web[:PORT][,wait=SECS][,timeout=SECS]` | [`web::WebDisplay`]: a full-window page served on `127.0.0.1` (an ephemeral port unless given) |
-//! | `led:PORT[,timeout=SECS]` | [`led::LedDisplay`]: the RGB-LED controller (`specpoly-firmware`) |
+//! | `led:PORT[,timeout=SECS]` | [`led_controller::LedControllerDisplay`]: the RGB-LED controller (`specpoly-firmware`) |
 //! | `manual` | [`manual::ManualDisplay`]: prints the RGB to set and waits for Enter |
 //! | `sim:SPD[,options]` | [`sim::SimDisplay`]: a simulated display (see [`crate::calibrate::sim`]) |
 
 use crate::calibrate::sim::{SimHandle, SimModel};
 use crate::error::{CliError, Result};
+use crate::io::device_spec::DeviceSpec;
 use std::time::Duration;
 
-pub mod led;
+pub mod led_controller;
 pub mod manual;
 pub mod sim;
 pub mod web;
@@ -36,36 +37,18 @@ pub trait PatchDisplay {
     }
 }
 
-/// Opens the display named by `spec`.
+/// Opens the display named by `spec` (`KIND[:ARG][,KEY=VALUE...]`, see the table above).
 pub fn open(spec: &str) -> Result<Box<dyn PatchDisplay>> {
-    let (kind, rest) = match spec.split_once(':') {
-        Some((k, r)) => (k, Some(r)),
-        None => match spec.split_once(',') {
-            Some((k, _)) => (k, None),
-            None => (spec, None),
-        },
-    };
-    match kind {
-        "web" => Ok(Box::new(web::WebDisplay::from_spec(spec)?)),
-        "led" => {
-            let rest = rest.ok_or_else(|| {
-                CliError::usage("`--display led` needs the controller's port: `led:/dev/ttyACM0`")
-            })?;
-            Ok(Box::new(led::LedDisplay::from_spec(rest)?))
-        }
-        "manual" if rest.is_none() && spec == "manual" => {
-            Ok(Box::new(manual::ManualDisplay::stdin()))
-        }
-        "sim" => {
-            let rest = rest.ok_or_else(|| {
-                CliError::usage(
-                    "`--display sim` needs spectra: `sim:crt` or `sim:FILE.csv[,options]`",
-                )
-            })?;
-            Ok(Box::new(sim::SimDisplay::new(SimHandle::new(
-                SimModel::parse(rest)?,
-            ))))
-        }
+    let d = DeviceSpec::parse(spec);
+    match d.kind {
+        "web" => Ok(Box::new(web::WebDisplay::from_spec(&d)?)),
+        "led" => Ok(Box::new(led_controller::LedControllerDisplay::from_spec(
+            &d,
+        )?)),
+        "manual" if spec == "manual" => Ok(Box::new(manual::ManualDisplay::stdin())),
+        "sim" => Ok(Box::new(sim::SimDisplay::new(SimHandle::new(
+            SimModel::from_spec(&d)?,
+        )))),
         _ => Err(CliError::usage(format!(
             "--display `{spec}`: expected `web[:PORT]`, `led:PORT`, `manual` or `sim:SPD[,options]`"
         ))),

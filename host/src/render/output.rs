@@ -1,4 +1,5 @@
-//! The display an image is encoded for: `sRGB` (IEC 61966-2-1), or a small TOML file giving a
+//! How XYZ pixels become a display's values ([`Output`], [`to_rgb8`]), and the display an
+//! image is encoded for ([`load`]): `sRGB` (IEC 61966-2-1), or a small TOML file giving a
 //! measured display's primaries (Cowan 1983):
 //!
 //! ```toml
@@ -12,9 +13,62 @@
 //! docs/calibration.md) is also accepted: its fitted display model is used
 //! ([`crate::calibrate::file::load_display`]).
 
+use super::scene::Scene;
+use super::{scene_white, Image};
 use crate::error::{CliError, Result};
+use rayon::prelude::*;
 use serde::Deserialize;
-use specpoly_core::{Display, Transfer, Xyz};
+use specpoly_core::{bradford, quantize8, Display, GamutMap, Mat3, Transfer, Xyz};
+
+/// How XYZ pixels become display values.
+#[derive(Clone, Debug)]
+pub struct Output {
+    /// The display.
+    pub display: Display,
+    /// Gamut mapping.
+    pub gamut: GamutMap,
+    /// XYZ multiplier before display.
+    pub exposure: f32,
+    /// Chromatic adaptation applied before display (Bradford, scene white → display white).
+    pub adapt: Mat3,
+}
+
+impl Output {
+    /// The output for `scene` on `display`: its exposure, and its white adapted to the display's
+    /// white when the scene asks for white balance.
+    pub fn new(scene: &Scene, display: Display, gamut: GamutMap) -> Self {
+        let adapt = if scene.render.white_balance {
+            let dw = display.white();
+            let dw = dw.scale(100.0 / dw.y);
+            bradford(scene_white(scene), dw)
+        } else {
+            Mat3::IDENTITY
+        };
+        Self {
+            display,
+            gamut,
+            exposure: scene.render.exposure,
+            adapt,
+        }
+    }
+
+    /// One pixel's 8-bit device values.
+    pub fn encode(&self, xyz: Xyz) -> [u8; 3] {
+        let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
+        let e = self.display.encode_relative(a, self.gamut);
+        e.device.map(quantize8)
+    }
+}
+
+/// The image as 8-bit RGB, row-major (in parallel: the transfer curve's powers cost about as
+/// much as tracing a simple scene).
+pub fn to_rgb8(img: &Image, out: &Output) -> Vec<u8> {
+    let mut rgb = vec![0u8; img.xyz.len() * 3];
+    rgb.par_chunks_mut(3)
+        .zip(img.xyz.par_iter())
+        .for_each(|(px, xyz)| px.copy_from_slice(&out.encode(*xyz)));
+    rgb
+}
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -53,7 +53,7 @@ pub fn load_table(base: &str) -> Result<(String, Table)> {
         return Ok((base.to_string(), csv::parse(&text, base)?));
     }
     if let Some(t) = TABLES.iter().find(|t| t.name.eq_ignore_ascii_case(base)) {
-        return Ok((t.name.to_string(), csv::parse(t.csv, t.name)?));
+        return Ok((t.name.to_string(), csv::parse(t.text, t.name)?));
     }
     Err(CliError::usage(format!(
         "`{base}`: no such file, and not a built-in table ({})",

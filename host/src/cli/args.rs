@@ -1,0 +1,113 @@
+//! Arguments several commands share, each parsed once by a typed clap value parser (so
+//! `xyz --observer 10` and `led --observer 10` are judged by the same function), and the
+//! flattened groups commands take them in.
+//!
+//! | option | type | parser |
+//! |---|---|---|
+//! | `--illuminant`, `--observer` (`xyz`, `fit`) | [`Colorimetry`] | [`observer`] |
+//! | `--observer` (`led`) | [`Observer`] | [`observer`] |
+//! | `--illuminant` (`led refl`) | [`Illuminant`] | [`builtin_illuminant`] |
+//! | `--repr`, `--mode` | [`crate::repr::Repr`] | its `FromStr` (the list of representations) |
+//! | `--gamut` (`render`), `--map` (`led`) | [`Gamut`] | clap `ValueEnum` |
+//! | `--size` | [`crate::size::Size`] | its `FromStr` |
+//! | `--trc` (`led`) | [`Curve`] | [`transfer`] |
+
+use crate::error::{CliError, Result};
+use specpoly_core::{GamutMap, Illuminant, Observer, Transfer};
+use specpoly_protocol::number::parse_f32;
+
+/// The light and the observer a colour is computed for.
+#[derive(Clone, Debug, clap::Args)]
+pub struct Colorimetry {
+    /// The light: A, D50, D65, E, FL2, FL7, FL11, or FILE / FILE#COLUMN.
+    #[arg(long, short = 'i', default_value = "D65", value_name = "NAME|FILE")]
+    pub illuminant: String,
+    /// Standard observer: 1931 (2°) or 1964 (10°).
+    #[arg(long, default_value = "1964", value_name = "1931|1964", value_parser = observer)]
+    pub observer: Observer,
+}
+
+/// Parses an observer name: `1931` (also `2`, `CIE1931`) or `1964` (also `10`, `CIE1964`).
+pub fn observer(s: &str) -> Result<Observer> {
+    Observer::from_name(s).ok_or_else(|| {
+        CliError::usage(format!(
+            "unknown observer `{s}` (1931 for the 2° observer, 1964 for the 10° observer)"
+        ))
+    })
+}
+
+/// Parses a built-in illuminant's name (any case).
+pub fn builtin_illuminant(s: &str) -> Result<Illuminant> {
+    Illuminant::from_name(s).ok_or_else(|| {
+        CliError::usage(format!(
+            "unknown illuminant `{s}` (built in: A D50 D65 E FL2 FL7 FL11)"
+        ))
+    })
+}
+
+/// A transfer curve named on the command line (a table comes from a file instead).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Curve {
+    /// `linear`.
+    Linear,
+    /// `srgb`.
+    Srgb,
+    /// `gamma:G`.
+    Gamma(f32),
+}
+
+impl From<Curve> for Transfer {
+    fn from(c: Curve) -> Transfer {
+        match c {
+            Curve::Linear => Transfer::Linear,
+            Curve::Srgb => Transfer::Srgb,
+            Curve::Gamma(g) => Transfer::Gamma(g),
+        }
+    }
+}
+
+/// Parses a transfer curve: `linear`, `srgb` or `gamma:G` (`0.1 ≤ G ≤ 10`).
+pub fn transfer(s: &str) -> Result<Curve> {
+    match s.split_once(':') {
+        None if s == "linear" => Ok(Curve::Linear),
+        None if s == "srgb" => Ok(Curve::Srgb),
+        Some(("gamma", g)) => match parse_f32(g) {
+            Ok(g) if (0.1..=10.0).contains(&g) => Ok(Curve::Gamma(g)),
+            _ => Err(CliError::usage(format!("bad gamma `{g}` (0.1 to 10)"))),
+        },
+        _ => Err(CliError::usage(format!(
+            "`{s}` is not linear, srgb or gamma:G"
+        ))),
+    }
+}
+
+/// Gamut mapping for colours a display cannot show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Gamut {
+    /// Clip each channel (as the paper, §7.3).
+    Clip,
+    /// Mix with the grey of equal luminance (keeps the dominant wavelength).
+    Desaturate,
+}
+
+impl From<Gamut> for GamutMap {
+    fn from(g: Gamut) -> GamutMap {
+        match g {
+            Gamut::Clip => GamutMap::Clip,
+            Gamut::Desaturate => GamutMap::Desaturate,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn observers_and_curves() {
+        assert_eq!(observer("10").unwrap(), Observer::Cie1964);
+        assert!(observer("1976").is_err());
+        assert!(transfer("gamma:2.2").is_ok());
+        assert!(transfer("cubic").is_err());
+    }
+}

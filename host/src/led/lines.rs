@@ -1,0 +1,115 @@
+//! The protocol lines the host sends to the controller, built and checked by the controller's
+//! own parser before anything is sent: settings (`cal`, `trc`) from the command line or a
+//! calibration file, and `refl` lines for named reflectances fitted on the host.
+
+use crate::error::{CliError, Result};
+use crate::spectrum_names;
+use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum};
+use specpoly_protocol::number::parse_f32;
+use specpoly_protocol::{write_reflect, Channels, Command, Reflectance, Reply, MAX_FACTORS};
+
+/// The spectrum presets the controller takes in a `refl` line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Preset {
+    /// 8 uniform cubic spans (32 coefficients), the project default.
+    #[value(alias = "default")]
+    Poly,
+    /// The paper's 2 cubic spans split at 550 nm.
+    Paper,
+}
+
+/// A command as the line sent for it.
+pub fn line(c: &Command) -> String {
+    let mut s = String::new();
+    // writing to a String cannot fail
+    let _ = c.write(&mut s);
+    s
+}
+
+/// A reply as the line the controller sends.
+pub fn reply_line(r: &Reply) -> String {
+    let mut s = String::new();
+    let _ = r.write(&mut s);
+    s
+}
+
+/// The `cal` command from `xr,yr,Yr,xg,yg,Yg,xb,yb,Yb`.
+pub fn primaries(s: &str) -> Result<Command> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|t| {
+            parse_f32(t.trim())
+                .map_err(|_| CliError::usage(format!("--primaries: `{t}` is not a number")))
+        })
+        .collect::<Result<_>>()?;
+    if v.len() != 9 {
+        return Err(CliError::usage(format!(
+            "--primaries takes 9 numbers (xr,yr,Yr,xg,yg,Yg,xb,yb,Yb), got {}",
+            v.len()
+        )));
+    }
+    let c = Command::Calibrate {
+        xy: [[v[0], v[1]], [v[3], v[4]], [v[6], v[7]]],
+        luminance: [v[2], v[5], v[8]],
+    };
+    // the controller's own checks, before anything is sent
+    Command::parse(&line(&c))
+        .map_err(|f| CliError::usage(format!("--primaries: {f} (number {:?})", f.at)))
+}
+
+/// The `cal` and three `trc` lines of a calibration file.
+pub fn calibration(path: &std::path::Path) -> Result<Vec<String>> {
+    let display = crate::calibrate::file::load_display(path)?;
+    let (xy, luminance) = display.primaries();
+    let mut lines = vec![line(&Command::Calibrate { xy, luminance })];
+    for (channels, curve) in [Channels::Red, Channels::Green, Channels::Blue]
+        .into_iter()
+        .zip(display.transfer().iter())
+    {
+        lines.push(line(&Command::Transfer {
+            channels,
+            curve: curve.clone(),
+        }));
+    }
+    for l in &lines {
+        // the controller's own checks (ranges, line length), before anything is sent
+        if l.len() > specpoly_protocol::MAX_LINE {
+            return Err(CliError::data(format!(
+                "{}: a curve does not fit one protocol line",
+                path.display()
+            )));
+        }
+        Command::parse(l).map_err(|f| {
+            CliError::data(format!(
+                "{}: not a usable LED calibration: {f}",
+                path.display()
+            ))
+        })?;
+    }
+    Ok(lines)
+}
+
+/// The `refl` line for named reflectances (names as in `specpoly xyz`; several are multiplied),
+/// each fitted in `preset`, under `illuminant`.
+pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<String> {
+    let named = spectrum_names::resolve_all(names)?;
+    if named.is_empty() || named.len() > MAX_FACTORS {
+        return Err(CliError::usage(format!(
+            "refl takes 1 to {MAX_FACTORS} reflectances, got {}",
+            named.len()
+        )));
+    }
+    let mut factors = Vec::new();
+    for n in &named {
+        let t = n.tabulated();
+        let fit_err = |e| CliError::data(format!("{}: cannot fit: {e}", n.short()));
+        factors.push(match preset {
+            Preset::Paper => Reflectance::Paper(PaperSpectrum::fit(&t).map_err(fit_err)?),
+            Preset::Poly => Reflectance::Default(DefaultSpectrum::fit(&t).map_err(fit_err)?),
+        });
+    }
+    let mut line = String::new();
+    write_reflect(&mut line, illuminant, &factors)
+        .map_err(|_| CliError::usage("cannot write the refl command"))?;
+    Ok(line)
+}
