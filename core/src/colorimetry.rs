@@ -8,8 +8,48 @@
 //! `palette` implements Lab and CIEDE2000 too; we keep ~80 lines here so `specpoly-core` has no
 //! dependency beyond `libm`/`heapless` on a microcontroller, and the host tests cross-check
 //! against palette and Sharma's data.
+//!
+//! Component types follow the crate's policy (crate docs): [`Xyz`] and [`Xyy`] are f32 kernel
+//! values, [`Lab`] and CIEDE2000 are f64. Arithmetic where it means something: tristimulus
+//! values add and scale (light adds, [`Xyz`]); CIELAB coordinates subtract to a difference
+//! vector and average (`Add`, `Sub`, `Mul<f64>` on [`Lab`]); chromaticities do neither (a
+//! mixture's chromaticity is not the sum of the parts'), so [`Xyy`] has no arithmetic.
+//! Conversions are named `from_xyz`/`to_xyz`.
 
 use crate::Mat3;
+use core::ops::{Add, Div, Mul, Sub};
+
+/// Chromaticity `x = X/(X+Y+Z)`, `y = Y/(X+Y+Z)` (the paper's eq. 8): the project's one
+/// definition, in f64 (see [`Xyy::from_xyz`] for f32). Black (`X + Y + Z ≤ 0`) has no
+/// chromaticity of its own and takes the `white`'s; a black white gives the equal-energy point
+/// `(1/3, 1/3)`.
+pub fn chromaticity(xyz: [f64; 3], white: [f64; 3]) -> [f64; 2] {
+    chroma(xyz, white)
+}
+
+/// f32 or f64, for the one chromaticity definition.
+trait Component: Copy + PartialOrd + Add<Output = Self> + Div<Output = Self> {
+    const ZERO: Self;
+    const THIRD: Self;
+}
+
+impl Component for f32 {
+    const ZERO: f32 = 0.0;
+    const THIRD: f32 = 1.0 / 3.0;
+}
+
+impl Component for f64 {
+    const ZERO: f64 = 0.0;
+    const THIRD: f64 = 1.0 / 3.0;
+}
+
+fn chroma<T: Component>(v: [T; 3], white: [T; 3]) -> [T; 2] {
+    let own = |v: [T; 3]| {
+        let s = v[0] + v[1] + v[2];
+        (s > T::ZERO).then(|| [v[0] / s, v[1] / s])
+    };
+    own(v).or_else(|| own(white)).unwrap_or([T::THIRD; 2])
+}
 
 /// CIE XYZ tristimulus values (the project's convention: a perfect white has `Y = 100`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -38,34 +78,40 @@ impl Xyz {
         Self::new(a[0], a[1], a[2])
     }
 
-    /// Scaled by `k`.
+    /// Scaled by `k` (the same as `self * k`).
     pub fn scale(self, k: f32) -> Xyz {
         Xyz::new(self.x * k, self.y * k, self.z * k)
     }
+}
 
-    /// Chromaticity and luminance. A black (X+Y+Z = 0) gets the chromaticity of D65.
-    pub fn to_xyy(self) -> Xyy {
-        let s = self.x + self.y + self.z;
-        if s <= 0.0 {
-            return Xyy {
-                x: 0.3127,
-                y: 0.3290,
-                big_y: self.y,
-            };
-        }
-        Xyy {
-            x: self.x / s,
-            y: self.y / s,
-            big_y: self.y,
-        }
+impl Add for Xyz {
+    type Output = Xyz;
+    /// Component-wise sum (lights add).
+    fn add(self, o: Xyz) -> Xyz {
+        Xyz::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 }
 
-impl core::ops::Add for Xyz {
+impl Sub for Xyz {
     type Output = Xyz;
-    /// Component-wise sum.
-    fn add(self, o: Xyz) -> Xyz {
-        Xyz::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    /// Component-wise difference (e.g. a reading minus the black level).
+    fn sub(self, o: Xyz) -> Xyz {
+        Xyz::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl Mul<f32> for Xyz {
+    type Output = Xyz;
+    /// Scaled by `k` ([`Xyz::scale`]).
+    fn mul(self, k: f32) -> Xyz {
+        self.scale(k)
+    }
+}
+
+impl From<Xyz> for [f64; 3] {
+    /// Widened to f64 (for CIELAB and reports).
+    fn from(v: Xyz) -> [f64; 3] {
+        [v.x as f64, v.y as f64, v.z as f64]
     }
 }
 
@@ -81,6 +127,13 @@ pub struct Xyy {
 }
 
 impl Xyy {
+    /// Chromaticity and luminance of `xyz` ([`chromaticity`]'s definition, in f32): black
+    /// takes the chromaticity of `white`.
+    pub fn from_xyz(xyz: Xyz, white: Xyz) -> Xyy {
+        let [x, y] = chroma(xyz.to_array(), white.to_array());
+        Xyy { x, y, big_y: xyz.y }
+    }
+
     /// Back to XYZ (`y = 0` gives black).
     pub fn to_xyz(self) -> Xyz {
         if self.y <= 0.0 {
@@ -103,8 +156,10 @@ pub struct Lab {
 }
 
 impl Lab {
-    /// CIELAB of `xyz` relative to the reference `white` (same units).
-    pub fn from_xyz(xyz: [f64; 3], white: [f64; 3]) -> Lab {
+    /// CIELAB of `xyz` relative to the reference `white` (same units), in f64: an f32 [`Xyz`]
+    /// is widened, an `[f64; 3]` taken as is.
+    pub fn from_xyz(xyz: impl Into<[f64; 3]>, white: impl Into<[f64; 3]>) -> Lab {
+        let (xyz, white) = (xyz.into(), white.into());
         fn f(t: f64) -> f64 {
             const D: f64 = 6.0 / 29.0;
             if t > D * D * D {
@@ -122,11 +177,41 @@ impl Lab {
             b: 200.0 * (fy - fz),
         }
     }
+}
 
-    /// CIELAB of an f32 [`Xyz`] against an f32 white.
-    pub fn from(xyz: Xyz, white: Xyz) -> Lab {
-        let c = |v: Xyz| [v.x as f64, v.y as f64, v.z as f64];
-        Lab::from_xyz(c(xyz), c(white))
+impl Add for Lab {
+    type Output = Lab;
+    /// Component-wise sum (with [`Mul`], means of colours).
+    fn add(self, o: Lab) -> Lab {
+        Lab {
+            l: self.l + o.l,
+            a: self.a + o.a,
+            b: self.b + o.b,
+        }
+    }
+}
+
+impl Sub for Lab {
+    type Output = Lab;
+    /// The difference vector; its length is ΔE*ab (CIE 1976).
+    fn sub(self, o: Lab) -> Lab {
+        Lab {
+            l: self.l - o.l,
+            a: self.a - o.a,
+            b: self.b - o.b,
+        }
+    }
+}
+
+impl Mul<f64> for Lab {
+    type Output = Lab;
+    /// Every coordinate times `k`.
+    fn mul(self, k: f64) -> Lab {
+        Lab {
+            l: self.l * k,
+            a: self.a * k,
+            b: self.b * k,
+        }
     }
 }
 
@@ -220,4 +305,61 @@ pub fn bradford(from: Xyz, to: Xyz) -> Mat3 {
     // BRADFORD is invertible (det ≈ 1.9); this cannot fail.
     let inv = m.inverse().unwrap_or(Mat3::IDENTITY);
     inv.mul(&diag).mul(&m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_chromaticity_black_takes_the_whites() {
+        let d65 = [95.047, 100.0, 108.883];
+        let [x, y] = chromaticity(d65, [1.0; 3]);
+        assert!((x - 0.31273).abs() < 1e-4 && (y - 0.32902).abs() < 1e-4);
+        assert_eq!(chromaticity([0.0; 3], d65), chromaticity(d65, [1.0; 3]));
+        assert_eq!(chromaticity([0.0; 3], [0.0; 3]), [1.0 / 3.0; 2]);
+        let black = Xyy::from_xyz(Xyz::default(), Xyz::new(95.047, 100.0, 108.883));
+        assert!((black.x - 0.31273).abs() < 1e-4 && black.big_y == 0.0);
+        let red = Xyz::new(41.24, 21.26, 1.93);
+        let back = Xyy::from_xyz(red, Xyz::default()).to_xyz();
+        assert!((back - red).to_array().iter().all(|d| d.abs() < 1e-4));
+    }
+
+    #[test]
+    fn arithmetic() {
+        let a = Xyz::new(1.0, 2.0, 3.0);
+        assert_eq!(a + a - a, a);
+        assert_eq!(a * 2.0, Xyz::new(2.0, 4.0, 6.0));
+        let p = Lab {
+            l: 50.0,
+            a: 10.0,
+            b: -10.0,
+        };
+        let q = Lab {
+            l: 60.0,
+            a: 0.0,
+            b: 0.0,
+        };
+        assert_eq!(
+            (p + q) * 0.5,
+            Lab {
+                l: 55.0,
+                a: 5.0,
+                b: -5.0
+            }
+        );
+        assert_eq!(
+            p - q,
+            Lab {
+                l: -10.0,
+                a: 10.0,
+                b: -10.0
+            }
+        );
+        // from_xyz takes f32 and f64 alike
+        assert_eq!(
+            Lab::from_xyz(a, Xyz::new(2.0, 2.0, 2.0)),
+            Lab::from_xyz([1.0, 2.0, 3.0], [2.0; 3])
+        );
+    }
 }

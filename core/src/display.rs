@@ -228,7 +228,7 @@ impl Display {
                 self.to_xyz.0[1][i],
                 self.to_xyz.0[2][i],
             );
-            let c = p.to_xyy();
+            let c = Xyy::from_xyz(p, Xyz::default());
             xy[i] = [c.x, c.y];
             lum[i] = p.y;
         }

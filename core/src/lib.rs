@@ -23,11 +23,29 @@
 //! let light = Moments::new(Observer::Cie1964, &Illuminant::D65.tabulated());
 //! let twice = r.mul(&r);                                  // an inter-reflection, reduced to cubics
 //! let xyz = light.xyz(&twice);
-//! let lab = Lab::from(xyz, light.white());
+//! let lab = Lab::from_xyz(xyz, light.white());
 //! assert!(lab.a > 40.0);                                  // a saturated red
 //! # let _ = delta_e2000(lab, lab);
 //! # Ok::<(), specpoly_core::Error>(())
 //! ```
+//!
+//! ## Component types
+//!
+//! - **f32 in the kernels**: spectra and their products, moments, [`Xyz`]/[`Xyy`] values,
+//!   the display model ([`Display`], [`Mat3`]) and the drive step — everything a pixel or the
+//!   firmware computes. 24 bits are far beyond the data (measured reflectances carry 3–4
+//!   digits), f32 is what a Cortex-M4F does in hardware, and twice as many lanes vectorise.
+//! - **f64 at the edges**: sums over many terms (moments over 401 wavelengths, fits' normal
+//!   equations, the 1 nm reference [`exact_xyz`]), linear algebra ([`solve`], [`Mat3::inverse`]
+//!   computes in f64), the paper's raw-λ monomials, and CIELAB/CIEDE2000 ([`Lab`], differences
+//!   of nearly equal numbers), and every figure the host reports.
+//! - Crossing: f32 → f64 by widening (`<[f64; 3]>::from(xyz)`, [`Lab::from_xyz`] takes both);
+//!   f64 → f32 once, when a kernel value is made (a fit, a moment, a matrix).
+//!
+//! ## One implementation of each step
+//!
+//! `duplicates --repo core` lists one pair, kept: `Transfer::decode` and `Transfer::encode`
+//! share the shape of a `match` over the curves, but each is the other's inverse, not a copy.
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -51,7 +69,7 @@ pub mod spectrum;
 pub mod tabulated;
 
 pub use cheb::Cheb;
-pub use colorimetry::{bradford, delta_e2000, Lab, Xyy, Xyz};
+pub use colorimetry::{bradford, chromaticity, delta_e2000, Lab, Xyy, Xyz};
 pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
 pub use drive::Drive;
 pub use error::Error;

@@ -34,7 +34,10 @@ fn mean_error(ill: Illuminant) -> f64 {
         let r = PaperSpectrum::fit(&Tabulated::new(&wl, c).unwrap()).unwrap();
         let ours = m.xyz(&r);
         let theirs = xyz_paper_path(Observer::Cie1964, &light, &r);
-        sum += delta_e2000(Lab::from(ours, m.white()), Lab::from(theirs, m.white()));
+        sum += delta_e2000(
+            Lab::from_xyz(ours, m.white()),
+            Lab::from_xyz(theirs, m.white()),
+        );
     }
     sum / cols.len() as f64
 }

@@ -30,13 +30,7 @@ pub struct Colour {
 impl Colour {
     /// Chromaticity `x, y` (paper eq. 8); black gets the white's chromaticity.
     pub fn xy(&self) -> [f64; 2] {
-        let chroma = |v: [f64; 3]| {
-            let s = v[0] + v[1] + v[2];
-            (s > 0.0).then(|| [v[0] / s, v[1] / s])
-        };
-        chroma(self.xyz)
-            .or_else(|| chroma(self.white))
-            .unwrap_or([1.0 / 3.0, 1.0 / 3.0])
+        specpoly_core::chromaticity(self.xyz, self.white)
     }
 
     /// CIELAB against the white.

@@ -9,6 +9,10 @@
 //! - [`LineReader`] assembles bounded lines from bytes;
 //! - [`Command`] is a request (host → controller), [`Reply`] an answer (controller → host);
 //! - [`number`] reads and writes decimals without `core`'s large float tables.
+//!
+//! `duplicates --repo protocol` lists two same-shape pairs, kept: the reply reader's `Keys`
+//! fields and their `match` of key names (one line per key, what the grammar is), and the
+//! `map`/`observer` arms of the command parser (a word matched against two names each).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -507,8 +507,8 @@ fn micromath_colour_error_against_libm() {
     let mut worst = 0.0f64;
     let mut sum = 0.0f64;
     for (p, q) in a.iter().zip(&b) {
-        let lp = Lab::from(led.device_to_xyz(*p), white);
-        let lq = Lab::from(led.device_to_xyz(*q), white);
+        let lp = Lab::from_xyz(led.device_to_xyz(*p), white);
+        let lq = Lab::from_xyz(led.device_to_xyz(*q), white);
         let d = delta_e2000(lp, lq);
         worst = worst.max(d);
         sum += d;

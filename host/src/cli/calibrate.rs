@@ -8,6 +8,7 @@ use crate::error::{CliError, Result};
 use crate::io::cgats;
 use crate::io::stdout::{print, print_json};
 use crate::stats::Stats;
+use specpoly_core::chromaticity;
 use std::io::BufRead;
 use std::path::PathBuf;
 
@@ -182,8 +183,8 @@ pub fn show_json(cal: &Calibration) -> serde_json::Value {
     let d = cal.data();
     let prim = |p: &file::Primary| serde_json::json!({"x": p.x, "y": p.y, "Y": p.luminance});
     let xyy = |v: [f64; 3]| {
-        let s = v[0] + v[1] + v[2];
-        serde_json::json!({"X": v[0], "Y": v[1], "Z": v[2], "x": v[0] / s, "y": v[1] / s})
+        let [x, y] = chromaticity(v, d.white);
+        serde_json::json!({"X": v[0], "Y": v[1], "Z": v[2], "x": x, "y": y})
     };
     serde_json::json!({
         "format": d.format,
@@ -221,13 +222,8 @@ fn show(a: &ShowArgs) -> Result<()> {
         ));
     }
     for (n, v) in [("white", d.white), ("black", d.black)] {
-        let t = v[0] + v[1] + v[2];
-        s.push_str(&format!(
-            "{n:<6} {:8.4} {:8.4} {:10.4}\n",
-            v[0] / t,
-            v[1] / t,
-            v[1]
-        ));
+        let [x, y] = chromaticity(v, d.white);
+        s.push_str(&format!("{n:<6} {x:8.4} {y:8.4} {:10.4}\n", v[1]));
     }
     s.push_str(&format!(
         "gamma  R {:.3}  G {:.3}  B {:.3}  (model uses the {:?} curve)\n",

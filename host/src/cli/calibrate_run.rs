@@ -52,14 +52,11 @@ fn line(s: &str) -> Result<()> {
     crate::io::stdout::print(&format!("{s}\n"))
 }
 
-/// The chromaticity and luminance of an XYZ.
+/// The chromaticity ([`specpoly_core::chromaticity`]; a black reading shows the equal-energy
+/// point) and luminance of an XYZ.
 fn xyy(p: [f64; 3]) -> [f64; 3] {
-    let s = p[0] + p[1] + p[2];
-    if s > 0.0 {
-        [p[0] / s, p[1] / s, p[1]]
-    } else {
-        [0.0, 0.0, p[1]]
-    }
+    let [x, y] = specpoly_core::chromaticity(p, [1.0; 3]);
+    [x, y, p[1]]
 }
 
 /// Runs `specpoly calibrate run`.

@@ -339,22 +339,10 @@ impl Oracle {
         if dev.max != self.max {
             return Err(no("max", None, dev.max.to_string(), self.max.to_string()));
         }
-        let mut agree = Agreement::default();
-
-        let scale = target.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let tol = tolerance(Quantity::Target).bound(scale);
-        for (i, (d, o)) in dev.xyz.to_array().iter().zip(target).enumerate() {
-            let e = (*d as f64 - o).abs();
-            if !(e <= tol) {
-                return Err(no(
-                    "xyz",
-                    Some(i),
-                    d.to_string(),
-                    format!("{o:.6} ± {tol:.1e}"),
-                ));
-            }
-            agree.target = agree.target.max(e);
-        }
+        let mut agree = Agreement {
+            target: within(Quantity::Target, "xyz", dev.xyz.to_array(), target)?,
+            ..Agreement::default()
+        };
 
         let Some(raw) = self.linear(target) else {
             return Err(no(
@@ -424,25 +412,36 @@ impl Oracle {
         let shown: Vec<f64> = (0..3)
             .map(|i| decode(&self.curves[i], dev.duty[i] as f64 / full))
             .collect();
-        let emitted: Vec<f64> = (0..3)
-            .map(|r| k * (0..3).map(|i| self.m[r][i] * shown[i]).sum::<f64>())
-            .collect();
-        let scale = emitted.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let te = tolerance(Quantity::Emitted).bound(scale);
-        for (r, (d, o)) in dev.led.to_array().iter().zip(emitted).enumerate() {
-            let e = (*d as f64 - o).abs();
-            if !(e <= te) {
-                return Err(no(
-                    "led",
-                    Some(r),
-                    d.to_string(),
-                    format!("{o:.6} ± {te:.1e}"),
-                ));
-            }
-            agree.emitted = agree.emitted.max(e);
-        }
+        let emitted = [0, 1, 2].map(|r| k * (0..3).map(|i| self.m[r][i] * shown[i]).sum::<f64>());
+        agree.emitted = within(Quantity::Emitted, "led", dev.led.to_array(), emitted)?;
         Ok(agree)
     }
+}
+
+/// The largest `|device − oracle|` of an XYZ triple if every component is within `q`'s
+/// tolerance (scaled by the oracle's largest component), else the first that is not.
+fn within(
+    q: Quantity,
+    what: &'static str,
+    device: [f32; 3],
+    oracle: [f64; 3],
+) -> Result<f64, Disagreement> {
+    let scale = oracle.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let tol = tolerance(q).bound(scale);
+    let mut worst = 0.0f64;
+    for (i, (d, o)) in device.iter().zip(oracle).enumerate() {
+        let e = (*d as f64 - o).abs();
+        if !(e <= tol) {
+            return Err(Disagreement {
+                what,
+                index: Some(i),
+                device: d.to_string(),
+                oracle: format!("{o:.6} ± {tol:.1e}"),
+            });
+        }
+        worst = worst.max(e);
+    }
+    Ok(worst)
 }
 
 /// `round(v · max)`, half up, for `v` clamped to `[0, 1]`.

@@ -155,8 +155,8 @@ pub fn delta_e(a: &Image, b: &Image, white: Xyz, exposure: f32) -> Vec<f64> {
         .zip(&b.xyz)
         .map(|(p, q)| {
             delta_e2000(
-                Lab::from(p.scale(exposure), white),
-                Lab::from(q.scale(exposure), white),
+                Lab::from_xyz(p.scale(exposure), white),
+                Lab::from_xyz(q.scale(exposure), white),
             )
         })
         .collect()
