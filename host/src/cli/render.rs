@@ -186,9 +186,15 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "{}: {w}x{h}, {} rays/pixel; ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
+        "{}: {w}x{h}, {} {}/pixel, {}; ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
         a.scene,
-        scene.render.samples * scene.render.samples,
+        render::paths_per_pixel(scene),
+        if scene.render.integrator == Integrator::Path {
+            "paths"
+        } else {
+            "rays"
+        },
+        scene.render.integrator,
         c.reference_seconds
     );
     let _ = writeln!(
