@@ -1,6 +1,6 @@
 //! Triangle meshes: OBJ files (read with `tobj`), quads written in the scene file, and one
-//! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8,
-//! chosen over `bvh` by measured build and trace speed: docs/performance.md, "Meshes").
+//! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8;
+//! `bench/bvh-compare` measures it against the `bvh` crate, docs/performance.md).
 //!
 //! Triangles are one-sided for nothing: a hit reports the geometric normal `(v1 − v0) × (v2 − v0)`
 //! normalised, and the tracers flip it toward the viewer as for every other shape. Shading uses
