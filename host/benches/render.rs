@@ -60,5 +60,114 @@ fn frames(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, frames);
+/// A scene of a procedural mesh: a latitude–longitude sphere of 160 × 320 quads (102 080
+/// triangles) written as an OBJ file and loaded through the scene file, on a grey floor under
+/// a rectangle light and the environment.
+fn mesh_scene(dir: &std::path::Path) -> specpoly::render::scene::Scene {
+    use std::fmt::Write;
+    let n = 160usize;
+    let mut obj = String::new();
+    let p = |i: usize, j: usize| {
+        let th = std::f32::consts::PI * i as f32 / n as f32;
+        let ph = std::f32::consts::PI * j as f32 / n as f32;
+        [th.sin() * ph.cos(), 1.0 + th.cos(), th.sin() * ph.sin()]
+    };
+    for i in 0..=n {
+        for j in 0..=2 * n {
+            let v = p(i, j);
+            writeln!(obj, "v {} {} {}", v[0], v[1], v[2]).unwrap();
+        }
+    }
+    let idx = |i: usize, j: usize| i * (2 * n + 1) + j + 1;
+    for i in 0..n {
+        for j in 0..2 * n {
+            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+            writeln!(obj, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+        }
+    }
+    std::fs::write(dir.join("sphere.obj"), obj).unwrap();
+    let toml = r#"
+[render]
+width = 128
+height = 128
+integrator = "path"
+spp = 4
+max_depth = 4
+[camera]
+position = [0.0, 1.5, -4.0]
+look_at = [0.0, 1.0, 0.0]
+[environment]
+spectrum = "D65"
+radiance = 0.3
+[materials.paint]
+diffuse = "colorchecker#orange"
+[materials.floor]
+diffuse = "colorchecker#neutral 5"
+[[area_light]]
+spectrum = "FL11"
+radiance = 8.0
+corner = [-1.0, 4.0, -1.0]
+u = [2.0, 0.0, 0.0]
+v = [0.0, 0.0, 2.0]
+[[mesh]]
+file = "sphere.obj"
+material = "paint"
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+"#;
+    let path = dir.join("mesh.toml");
+    std::fs::write(&path, toml).unwrap();
+    render::load(path.to_str().unwrap()).unwrap()
+}
+
+/// Rays per second (camera, bounce and shadow rays) of the path tracer, poly mode, on the
+/// Cornell box and the 102k-triangle mesh, 1 and 2 threads: printed, then frame times for
+/// criterion. Also the path tracer's frame time per mode on the Cornell box.
+fn path_tracer(c: &mut Criterion) {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cornell = render::load("cornell").unwrap();
+    cornell.render.width = 128;
+    cornell.render.height = 128;
+    cornell.render.spp = 4;
+    let mesh = mesh_scene(dir.path());
+    println!("mesh: {} triangles", mesh.triangles.len());
+    let mut g = c.benchmark_group("path");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(4));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for (name, scene) in [("cornell", &cornell), ("mesh102k", &mesh)] {
+            let t0 = std::time::Instant::now();
+            let img = pool.install(|| render::render(scene, Repr::DEFAULT, None).unwrap());
+            let secs = t0.elapsed().as_secs_f64();
+            println!(
+                "{name}, {threads} thread(s): {} rays in {secs:.3} s: {:.2} Mrays/s",
+                img.rays,
+                img.rays as f64 / secs / 1e6
+            );
+            g.bench_function(
+                BenchmarkId::new(format!("{name}-{threads}t"), "poly"),
+                |b| b.iter(|| pool.install(|| render::render(scene, Repr::DEFAULT, None).unwrap())),
+            );
+        }
+    }
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    for (name, mode) in modes() {
+        g.bench_function(BenchmarkId::new("cornell-modes-1t", name), |b| {
+            b.iter(|| one.install(|| render::render(&cornell, mode, None).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, frames, path_tracer);
 criterion_main!(benches);

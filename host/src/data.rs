@@ -21,6 +21,16 @@ pub const TABLES: &[Builtin] = &[
         about: "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
     },
     Builtin {
+        name: "cornell",
+        text: include_str!("../../data/cornell/cornell_box_reflectance.csv"),
+        about: "the Cornell box's measured white, green, red wall reflectances, 400-700 nm @ 4 nm",
+    },
+    Builtin {
+        name: "cornell_light",
+        text: include_str!("../../data/cornell/cornell_box_light.csv"),
+        about: "the Cornell box light's emission spectrum, 400-700 nm @ 100 nm",
+    },
+    Builtin {
         name: "crt",
         text: include_str!("../../data/displays/crt_brainard_1997.csv"),
         about:

@@ -9,7 +9,9 @@
 use crate::cli::args::Gamut;
 use crate::error::Result;
 use crate::io::progress;
-use crate::io::stdout::print;
+use crate::io::stdout::{print, print_json};
+use crate::render::image_file::{self as image_out, ExrSpace};
+use crate::render::tracer::Integrator;
 use crate::render::{self, builtin, Output};
 use crate::repr::Repr;
 use crate::size::Size;
@@ -42,8 +44,23 @@ pub struct RenderArgs {
     /// Render rgb, paper, poly, sampled:81 and the reference; write rgb, poly, reference and ΔE00 heat maps side by side.
     #[arg(long)]
     pub compare: bool,
-    /// Output PNG.
-    #[arg(short, long, value_name = "OUT.png")]
+    /// Light transport: whitted (the paper's model; default) or path (path tracing), overriding the scene's.
+    #[arg(long, value_parser = clap::value_parser!(Integrator))]
+    pub integrator: Option<Integrator>,
+    /// Path tracer: paths per pixel (1–2^20), overriding the scene's.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
+    pub spp: Option<u32>,
+    /// PNG bits per channel: 8 or 16.
+    #[arg(long, default_value_t = 8)]
+    pub bits: u8,
+    /// EXR contents: rgb (the display's linear RGB) or xyz.
+    #[arg(long, default_value = "rgb")]
+    pub exr_space: String,
+    /// Print the render statistics as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Output image: .png (8 or 16 bits, with sRGB or ICC colour metadata) or .exr (linear).
+    #[arg(short, long, value_name = "OUT.png|OUT.exr")]
     pub output: PathBuf,
 }
 
@@ -59,7 +76,10 @@ fn render_help() -> String {
 /// Runs `specpoly render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mode = a.mode;
+    let format = image_out::format_for(&a.output, a.bits)?;
+    let space: ExrSpace = a.exr_space.parse()?;
     let display = render::output::load(&a.display)?;
+    let tag = image_out::colour_tag(&a.display)?;
     let mut scene = render::load(&a.scene)?;
     if let Some(size) = a.size {
         scene.render.width = size.width;
@@ -67,6 +87,12 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     if let Some(n) = a.samples {
         scene.render.samples = n;
+    }
+    if let Some(i) = a.integrator {
+        scene.render.integrator = i;
+    }
+    if let Some(n) = a.spp {
+        scene.render.spp = n;
     }
     let out = Output::new(&scene, display, a.gamut.into());
     let (w, h) = (scene.render.width, scene.render.height);
@@ -81,14 +107,36 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let img = render::render(&scene, mode, Some(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     pb.finish_and_clear();
-    let rgb = render::to_rgb8(&img, &out);
-    render::write_png(&a.output, w, h, &rgb)?;
-    print(&format!(
-        "{}: {w}x{h}, {} rays/pixel, mode {mode}, {secs:.2} s → {}\n",
-        a.scene,
-        scene.render.samples * scene.render.samples,
-        a.output.display()
-    ))
+    image_out::write(&a.output, &img, &out, format, &tag, space)?;
+    let paths = render::paths_per_pixel(&scene);
+    if a.json {
+        print_json(&serde_json::json!({
+            "scene": a.scene,
+            "width": w,
+            "height": h,
+            "integrator": scene.render.integrator.to_string(),
+            "mode": mode.to_string(),
+            "paths_per_pixel": paths,
+            "seconds": secs,
+            "rays": img.rays,
+            "rays_per_second": img.rays as f64 / secs.max(1e-9),
+            "output": a.output.display().to_string(),
+        }))?;
+    } else {
+        print(&format!(
+            "{}: {w}x{h}, {paths} {} per pixel, {}, mode {mode}, {secs:.2} s → {}\n",
+            a.scene,
+            if scene.render.integrator == Integrator::Path {
+                "paths"
+            } else {
+                "rays"
+            },
+            scene.render.integrator,
+            a.output.display()
+        ))?;
+    }
+    eprintln!("wrote {}", a.output.display());
+    Ok(())
 }
 
 fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Result<()> {
@@ -109,12 +157,44 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     ];
     let (cw, ch, px) = render::side_by_side(&panels, 4);
     render::write_png(&a.output, cw, ch, &px)?;
+    if a.json {
+        let modes: Vec<_> = c
+            .modes
+            .iter()
+            .map(|m| {
+                serde_json::json!({
+                    "mode": m.repr.to_string(),
+                    "seconds": m.seconds,
+                    "rays": m.image.rays,
+                    "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
+                })
+            })
+            .collect();
+        print_json(&serde_json::json!({
+            "scene": a.scene,
+            "width": w,
+            "height": h,
+            "integrator": scene.render.integrator.to_string(),
+            "paths_per_pixel": render::paths_per_pixel(scene),
+            "reference_seconds": c.reference_seconds,
+            "modes": modes,
+            "output": a.output.display().to_string(),
+        }))?;
+        eprintln!("wrote {}", a.output.display());
+        return Ok(());
+    }
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "{}: {w}x{h}, {} rays/pixel; ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
+        "{}: {w}x{h}, {} {}/pixel, {}; ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
         a.scene,
-        scene.render.samples * scene.render.samples,
+        render::paths_per_pixel(scene),
+        if scene.render.integrator == Integrator::Path {
+            "paths"
+        } else {
+            "rays"
+        },
+        scene.render.integrator,
         c.reference_seconds
     );
     let _ = writeln!(

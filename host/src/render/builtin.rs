@@ -20,6 +20,11 @@ pub const SCENES: &[Builtin] = &[
         text: include_str!("../../../scenes/interreflection.toml"),
         about: "the paper's Figures 1-2: an orange sphere seen in a cyan mirror under FL11",
     },
+    Builtin {
+        name: "cornell",
+        text: include_str!("../../../scenes/cornell.toml"),
+        about: "the Cornell box with its measured reflectances and light spectrum, path traced",
+    },
 ];
 
 /// The built-in called `name` (case-insensitive).

@@ -9,8 +9,13 @@
 pub mod budget;
 pub mod builtin;
 pub mod geometry;
+pub mod image_file;
+pub mod lights;
+pub mod mesh;
 pub mod output;
+pub mod path;
 pub mod scene;
+pub mod scene_geometry;
 pub mod tracer;
 pub mod upsample;
 
@@ -20,7 +25,7 @@ use crate::stats::Stats;
 use rayon::prelude::*;
 use scene::{Scene, SceneFile};
 use specpoly_core::{delta_e2000, Lab, Shade, Xyz};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
 use tracer::Compiled;
 
@@ -35,6 +40,8 @@ pub struct Image {
     pub height: u32,
     /// Pixels, row-major from the top-left.
     pub xyz: Vec<Xyz>,
+    /// Rays traced (camera, reflected, refracted and shadow rays).
+    pub rays: u64,
 }
 
 /// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`) or a TOML file.
@@ -43,8 +50,16 @@ pub fn load(spec: &str) -> Result<Scene> {
     let path = std::path::Path::new(spec);
     let looks_like_file = spec.ends_with(".toml") || spec.contains('/');
     if path.exists() && (looks_like_file || builtin::find(spec).is_none()) {
-        let text = crate::io::read::text(std::path::Path::new(path))?;
-        return SceneFile::parse(&text, spec)?.resolve(spec);
+        let text = crate::io::read::text(path)?;
+        // file names in the scene are relative to the scene file's folder
+        let base = path.parent().map(|p| {
+            if p.as_os_str().is_empty() {
+                std::path::Path::new(".")
+            } else {
+                p
+            }
+        });
+        return SceneFile::parse(&text, spec)?.resolve_in(spec, base);
     }
     if let Some(b) = builtin::find(spec) {
         return SceneFile::parse(b.text, b.name)?.resolve(b.name);
@@ -81,10 +96,13 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
     let (w, h) = (c.width(), c.height());
     let mut xyz = vec![Xyz::default(); (w * h) as usize];
     let done = AtomicUsize::new(0);
+    let rays = AtomicU64::new(0);
     xyz.par_chunks_mut(w as usize)
         .enumerate()
         .for_each(|(y, row)| {
+            let before = tracer::rays_traced();
             c.row(y as u32, row);
+            rays.fetch_add(tracer::rays_traced() - before, Ordering::Relaxed);
             if let Some(p) = progress {
                 p(done.fetch_add(1, Ordering::Relaxed) + 1);
             }
@@ -93,6 +111,7 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
         width: w,
         height: h,
         xyz,
+        rays: rays.into_inner(),
     }
 }
 
@@ -101,14 +120,18 @@ pub fn render(scene: &Scene, repr: Repr, progress: Option<Progress<'_>>) -> Resu
     repr::dispatch(repr, RenderVisit { scene, progress })
 }
 
-/// XYZ of the scene's white: the perfect reflector under its first point light (or the ambient
-/// light if it has none), `Y = 100`.
+/// Camera paths per pixel: `spp` for the path tracer, `samples²` for Whitted.
+pub fn paths_per_pixel(scene: &Scene) -> u32 {
+    match scene.render.integrator {
+        tracer::Integrator::Path => scene.render.spp,
+        tracer::Integrator::Whitted => scene.render.samples * scene.render.samples,
+    }
+}
+
+/// XYZ of the scene's white: the perfect reflector under its reference light
+/// ([`Scene::reference_spd`]), `Y = 100`.
 pub fn scene_white(scene: &Scene) -> Xyz {
-    let spd = scene
-        .lights
-        .first()
-        .map(|l| &l.spd)
-        .unwrap_or(&scene.ambient.spd);
+    let spd = scene.reference_spd();
     let (_, w) = specpoly_core::exact_xyz(scene.observer, &spd.tabulated(), |_| 1.0);
     Xyz::new(w[0] as f32, w[1] as f32, w[2] as f32)
 }

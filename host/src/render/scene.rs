@@ -11,6 +11,7 @@ use serde::Deserialize;
 use specpoly_core::Observer;
 use std::collections::BTreeMap;
 use std::fmt;
+use std::path::Path;
 
 /// A spectrum as a scene file writes it.
 #[derive(Clone, Debug, PartialEq)]
@@ -109,6 +110,25 @@ pub struct RenderSection {
     /// filters along it) falls below this are not traced (adaptive tree depth; 0 disables).
     #[serde(default = "default_cutoff")]
     pub cutoff: f32,
+    /// `whitted` (default) or `path`.
+    #[serde(default)]
+    pub integrator: super::tracer::Integrator,
+    /// Path tracer: paths per pixel.
+    #[serde(default = "default_spp")]
+    pub spp: u32,
+    /// Path tracer: the seed of the per-pixel random sequences.
+    #[serde(default)]
+    pub seed: u64,
+    /// Whitted tracer: each area light is sampled on an `n × n` stratified grid.
+    #[serde(default = "default_light_samples")]
+    pub light_samples: u32,
+}
+
+fn default_spp() -> u32 {
+    16
+}
+fn default_light_samples() -> u32 {
+    4
 }
 
 fn default_cutoff() -> f32 {
@@ -142,6 +162,10 @@ impl Default for RenderSection {
             exposure: 1.0,
             white_balance: true,
             cutoff: default_cutoff(),
+            integrator: Default::default(),
+            spp: default_spp(),
+            seed: 0,
+            light_samples: default_light_samples(),
         }
     }
 }
@@ -290,6 +314,20 @@ pub struct SceneFile {
     /// Boxes.
     #[serde(default, rename = "box")]
     pub boxes: Vec<BoxSection>,
+    /// Quads (two triangles each).
+    #[serde(default)]
+    pub quad: Vec<super::scene_geometry::QuadSection>,
+    /// Triangle meshes from OBJ files.
+    #[serde(default)]
+    pub mesh: Vec<super::scene_geometry::MeshSection>,
+    /// Area lights.
+    #[serde(default)]
+    pub area_light: Vec<super::scene_geometry::AreaLightSection>,
+    /// The environment light.
+    pub environment: Option<super::scene_geometry::EnvironmentSection>,
+    /// The folder file names resolve against (the scene file's; not in the file).
+    #[serde(skip)]
+    pub base: Option<std::path::PathBuf>,
 }
 
 /// A material with every spectrum resolved to tabulated data (`None` = zero).
@@ -352,6 +390,25 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Objects.
     pub objects: Vec<Object>,
+    /// Every triangle (quads and meshes) with its BVH.
+    pub triangles: std::sync::Arc<super::mesh::Triangles>,
+    /// Area lights.
+    pub area_lights: Vec<super::lights::AreaLight>,
+    /// The environment light.
+    pub environment: Option<super::lights::Environment>,
+}
+
+impl Scene {
+    /// The light reflectances are judged under (RGB mode's conversion, the white point): the
+    /// first point light, else the first area light, else the environment, else the ambient.
+    pub fn reference_spd(&self) -> &Named {
+        self.lights
+            .first()
+            .map(|l| &l.spd)
+            .or_else(|| self.area_lights.first().map(|l| &l.spd))
+            .or_else(|| self.environment.as_ref().map(|e| &e.spd))
+            .unwrap_or(&self.ambient.spd)
+    }
 }
 
 fn is_zero(s: &SpectrumSpec) -> bool {
@@ -363,7 +420,38 @@ fn flat(name: String, v: f32) -> Result<Named> {
 }
 
 /// Resolves one spectrum; `what` names it in errors (`scene.toml: materials.red.diffuse`).
+/// File names are taken as given (relative to the current folder).
 pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
+    resolve_spectrum_in(spec, what, None)
+}
+
+/// `name` (`FILE`, `FILE#COLUMN`, or a built-in) with a relative `FILE` taken relative to
+/// `base`, the scene file's folder. Built-in names (illuminants, tables) stay as they are.
+pub fn rebase(name: &str, base: Option<&Path>) -> String {
+    let Some(base) = base else {
+        return name.to_string();
+    };
+    let (file, column) = match name.split_once('#') {
+        Some((f, c)) => (f, Some(c)),
+        None => (name, None),
+    };
+    let builtin = specpoly_core::Illuminant::from_name(file).is_some()
+        || crate::data::TABLES
+            .iter()
+            .any(|t| t.name.eq_ignore_ascii_case(file));
+    let path = Path::new(file);
+    if builtin || path.is_absolute() {
+        return name.to_string();
+    }
+    let joined = base.join(path).display().to_string();
+    match column {
+        Some(c) => format!("{joined}#{c}"),
+        None => joined,
+    }
+}
+
+/// [`resolve_spectrum`] with relative file names taken relative to `base`.
+pub fn resolve_spectrum_in(spec: &SpectrumSpec, what: &str, base: Option<&Path>) -> Result<Named> {
     let data = |e: CliError| CliError::data(format!("{what}: {e}"));
     let finite = |v: f32, field: &str| {
         if v.is_finite() {
@@ -375,7 +463,7 @@ pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
     match spec {
         SpectrumSpec::Constant(v) => flat(format!("{v}"), finite(*v, "the value")?),
         SpectrumSpec::Name(n) => {
-            let mut v = spectrum_names::resolve(n).map_err(data)?;
+            let mut v = spectrum_names::resolve(&rebase(n, base)).map_err(data)?;
             if v.len() != 1 {
                 return Err(CliError::data(format!(
                     "{what}: `{n}` names {} spectra; name one column",
@@ -396,7 +484,7 @@ pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
                         "{what}: a spectrum table needs `spectrum = NAME` or `rgb = [R, G, B]`"
                     )))
                 }
-                (Some(n), None) => resolve_spectrum(&SpectrumSpec::Name(n.clone()), what)?,
+                (Some(n), None) => resolve_spectrum_in(&SpectrumSpec::Name(n.clone()), what, base)?,
                 (None, Some(rgb)) => {
                     for c in rgb {
                         finite(c, "rgb")?;
@@ -431,15 +519,15 @@ pub fn resolve_spectrum(spec: &SpectrumSpec, what: &str) -> Result<Named> {
     }
 }
 
-fn optional(spec: &SpectrumSpec, what: &str) -> Result<Option<Named>> {
+fn optional(spec: &SpectrumSpec, what: &str, base: Option<&Path>) -> Result<Option<Named>> {
     if is_zero(spec) {
         Ok(None)
     } else {
-        resolve_spectrum(spec, what).map(Some)
+        resolve_spectrum_in(spec, what, base).map(Some)
     }
 }
 
-fn v3(a: [f32; 3], what: &str) -> Result<V3> {
+pub(super) fn v3(a: [f32; 3], what: &str) -> Result<V3> {
     if a.iter().all(|v| v.is_finite()) {
         Ok(V3::from_array(a))
     } else {
@@ -466,13 +554,22 @@ impl SceneFile {
     }
 
     /// Resolves names, checks values and builds the scene. `source` names the file in errors.
+    /// File names in it are taken relative to `self.base` (the current folder if `None`).
     pub fn resolve(&self, source: &str) -> Result<Scene> {
         let observer = self.check_render(source)?;
         let camera = self.camera(source)?;
         let materials = self.materials(source)?;
         super::budget::check(&self.render, &materials, source)?;
         let objects = self.objects(source)?;
-        let (lights, ambient, background) = self.lights(source)?;
+        let base = self.base.as_deref();
+        let triangles = std::sync::Arc::new(super::scene_geometry::triangles(
+            self,
+            source,
+            base,
+            &|name: &str, what: &str| self.material_index(source, name, what),
+        )?);
+        let (area_lights, environment) = super::scene_geometry::lights(self, source, base)?;
+        let (lights, ambient, background) = self.lights(source, &area_lights, &environment)?;
         Ok(Scene {
             render: self.render.clone(),
             observer,
@@ -482,7 +579,18 @@ impl SceneFile {
             lights,
             materials,
             objects,
+            triangles,
+            area_lights,
+            environment,
         })
+    }
+
+    /// [`SceneFile::resolve`] with file names (spectra, meshes) relative to `base`, the scene
+    /// file's folder.
+    pub fn resolve_in(&self, source: &str, base: Option<&Path>) -> Result<Scene> {
+        let mut f = self.clone();
+        f.base = base.map(Path::to_path_buf);
+        f.resolve(source)
     }
 
     /// Checks `[render]` and returns its observer.
@@ -504,6 +612,19 @@ impl SceneFile {
             return Err(CliError::data(format!(
                 "{source}: render.samples {} must be 1..16",
                 r.samples
+            )));
+        }
+        if r.spp == 0 || r.spp > 1 << 20 {
+            return Err(CliError::data(format!(
+                "{source}: render.spp {} must be 1..{}",
+                r.spp,
+                1 << 20
+            )));
+        }
+        if r.light_samples == 0 || r.light_samples > 16 {
+            return Err(CliError::data(format!(
+                "{source}: render.light_samples {} must be 1..16",
+                r.light_samples
             )));
         }
         if !(r.exposure.is_finite() && r.exposure > 0.0) {
@@ -552,11 +673,11 @@ impl SceneFile {
             }
             materials.push(Material {
                 name: name.clone(),
-                diffuse: optional(&m.diffuse, &w("diffuse"))?,
-                specular: optional(&m.specular, &w("specular"))?,
+                diffuse: optional(&m.diffuse, &w("diffuse"), self.base.as_deref())?,
+                specular: optional(&m.specular, &w("specular"), self.base.as_deref())?,
                 phong: m.phong,
-                mirror: optional(&m.mirror, &w("mirror"))?,
-                transmission: optional(&m.transmission, &w("transmission"))?,
+                mirror: optional(&m.mirror, &w("mirror"), self.base.as_deref())?,
+                transmission: optional(&m.transmission, &w("transmission"), self.base.as_deref())?,
                 ior: m.ior,
             });
         }
@@ -652,7 +773,13 @@ impl SceneFile {
 
     /// The point lights, the ambient light (the first light's spectrum at zero intensity if
     /// the file has none) and the background.
-    fn lights(&self, source: &str) -> Result<(Vec<Light>, Light, Option<Named>)> {
+    fn lights(
+        &self,
+        source: &str,
+        area_lights: &[super::lights::AreaLight],
+        environment: &Option<super::lights::Environment>,
+    ) -> Result<(Vec<Light>, Light, Option<Named>)> {
+        let base = self.base.as_deref();
         let mut lights = Vec::new();
         for (i, l) in self.light.iter().enumerate() {
             let what = format!("{source}: light {}", i + 1);
@@ -661,7 +788,7 @@ impl SceneFile {
             }
             lights.push(Light {
                 position: v3(l.position, &what)?,
-                spd: resolve_spectrum(&l.spectrum, &format!("{what}: spectrum"))?,
+                spd: resolve_spectrum_in(&l.spectrum, &format!("{what}: spectrum"), base)?,
                 intensity: l.intensity,
             });
         }
@@ -675,17 +802,30 @@ impl SceneFile {
                 (
                     Light {
                         position: V3::default(),
-                        spd: resolve_spectrum(&a.spectrum, &format!("{source}: ambient.spectrum"))?,
+                        spd: resolve_spectrum_in(
+                            &a.spectrum,
+                            &format!("{source}: ambient.spectrum"),
+                            base,
+                        )?,
                         intensity: a.intensity,
                     },
-                    optional(&a.background, &format!("{source}: ambient.background"))?,
+                    optional(
+                        &a.background,
+                        &format!("{source}: ambient.background"),
+                        base,
+                    )?,
                 )
             }
             None => (
                 Light {
                     position: V3::default(),
-                    spd: match lights.first() {
-                        Some(l) => l.spd.clone(),
+                    spd: match lights
+                        .first()
+                        .map(|l| &l.spd)
+                        .or_else(|| area_lights.first().map(|l| &l.spd))
+                        .or_else(|| environment.as_ref().map(|e| &e.spd))
+                    {
+                        Some(s) => s.clone(),
                         None => flat("E".into(), 1.0)?,
                     },
                     intensity: 0.0,
@@ -693,12 +833,18 @@ impl SceneFile {
                 None,
             ),
         };
-        for l in lights.iter().chain(std::iter::once(&ambient)) {
-            let t = l.spd.tabulated();
+        let spds = lights
+            .iter()
+            .chain(std::iter::once(&ambient))
+            .map(|l| &l.spd)
+            .chain(area_lights.iter().map(|l| &l.spd))
+            .chain(environment.iter().map(|e| &e.spd));
+        for spd in spds {
+            let t = spd.tabulated();
             if (380..=780).all(|nm| t.at(nm as f64) <= 0.0) {
                 return Err(CliError::data(format!(
                     "{source}: light spectrum `{}` has no power in 380-780 nm",
-                    l.spd.name
+                    spd.name
                 )));
             }
         }

@@ -23,28 +23,64 @@
 //! the transmitted share along the mirror direction.
 
 use super::geometry::{Camera, Ray, Shape, EPS, V3};
+use super::lights::Emitter;
+use super::mesh::Triangles;
 use super::scene::{Material, Object, Scene};
 use specpoly_core::{Shade, Xyz};
+use std::f32::consts::PI;
+use std::sync::Arc;
+
+thread_local! {
+    /// Rays traced by this thread (statistics).
+    static RAYS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Rays traced so far by the calling thread; differences count a piece of work.
+pub fn rays_traced() -> u64 {
+    RAYS.with(|r| r.get())
+}
+
+#[inline]
+fn count_ray() {
+    RAYS.with(|r| r.set(r.get() + 1));
+}
 
 /// Phong lobes `(R·V)ⁿ` below this are dropped.
-const PHONG_MIN: f32 = 1e-6;
+pub(super) const PHONG_MIN: f32 = 1e-6;
+
+/// The energy-normalised Phong lobe `(n + 2)/(2π) · (R·V)ⁿ` (Lewis, "Making shaders more
+/// physically plausible", 1994) for light arriving along `l` (unit, toward the light) at a
+/// surface with unit normal `n` seen from `v`; 0 below [`PHONG_MIN`].
+#[inline]
+pub(super) fn phong_lobe(exponent: f32, l: V3, n: V3, v: V3) -> f32 {
+    let rv = (-l).reflect(n).dot(v);
+    if rv <= 0.0 {
+        return 0.0;
+    }
+    let lobe = rv.powf(exponent);
+    if lobe > PHONG_MIN {
+        (exponent + 2.0) / (2.0 * PI) * lobe
+    } else {
+        0.0
+    }
+}
 
 /// One coefficient of a material (a reflectance or filter) in representation `T`.
 #[derive(Clone, Copy, Debug)]
-struct Coef<T> {
+pub(super) struct Coef<T> {
     /// The value.
-    value: T,
+    pub(super) value: T,
     /// `Some(k)` when the spectrum is flat: products with it are scalings, and
     /// `xyz(T·k) = k·xyz(T)`.
-    flat: Option<f32>,
+    pub(super) flat: Option<f32>,
     /// Its largest value over 380–780 nm (bounds a path's weight).
-    max: f32,
+    pub(super) max: f32,
 }
 
 impl<T: Shade> Coef<T> {
     /// `path · self`.
     #[inline]
-    fn times(&self, path: &T) -> T {
+    pub(super) fn times(&self, path: &T) -> T {
         match self.flat {
             Some(k) => path.scale(k),
             None => path.mul(&self.value),
@@ -53,7 +89,7 @@ impl<T: Shade> Coef<T> {
 
     /// `path · self`, with `None` the path of weight one.
     #[inline]
-    fn after(&self, path: Option<&T>) -> T {
+    pub(super) fn after(&self, path: Option<&T>) -> T {
         match path {
             Some(p) => self.times(p),
             None => self.value,
@@ -63,7 +99,13 @@ impl<T: Shade> Coef<T> {
     /// `xyz(path · self)` under `light`; `prod` is `path · self` if already formed, and
     /// `path_xyz` caches `xyz(path)` for flat coefficients.
     #[inline]
-    fn xyz(&self, path: &T, prod: Option<&T>, path_xyz: &mut Option<Xyz>, light: &T::Light) -> Xyz {
+    pub(super) fn xyz(
+        &self,
+        path: &T,
+        prod: Option<&T>,
+        path_xyz: &mut Option<Xyz>,
+        light: &T::Light,
+    ) -> Xyz {
         match (self.flat, prod) {
             (Some(k), _) => path_xyz.get_or_insert_with(|| path.xyz(light)).scale(k),
             (None, Some(p)) => p.xyz(light),
@@ -74,42 +116,108 @@ impl<T: Shade> Coef<T> {
 
 /// A material with its spectra in representation `T`.
 #[derive(Clone, Copy, Debug)]
-struct Mat<T> {
-    diffuse: Option<Coef<T>>,
-    specular: Option<Coef<T>>,
-    phong: f32,
-    mirror: Option<Coef<T>>,
-    transmission: Option<Coef<T>>,
-    ior: f32,
+pub(super) struct Mat<T> {
+    pub(super) diffuse: Option<Coef<T>>,
+    pub(super) specular: Option<Coef<T>>,
+    pub(super) phong: f32,
+    pub(super) mirror: Option<Coef<T>>,
+    pub(super) transmission: Option<Coef<T>>,
+    pub(super) ior: f32,
 }
 
 /// A point light in representation `T`.
-struct LightT<T: Shade> {
-    position: V3,
-    intensity: f32,
-    light: T::Light,
+pub(super) struct LightT<T: Shade> {
+    pub(super) position: V3,
+    pub(super) intensity: f32,
+    pub(super) light: T::Light,
+}
+
+/// An area light in representation `T`.
+pub(super) struct AreaT<T: Shade> {
+    pub(super) shape: Emitter,
+    pub(super) radiance: f32,
+    pub(super) light: T::Light,
+    /// `radiance · xyz(1, L)`: what the eye sees of it.
+    pub(super) emit_xyz: Xyz,
+}
+
+/// The environment light in representation `T`.
+pub(super) struct EnvT<T: Shade> {
+    pub(super) radiance: f32,
+    pub(super) light: T::Light,
+    /// `radiance · xyz(1, L)`.
+    pub(super) emit_xyz: Xyz,
+}
+
+/// What a ray hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Surf {
+    /// A surface with material `usize`.
+    Mat(usize),
+    /// Area light `usize`.
+    Light(usize),
+}
+
+/// The light transport algorithm.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Integrator {
+    /// Whitted's recursive ray tracer (the paper's model), deterministic.
+    #[default]
+    Whitted,
+    /// A unidirectional path tracer with next-event estimation and Russian roulette.
+    Path,
+}
+
+impl std::str::FromStr for Integrator {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "whitted" => Ok(Integrator::Whitted),
+            "path" => Ok(Integrator::Path),
+            _ => Err(format!("integrator `{s}`: use whitted or path")),
+        }
+    }
+}
+
+impl std::fmt::Display for Integrator {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Integrator::Whitted => "whitted",
+            Integrator::Path => "path",
+        })
+    }
 }
 
 /// A scene compiled for representation `T`: every spectrum converted once, lights precomputed,
 /// and the first-hit XYZ of every material under every light tabulated.
 pub struct Compiled<T: Shade> {
-    mats: Vec<Mat<T>>,
+    pub(super) mats: Vec<Mat<T>>,
     objects: Vec<Object>,
-    lights: Vec<LightT<T>>,
+    pub(super) triangles: Arc<Triangles>,
+    pub(super) lights: Vec<LightT<T>>,
+    pub(super) area: Vec<AreaT<T>>,
+    pub(super) env: Option<EnvT<T>>,
     ambient: T::Light,
     ambient_k: f32,
     background: Option<T>,
     background_xyz: Xyz,
     /// `[material][light]`: `(xyz(D, L), xyz(S, L))`.
-    first: Vec<Vec<(Xyz, Xyz)>>,
+    pub(super) first: Vec<Vec<(Xyz, Xyz)>>,
+    /// `[material][area light]`: `(xyz(D, L), xyz(S, L))`.
+    pub(super) first_area: Vec<Vec<(Xyz, Xyz)>>,
     /// `[material]`: `k_a · xyz(D, L_a)`.
     first_ambient: Vec<Xyz>,
-    camera: Camera,
+    pub(super) camera: Camera,
     width: u32,
     height: u32,
     samples: u32,
-    max_depth: u32,
+    pub(super) max_depth: u32,
     cutoff: f32,
+    pub(super) integrator: Integrator,
+    pub(super) spp: u32,
+    pub(super) seed: u64,
+    light_samples: u32,
 }
 
 impl<T: Shade> Compiled<T> {
@@ -128,10 +236,30 @@ impl<T: Shade> Compiled<T> {
             })
             .collect();
         let ambient = T::light(obs, &scene.ambient.spd.tabulated());
-        let reference = match lights.first() {
-            Some(l) => &l.light,
-            None => &ambient,
-        };
+        let white = |l: &T::Light, k: f32| T::constant(1.0, l).xyz(l).scale(k);
+        let area: Vec<AreaT<T>> = scene
+            .area_lights
+            .iter()
+            .map(|l| {
+                let light = T::light(obs, &l.spd.tabulated());
+                AreaT {
+                    shape: l.shape,
+                    radiance: l.radiance,
+                    emit_xyz: white(&light, l.radiance),
+                    light,
+                }
+            })
+            .collect();
+        let env = scene.environment.as_ref().map(|e| {
+            let light = T::light(obs, &e.spd.tabulated());
+            EnvT {
+                radiance: e.radiance,
+                emit_xyz: white(&light, e.radiance),
+                light,
+            }
+        });
+        let reference_light = T::light(obs, &scene.reference_spd().tabulated());
+        let reference = &reference_light;
         let conv =
             |n: &Option<crate::spectrum_names::Named>| -> Result<Option<T>, specpoly_core::Error> {
                 n.as_ref()
@@ -191,6 +319,19 @@ impl<T: Shade> Compiled<T> {
                     .collect()
             })
             .collect();
+        let first_area = mats
+            .iter()
+            .map(|m| {
+                area.iter()
+                    .map(|l| {
+                        (
+                            coef_xyz(&m.diffuse, &l.light),
+                            coef_xyz(&m.specular, &l.light),
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
         let ambient_k = scene.ambient.intensity;
         let first_ambient = mats
             .iter()
@@ -199,8 +340,12 @@ impl<T: Shade> Compiled<T> {
         let background_xyz = xyz_or_zero(&background, &ambient);
         Ok(Self {
             objects: scene.objects.clone(),
+            triangles: scene.triangles.clone(),
             mats,
             lights,
+            area,
+            env,
+            first_area,
             ambient,
             ambient_k,
             background,
@@ -213,6 +358,10 @@ impl<T: Shade> Compiled<T> {
             samples: scene.render.samples,
             max_depth: scene.render.max_depth,
             cutoff: scene.render.cutoff,
+            integrator: scene.render.integrator,
+            spp: scene.render.spp,
+            seed: scene.render.seed,
+            light_samples: scene.render.light_samples,
         })
     }
 
@@ -226,9 +375,10 @@ impl<T: Shade> Compiled<T> {
         self.height
     }
 
-    /// The nearest hit: `(t, outward normal, material index)`.
+    /// The nearest hit: `(t, outward normal, what)`: objects, triangles and area lights.
     #[inline]
-    fn nearest(&self, ray: &Ray) -> Option<(f32, V3, usize)> {
+    pub(super) fn nearest(&self, ray: &Ray) -> Option<(f32, V3, Surf)> {
+        count_ray();
         let mut best: Option<(f32, V3, usize)> = None;
         let mut t_max = f32::INFINITY;
         for (i, o) in self.objects.iter().enumerate() {
@@ -236,6 +386,20 @@ impl<T: Shade> Compiled<T> {
                 t_max = h.t;
                 best = Some((h.t, h.normal, i));
             }
+        }
+        let mut other: Option<(f32, V3, Surf)> = None;
+        if let Some((t, n, m)) = self.triangles.intersect(ray, t_max) {
+            t_max = t;
+            other = Some((t, n, Surf::Mat(m)));
+        }
+        for (k, l) in self.area.iter().enumerate() {
+            if let Some((t, n)) = l.shape.intersect(ray, t_max) {
+                t_max = t;
+                other = Some((t, n, Surf::Light(k)));
+            }
+        }
+        if other.is_some() {
+            return other;
         }
         best.map(|(t, n, i)| {
             let o = &self.objects[i];
@@ -256,22 +420,35 @@ impl<T: Shade> Compiled<T> {
                     m = m2;
                 }
             }
-            (t, n, m)
+            (t, n, Surf::Mat(m))
         })
     }
 
     /// What reaches `p` from a light at distance `dist` along `dir`: `None` if blocked,
     /// `Some(None)` if clear, `Some(Some(F))` through filters with product `F`.
+    /// With `refraction_blocks`, transmitting surfaces with an index of refraction other
+    /// than 1 block (the path tracer reaches lights through them by refraction instead).
     #[inline]
-    fn shadow(&self, p: V3, dir: V3, dist: f32) -> Option<Option<T>> {
+    pub(super) fn shadow(
+        &self,
+        p: V3,
+        dir: V3,
+        dist: f32,
+        refraction_blocks: bool,
+    ) -> Option<Option<T>> {
+        count_ray();
         let ray = Ray { origin: p, dir };
         let mut filter: Option<T> = None;
+        let passes = |m: &Mat<T>| match m.transmission {
+            Some(f) if !(refraction_blocks && m.ior != 1.0) => Some(f),
+            _ => None,
+        };
         for o in &self.objects {
             let k = o.shape.crossings(&ray, dist);
             if k == 0 {
                 continue;
             }
-            let f = self.mats[o.material].transmission?;
+            let f = passes(&self.mats[o.material])?;
             for _ in 0..k {
                 filter = Some(match filter {
                     Some(acc) => f.times(&acc),
@@ -279,20 +456,50 @@ impl<T: Shade> Compiled<T> {
                 });
             }
         }
+        let mut blocked = false;
+        self.triangles
+            .crossings(&ray, dist, |m| match passes(&self.mats[m]) {
+                Some(f) => {
+                    filter = Some(match filter {
+                        Some(acc) => f.times(&acc),
+                        None => f.value,
+                    });
+                    true
+                }
+                None => {
+                    blocked = true;
+                    false
+                }
+            });
+        if blocked {
+            return None;
+        }
         Some(filter)
     }
 
     /// Adds to `out` the light arriving along `ray` with throughput `tp` (`None` = 1) whose
     /// largest value is at most `weight`.
     fn trace(&self, ray: &Ray, tp: Option<&T>, weight: f32, depth: u32, out: &mut Xyz) {
-        let Some((t, normal, mi)) = self.nearest(ray) else {
+        let Some((t, normal, surf)) = self.nearest(ray) else {
             *out = *out
                 + match (tp, &self.background) {
                     (None, _) => self.background_xyz,
                     (Some(tp), Some(b)) => tp.mul(b).xyz(&self.ambient),
                     (Some(_), None) => Xyz::default(),
                 };
+            // the environment, if any, is seen behind the background
+            if let Some(e) = &self.env {
+                *out = *out + self.emitted(tp, &e.light, e.radiance, e.emit_xyz);
+            }
             return;
+        };
+        let mi = match surf {
+            Surf::Mat(mi) => mi,
+            Surf::Light(k) => {
+                let l = &self.area[k];
+                *out = *out + self.emitted(tp, &l.light, l.radiance, l.emit_xyz);
+                return;
+            }
         };
         let m = &self.mats[mi];
         let p = ray.at(t);
@@ -332,7 +539,7 @@ impl<T: Shade> Compiled<T> {
                 if cos <= 0.0 {
                     continue;
                 }
-                let Some(filter) = self.shadow(lift, ldir, dist) else {
+                let Some(filter) = self.shadow(lift, ldir, dist, false) else {
                     continue;
                 };
                 let a = l.intensity * cos;
@@ -349,40 +556,58 @@ impl<T: Shade> Compiled<T> {
                     }
                     None => 0.0,
                 };
-                match (filter, tp) {
-                    (None, None) => {
-                        let (xd, xs) = self.first[mi][li];
-                        acc = acc + xd.scale(a) + xs.scale(b);
-                    }
-                    (None, Some(tp)) => {
-                        let mut tp_xyz = None;
-                        if let Some(d) = &m.diffuse {
-                            acc = acc + d.xyz(tp, td.as_ref(), &mut tp_xyz, &l.light).scale(a);
-                        }
-                        if let (Some(s), true) = (&m.specular, b > 0.0) {
-                            acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, &l.light).scale(b);
-                        }
-                    }
-                    (Some(f), _) if b == 0.0 && td.is_some() => {
-                        // diffuse only, T·D already formed: (T·D)·F
-                        if let Some(td) = &td {
-                            acc = acc + td.mul(&f).xyz(&l.light).scale(a);
-                        }
-                    }
-                    (Some(f), _) => {
-                        // the light arrives through filters: path · F · (a·D + b·S)
-                        let path = match tp {
-                            Some(tp) => tp.mul(&f),
-                            None => f,
+                let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
+                acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
+            }
+            // area lights: an n × n stratified grid of samples each (deterministic)
+            let ns = self.light_samples;
+            let inv_n = 1.0 / (ns * ns) as f32;
+            for (k, l) in self.area.iter().enumerate() {
+                let (mut a_sum, mut b_sum) = (0.0f32, 0.0f32);
+                for i in 0..ns {
+                    for j in 0..ns {
+                        let (u1, u2) = ((i as f32 + 0.5) / ns as f32, (j as f32 + 0.5) / ns as f32);
+                        let Some(smp) = l.shape.sample(lift, n, u1, u2) else {
+                            continue;
                         };
-                        let mut path_xyz = None;
-                        if let Some(d) = &m.diffuse {
-                            acc = acc + d.xyz(&path, None, &mut path_xyz, &l.light).scale(a);
-                        }
-                        if let (Some(s), true) = (&m.specular, b > 0.0) {
-                            acc = acc + s.xyz(&path, None, &mut path_xyz, &l.light).scale(b);
+                        let Some(filter) =
+                            self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), false)
+                        else {
+                            continue;
+                        };
+                        let a = l.radiance * smp.weight * inv_n / PI;
+                        let b = match &m.specular {
+                            Some(_) => {
+                                l.radiance * smp.weight * inv_n * phong_lobe(m.phong, smp.dir, n, v)
+                            }
+                            None => 0.0,
+                        };
+                        match filter {
+                            None => {
+                                a_sum += a;
+                                b_sum += b;
+                            }
+                            Some(f) => {
+                                acc = acc
+                                    + self.light_term(
+                                        m,
+                                        tp,
+                                        &td,
+                                        &ts,
+                                        Some(f),
+                                        a,
+                                        b,
+                                        &l.light,
+                                        None,
+                                    );
+                            }
                         }
                     }
+                }
+                if a_sum > 0.0 || b_sum > 0.0 {
+                    let first = tp.is_none().then(|| self.first_area[mi][k]);
+                    acc =
+                        acc + self.light_term(m, tp, &td, &ts, None, a_sum, b_sum, &l.light, first);
                 }
             }
             *out = *out + acc;
@@ -422,6 +647,79 @@ impl<T: Shade> Compiled<T> {
         }
     }
 
+    /// What an emitter of radiance `k · L` adds seen through throughput `tp` (`None` = 1;
+    /// `white` is `k · xyz(1, L)`).
+    #[inline]
+    pub(super) fn emitted(&self, tp: Option<&T>, light: &T::Light, k: f32, white: Xyz) -> Xyz {
+        match tp {
+            None => white,
+            Some(tp) => tp.xyz(light).scale(k),
+        }
+    }
+
+    /// `xyz(path · (a·D + b·S), L)` for one light, where `path` is the throughput `tp` times the
+    /// shadow ray's `filter`; `td`, `ts` are `tp·D`, `tp·S` if already formed; `first` the
+    /// precomputed `(xyz(D, L), xyz(S, L))` when `tp` and `filter` are both 1.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub(super) fn light_term(
+        &self,
+        m: &Mat<T>,
+        tp: Option<&T>,
+        td: &Option<T>,
+        ts: &Option<T>,
+        filter: Option<T>,
+        a: f32,
+        b: f32,
+        light: &T::Light,
+        first: Option<(Xyz, Xyz)>,
+    ) -> Xyz {
+        let mut acc = Xyz::default();
+        match (filter, tp, first) {
+            (None, _, Some((xd, xs))) => {
+                acc = acc + xd.scale(a) + xs.scale(b);
+            }
+            (None, None, None) => {
+                if let Some(d) = &m.diffuse {
+                    acc = acc + d.value.xyz(light).scale(a);
+                }
+                if let (Some(s), true) = (&m.specular, b > 0.0) {
+                    acc = acc + s.value.xyz(light).scale(b);
+                }
+            }
+            (None, Some(tp), None) => {
+                let mut tp_xyz = None;
+                if let Some(d) = &m.diffuse {
+                    acc = acc + d.xyz(tp, td.as_ref(), &mut tp_xyz, light).scale(a);
+                }
+                if let (Some(s), true) = (&m.specular, b > 0.0) {
+                    acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, light).scale(b);
+                }
+            }
+            (Some(f), _, _) if b == 0.0 && td.is_some() => {
+                // diffuse only, T·D already formed: (T·D)·F
+                if let Some(td) = td {
+                    acc = acc + td.mul(&f).xyz(light).scale(a);
+                }
+            }
+            (Some(f), _, _) => {
+                // the light arrives through filters: path · F · (a·D + b·S)
+                let path = match tp {
+                    Some(tp) => tp.mul(&f),
+                    None => f,
+                };
+                let mut path_xyz = None;
+                if let Some(d) = &m.diffuse {
+                    acc = acc + d.xyz(&path, None, &mut path_xyz, light).scale(a);
+                }
+                if let (Some(s), true) = (&m.specular, b > 0.0) {
+                    acc = acc + s.xyz(&path, None, &mut path_xyz, light).scale(b);
+                }
+            }
+        }
+        acc
+    }
+
     /// XYZ of pixel `(x, y)` (white `Y = 100`): the mean over an `n × n` grid of sub-samples.
     pub fn pixel(&self, x: u32, y: u32) -> Xyz {
         let n = self.samples;
@@ -438,8 +736,11 @@ impl<T: Shade> Compiled<T> {
         sum.scale(1.0 / (n * n) as f32)
     }
 
-    /// One row of pixels into `row` (length `width`).
+    /// One row of pixels into `row` (length `width`), with the scene's integrator.
     pub fn row(&self, y: u32, row: &mut [Xyz]) {
+        if self.integrator == Integrator::Path {
+            return self.path_row(y, row);
+        }
         for (x, px) in row.iter_mut().enumerate() {
             *px = self.pixel(x as u32, y);
         }
