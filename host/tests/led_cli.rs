@@ -204,6 +204,26 @@ fn a_faithful_device_passes_the_check() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+
+    // the README's form: `--check` after the action
+    let out = specpoly(&[
+        "led",
+        "--port",
+        &f.path,
+        "refl",
+        "colorchecker#red",
+        "colorchecker#blue",
+        "--illuminant",
+        "FL11",
+        "--check",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("check: the host agrees"), "{stdout}");
 }
 
 #[test]

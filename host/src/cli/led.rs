@@ -46,8 +46,9 @@ pub struct LedArgs {
     #[arg(long, value_name = "1931|1964", value_parser = args::observer)]
     pub observer: Option<Observer>,
     /// Recompute the answer on the host (an independent f64 computation) and fail unless the
-    /// controller agrees within the tolerance table of `specpoly::led::check`.
-    #[arg(long)]
+    /// controller agrees within the tolerance table of `specpoly::led::check`. May stand before
+    /// or after the action (`led --port P refl colorchecker#red --check`).
+    #[arg(long, global = true)]
     pub check: bool,
     /// What to show or ask.
     #[command(subcommand)]
@@ -209,4 +210,56 @@ pub fn run(args: &LedArgs) -> Result<()> {
         check(&mut link, &action, &reply, curves)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::cli::{Cli, Command};
+    use clap::Parser;
+
+    /// The README's form: `--check` after the action's own arguments.
+    #[test]
+    fn check_may_follow_the_action() {
+        for args in [
+            &[
+                "specpoly",
+                "led",
+                "--port",
+                "/dev/null",
+                "refl",
+                "colorchecker#red",
+                "--illuminant",
+                "FL11",
+                "--check",
+            ][..],
+            &[
+                "specpoly",
+                "led",
+                "--port",
+                "/dev/null",
+                "--check",
+                "refl",
+                "colorchecker#red",
+            ][..],
+        ] {
+            let cli = Cli::try_parse_from(args).expect("parses");
+            let Command::Led(led) = cli.command else {
+                panic!("not led")
+            };
+            assert!(led.check, "{args:?}");
+        }
+        let cli = Cli::try_parse_from([
+            "specpoly",
+            "led",
+            "--port",
+            "/dev/null",
+            "refl",
+            "colorchecker#red",
+        ])
+        .unwrap();
+        let Command::Led(led) = cli.command else {
+            panic!("not led")
+        };
+        assert!(!led.check);
+    }
 }
