@@ -24,7 +24,8 @@
 //! field); the "format / patch set does not match" checks of `calibrate::file` and
 //! `calibrate::session` (one `match` each, different keys and errors); the two primaries tables
 //! of `calibrate run` (measured and simulated, one `format!` each); the CGATS headers of
-//! `io::cgats` and `io::ti1` (the fixed keywords of two different files).
+//! `io::cgats` and `io::ti1` (the fixed keywords of two different files); the signatures of
+//! the point- and area-light weight helpers of `render::tracer` (one per kind of light).
 #![forbid(unsafe_code)]
 
 pub mod accuracy;

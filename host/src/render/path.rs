@@ -118,10 +118,10 @@ impl<T: Shade> Compiled<T> {
             };
             let m = &self.mats[mi];
             let hit = Frame::at(&ray, t, normal);
-            let Frame { v, n, lift, .. } = hit;
+            let Frame { n, lift, .. } = hit;
 
             if m.diffuse.is_some() || m.specular.is_some() {
-                out = out + self.direct(mi, tp.as_ref(), lift, n, v, rng);
+                out = out + self.direct(mi, tp.as_ref(), &hit, rng);
             }
             if depth >= self.max_depth {
                 break;
@@ -180,20 +180,13 @@ impl<T: Shade> Compiled<T> {
     }
 
     /// Direct light at a hit on material `mi` (next-event estimation; see the module docs).
-    fn direct(
-        &self,
-        mi: usize,
-        tp: Option<&T>,
-        lift: super::geometry::V3,
-        n: super::geometry::V3,
-        v: super::geometry::V3,
-        rng: &mut Sampler,
-    ) -> Xyz {
+    fn direct(&self, mi: usize, tp: Option<&T>, hit: &Frame, rng: &mut Sampler) -> Xyz {
+        let Frame { lift, n, .. } = *hit;
         let m = &self.mats[mi];
         let (td, ts) = m.times(tp);
         let mut acc = Xyz::default();
         for (li, l) in self.lights.iter().enumerate() {
-            let Some((filter, a, b)) = self.point_weights(l, m, lift, lift, n, v, true) else {
+            let Some((filter, a, b)) = self.point_weights(l, m, hit, lift, true) else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
@@ -202,8 +195,7 @@ impl<T: Shade> Compiled<T> {
         for (k, l) in self.area.iter().enumerate() {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             // share 1.0: `x * 1.0` is exactly `x`
-            let Some((filter, a, b)) = self.area_weights(l, m, lift, n, v, (u1, u2), 1.0, true)
-            else {
+            let Some((filter, a, b)) = self.area_weights(l, m, hit, (u1, u2), 1.0, true) else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first_area[mi][k]);

@@ -568,7 +568,7 @@ impl<T: Shade> Compiled<T> {
         };
         let m = &self.mats[mi];
         let hit = Frame::at(ray, t, normal);
-        let Frame { p, v, n, lift, .. } = hit;
+        let Frame { p, n, lift, .. } = hit;
 
         if m.diffuse.is_some() || m.specular.is_some() {
             let mut acc = Xyz::default();
@@ -582,7 +582,7 @@ impl<T: Shade> Compiled<T> {
                 _ => {}
             }
             for (li, l) in self.lights.iter().enumerate() {
-                let Some((filter, a, b)) = self.point_weights(l, m, p, lift, n, v, false) else {
+                let Some((filter, a, b)) = self.point_weights(l, m, &hit, p, false) else {
                     continue;
                 };
                 let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
@@ -597,7 +597,7 @@ impl<T: Shade> Compiled<T> {
                     for j in 0..ns {
                         let (u1, u2) = ((i as f32 + 0.5) / ns as f32, (j as f32 + 0.5) / ns as f32);
                         let Some((filter, a, b)) =
-                            self.area_weights(l, m, lift, n, v, (u1, u2), inv_n, false)
+                            self.area_weights(l, m, &hit, (u1, u2), inv_n, false)
                         else {
                             continue;
                         };
@@ -660,22 +660,20 @@ impl<T: Shade> Compiled<T> {
         }
     }
 
-    /// Point light `l` seen from surface point `p` (shadow rays leave from `lift`; unit normal
-    /// `n` facing the viewer `v`) on material `m`: the shadow ray's filter and the diffuse and
-    /// specular weights `(filter, a, b)` for [`Self::light_term`]; `None` if the light is
-    /// behind the surface or blocked. Shared by the Whitted and path tracers.
-    #[allow(clippy::too_many_arguments)]
+    /// Point light `l` seen from point `p` (the hit or its lift) of the hit `hit` on material
+    /// `m`: the shadow ray's filter and the diffuse and specular weights `(filter, a, b)` for
+    /// [`Self::light_term`]; `None` if the light is behind the surface or blocked. Shared by the
+    /// Whitted and path tracers.
     #[inline]
     pub(super) fn point_weights(
         &self,
         l: &LightT<T>,
         m: &Mat<T>,
+        hit: &Frame,
         p: V3,
-        lift: V3,
-        n: V3,
-        v: V3,
         refraction_blocks: bool,
     ) -> Option<(Option<T>, f32, f32)> {
+        let Frame { lift, n, v, .. } = *hit;
         let to = l.position - p;
         let dist = to.length();
         if dist <= 0.0 {
@@ -704,22 +702,20 @@ impl<T: Shade> Compiled<T> {
         Some((filter, a, b))
     }
 
-    /// One sample `u` of area light `l` from `lift` (unit normal `n`, viewer `v`) on material
-    /// `m`, weighted by `share` (1 for one sample): `(filter, a, b)` as for
-    /// [`Self::point_weights`]; `None` if the sample misses or is blocked.
-    #[allow(clippy::too_many_arguments)]
+    /// One sample `u` of area light `l` from the hit `hit` on material `m`, weighted by `share`
+    /// (1 for one sample): `(filter, a, b)` as for [`Self::point_weights`]; `None` if the
+    /// sample misses or is blocked.
     #[inline]
     pub(super) fn area_weights(
         &self,
         l: &AreaT<T>,
         m: &Mat<T>,
-        lift: V3,
-        n: V3,
-        v: V3,
+        hit: &Frame,
         u: (f32, f32),
         share: f32,
         refraction_blocks: bool,
     ) -> Option<(Option<T>, f32, f32)> {
+        let Frame { lift, n, v, .. } = *hit;
         let smp = l.shape.sample(lift, n, u.0, u.1)?;
         let filter = self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), refraction_blocks)?;
         let a = l.radiance * smp.weight * share / PI;
