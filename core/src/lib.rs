@@ -46,6 +46,11 @@
 //!
 //! `duplicates --repo core` lists one pair, kept: `Transfer::decode` and `Transfer::encode`
 //! share the shape of a `match` over the curves, but each is the other's inverse, not a copy.
+//! Also kept, same shape only: the test of `light::samples` checking the CES99 and TCS14 tables
+//! (two tables, two tolerances); the two writers of `pixel::export` (a C header and a Rust
+//! source: the same tables in two languages); the documented constants and result structs of
+//! `light::cct` and `light::tm30` (one doc line per item); the tests of `pixel::transform`
+//! (one `Options` literal and one `PanelTransform` each).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -10,6 +10,11 @@
 //! (the store against `sequential-storage`'s mock flash); the board
 //! support ([`board`]: UART, a PWM stand-in, stack painting, an instruction counter) exists only
 //! for `thumbv7em-none-eabihf` (QEMU `mps2-an386`). No heap.
+//!
+//! `duplicates --repo firmware` lists two same-shape pairs, kept: the `NorFlash` impls of
+//! `board::flash` (SSRAM stand-in) and `stm32f4::flash` (the real sector), the trait's required
+//! shape over different memories; the main loops of `main.rs` and `bin/stm32f4.rs` (one per
+//! board: different peripherals around the same controller calls and `defmt` line).
 #![cfg_attr(not(test), no_std)]
 #![warn(missing_docs)]
 

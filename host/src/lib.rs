@@ -16,7 +16,16 @@
 //! grammar) and the nearest-rank percentile ([`stats`]; one line, no dependency).
 //! Repetition `duplicates` still reports, kept on purpose: the entries of the built-in file lists
 //! (`data::TABLES`, `render::builtin::SCENES`: data, one struct literal each) and the serde
-//! structs of the scene file's `[[sphere]]`/`[[plane]]`/`[[box]]` sections (one per TOML table).
+//! structs of the scene file's `[[sphere]]`/`[[plane]]`/`[[box]]` sections (one per TOML table);
+//! the `light` and `mix` reports ([`light::LightReport`], [`light::MixReport`]) and their
+//! tables in `cli/light.rs`, `cli/mix.rs`: the issue fixes different key sets in a different
+//! order (`light` has X, Y, Z and R9 before Rf), which a shared flattened struct would reorder;
+//! the documented fields of [`render::scene::Scene`] and [`light::LightReport`] (one doc line per
+//! field); the "format / patch set does not match" checks of `calibrate::file` and
+//! `calibrate::session` (one `match` each, different keys and errors); the two primaries tables
+//! of `calibrate run` (measured and simulated, one `format!` each); the CGATS headers of
+//! `io::cgats` and `io::ti1` (the fixed keywords of two different files); the signatures of
+//! the point- and area-light weight helpers of `render::tracer` (one per kind of light).
 #![forbid(unsafe_code)]
 
 pub mod accuracy;

@@ -327,16 +327,18 @@ impl Camera {
     }
 }
 
+/// A ray from `o` along `d` (normalised): the tests' shorthand (here and in `mesh`).
+#[cfg(test)]
+pub(crate) fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
+    Ray {
+        origin: V3::from_array(o),
+        dir: V3::from_array(d).normalize(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray {
-            origin: V3::from_array(o),
-            dir: V3::from_array(d).normalize(),
-        }
-    }
 
     #[test]
     fn sphere_hits_front_and_back() {

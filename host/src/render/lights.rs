@@ -204,6 +204,19 @@ impl Emitter {
 mod tests {
     use super::*;
 
+    /// The mean sample weight of emitter `e` seen from the origin (normal `n`) over a k × k
+    /// midpoint grid of `(u1, u2)`.
+    fn mean_weight(e: &Emitter, n: V3, k: usize) -> f64 {
+        let mut sum = 0.0f64;
+        for i in 0..k {
+            for j in 0..k {
+                let (u1, u2) = ((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                sum += e.sample(V3::default(), n, u1, u2).unwrap().weight as f64;
+            }
+        }
+        sum / (k * k) as f64
+    }
+
     /// Irradiance from a sphere light on the axis of a surface facing it is `π L (R/d)²`
     /// (Lambert; e.g. Dutré, *Global Illumination Compendium*, (34)); the cone sampler's
     /// estimate `cos θ / p` averages to `π (R/d)²` — the samples vary in `cos θ` only.
@@ -214,15 +227,7 @@ mod tests {
             radius: 1.0,
         };
         let n = V3::new(0.0, 1.0, 0.0);
-        let k = 64;
-        let mut sum = 0.0f64;
-        for i in 0..k {
-            for j in 0..k {
-                let (u1, u2) = ((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
-                sum += s.sample(V3::default(), n, u1, u2).unwrap().weight as f64;
-            }
-        }
-        let est = sum / (k * k) as f64;
+        let est = mean_weight(&s, n, 64);
         let exact = std::f64::consts::PI / 9.0;
         assert!((est - exact).abs() < 1e-3 * exact, "{est} vs {exact}");
     }
@@ -239,15 +244,7 @@ mod tests {
             v: V3::new(0.0, 0.0, 1.0),
         };
         let n = V3::new(0.0, 1.0, 0.0);
-        let k = 200;
-        let mut est = 0.0f64;
-        for i in 0..k {
-            for j in 0..k {
-                let (u1, u2) = ((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
-                est += r.sample(V3::default(), n, u1, u2).unwrap().weight as f64;
-            }
-        }
-        est /= (k * k) as f64;
+        let est = mean_weight(&r, n, 200);
         // closed form for a square of side a centred above the point at height h:
         // E/L = 4 · [ (x/√(1+x²)) atan(y/√(1+x²)) + (y/√(1+y²)) atan(x/√(1+y²)) ] / 2,
         // x = y = a/(2h) (the corner-rectangle form factor, Howell C-10, × π, four quadrants)

@@ -246,14 +246,8 @@ pub fn uv_sphere(n: usize, c: V3, r: f32, material: usize, soup: &mut TriangleSo
 
 #[cfg(test)]
 mod tests {
+    use super::super::geometry::ray;
     use super::*;
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray {
-            origin: V3::from_array(o),
-            dir: V3::from_array(d).normalize(),
-        }
-    }
 
     /// The BVH finds the same nearest hit as the analytic sphere the mesh approximates,
     /// within the tessellation's sagitta.

@@ -36,13 +36,12 @@
 //! `rand_pcg`) seeded from `(seed, x, y, s)`, so images do not depend on threads.
 //! The ambient term and the background reflectance are Whitted-only.
 
-use super::geometry::{Ray, EPS};
+use super::geometry::Ray;
 use super::lights::cosine_direction;
-use super::tracer::{phong_lobe, Compiled, Surf};
+use super::tracer::{Compiled, Frame, Surf};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 use specpoly_core::{Shade, Xyz};
-use std::f32::consts::PI;
 
 /// A deterministic uniform sampler on `[0, 1)`.
 pub struct Sampler(Pcg32);
@@ -118,14 +117,11 @@ impl<T: Shade> Compiled<T> {
                 }
             };
             let m = &self.mats[mi];
-            let p = ray.at(t);
-            let v = -ray.dir;
-            let entering = normal.dot(ray.dir) < 0.0;
-            let n = if entering { normal } else { -normal };
-            let lift = p + n * EPS * 4.0;
+            let hit = Frame::at(&ray, t, normal);
+            let Frame { n, lift, .. } = hit;
 
             if m.diffuse.is_some() || m.specular.is_some() {
-                out = out + self.direct(mi, tp.as_ref(), lift, n, v, rng);
+                out = out + self.direct(mi, tp.as_ref(), &hit, rng);
             }
             if depth >= self.max_depth {
                 break;
@@ -175,17 +171,7 @@ impl<T: Shade> Compiled<T> {
                     if m.ior != 1.0 {
                         count_emission = true;
                     }
-                    let eta = if entering { 1.0 / m.ior } else { m.ior };
-                    match ray.dir.refract(n, eta) {
-                        Some(d) => Ray {
-                            origin: p - n * EPS * 4.0,
-                            dir: d,
-                        },
-                        None => Ray {
-                            origin: lift,
-                            dir: ray.dir.reflect(n),
-                        },
-                    }
+                    hit.through(ray.dir, m.ior)
                 }
             };
             depth += 1;
@@ -194,67 +180,23 @@ impl<T: Shade> Compiled<T> {
     }
 
     /// Direct light at a hit on material `mi` (next-event estimation; see the module docs).
-    fn direct(
-        &self,
-        mi: usize,
-        tp: Option<&T>,
-        lift: super::geometry::V3,
-        n: super::geometry::V3,
-        v: super::geometry::V3,
-        rng: &mut Sampler,
-    ) -> Xyz {
+    fn direct(&self, mi: usize, tp: Option<&T>, hit: &Frame, rng: &mut Sampler) -> Xyz {
+        let Frame { lift, n, .. } = *hit;
         let m = &self.mats[mi];
-        let td = match (tp, &m.diffuse) {
-            (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
-            _ => None,
-        };
-        let ts = match (tp, &m.specular) {
-            (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
-            _ => None,
-        };
+        let (td, ts) = m.times(tp);
         let mut acc = Xyz::default();
         for (li, l) in self.lights.iter().enumerate() {
-            let to = l.position - lift;
-            let dist = to.length();
-            if dist <= 0.0 {
+            let Some((filter, a, b)) = self.point_weights(l, m, hit, lift, true) else {
                 continue;
-            }
-            let ldir = to * (1.0 / dist);
-            let cos = n.dot(ldir);
-            if cos <= 0.0 {
-                continue;
-            }
-            let Some(filter) = self.shadow(lift, ldir, dist, true) else {
-                continue;
-            };
-            let a = l.intensity * cos;
-            let b = match &m.specular {
-                Some(_) => {
-                    let rv = (-ldir).reflect(n).dot(v);
-                    let lobe = if rv > 0.0 { rv.powf(m.phong) } else { 0.0 };
-                    if lobe > super::tracer::PHONG_MIN {
-                        l.intensity * lobe
-                    } else {
-                        0.0
-                    }
-                }
-                None => 0.0,
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
             acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
         }
         for (k, l) in self.area.iter().enumerate() {
             let (u1, u2) = (rng.uniform(), rng.uniform());
-            let Some(smp) = l.shape.sample(lift, n, u1, u2) else {
+            // share 1.0: `x * 1.0` is exactly `x`
+            let Some((filter, a, b)) = self.area_weights(l, m, hit, (u1, u2), 1.0, true) else {
                 continue;
-            };
-            let Some(filter) = self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), true) else {
-                continue;
-            };
-            let a = l.radiance * smp.weight / PI;
-            let b = match &m.specular {
-                Some(_) => l.radiance * smp.weight * phong_lobe(m.phong, smp.dir, n, v),
-                None => 0.0,
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first_area[mi][k]);
             acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);

@@ -125,6 +125,71 @@ pub(super) struct Mat<T> {
     pub(super) ior: f32,
 }
 
+impl<T: Shade> Mat<T> {
+    /// At deeper hits (throughput `tp`), `T·D` and `T·S` (spectral coefficients only), formed
+    /// once for all lights.
+    pub(super) fn times(&self, tp: Option<&T>) -> (Option<T>, Option<T>) {
+        let td = match (tp, &self.diffuse) {
+            (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
+            _ => None,
+        };
+        let ts = match (tp, &self.specular) {
+            (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
+            _ => None,
+        };
+        (td, ts)
+    }
+}
+
+/// The shading frame of a hit, shared by the Whitted and path tracers.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Frame {
+    /// The hit point.
+    pub(super) p: V3,
+    /// Toward the viewer.
+    pub(super) v: V3,
+    /// Whether the ray enters the surface (meets its front side).
+    pub(super) entering: bool,
+    /// The shading normal, facing the viewer.
+    pub(super) n: V3,
+    /// `p` lifted off the surface along `n`: where reflected and shadow rays start.
+    pub(super) lift: V3,
+}
+
+impl Frame {
+    /// The frame where `ray` meets a surface of geometric normal `normal` at distance `t`.
+    #[inline]
+    pub(super) fn at(ray: &Ray, t: f32, normal: V3) -> Self {
+        let p = ray.at(t);
+        let entering = normal.dot(ray.dir) < 0.0;
+        let n = if entering { normal } else { -normal };
+        Frame {
+            p,
+            v: -ray.dir,
+            entering,
+            n,
+            lift: p + n * EPS * 4.0,
+        }
+    }
+
+    /// The ray along `dir` refracted into (or out of) a material of index `ior`; on total
+    /// internal reflection, the mirror ray.
+    #[inline]
+    pub(super) fn through(&self, dir: V3, ior: f32) -> Ray {
+        let eta = if self.entering { 1.0 / ior } else { ior };
+        match dir.refract(self.n, eta) {
+            Some(d) => Ray {
+                origin: self.p - self.n * EPS * 4.0,
+                dir: d,
+            },
+            None => Ray {
+                origin: self.lift,
+                dir: dir.reflect(self.n),
+            },
+        }
+    }
+}
+
 /// A point light in representation `T`.
 pub(super) struct LightT<T: Shade> {
     pub(super) position: V3,
@@ -502,24 +567,12 @@ impl<T: Shade> Compiled<T> {
             }
         };
         let m = &self.mats[mi];
-        let p = ray.at(t);
-        let v = -ray.dir;
-        let entering = normal.dot(ray.dir) < 0.0;
-        // the shading normal faces the viewer
-        let n = if entering { normal } else { -normal };
-        let lift = p + n * EPS * 4.0;
+        let hit = Frame::at(ray, t, normal);
+        let Frame { p, n, lift, .. } = hit;
 
         if m.diffuse.is_some() || m.specular.is_some() {
             let mut acc = Xyz::default();
-            // deeper hits: T·D and T·S (spectral coefficients only), formed once for all lights
-            let td = match (tp, &m.diffuse) {
-                (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
-                _ => None,
-            };
-            let ts = match (tp, &m.specular) {
-                (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
-                _ => None,
-            };
+            let (td, ts) = m.times(tp);
             match (tp, &m.diffuse) {
                 (None, _) => acc = acc + self.first_ambient[mi],
                 (Some(tp), Some(d)) if self.ambient_k > 0.0 => {
@@ -529,32 +582,8 @@ impl<T: Shade> Compiled<T> {
                 _ => {}
             }
             for (li, l) in self.lights.iter().enumerate() {
-                let to = l.position - p;
-                let dist = to.length();
-                if dist <= 0.0 {
+                let Some((filter, a, b)) = self.point_weights(l, m, &hit, p, false) else {
                     continue;
-                }
-                let ldir = to * (1.0 / dist);
-                let cos = n.dot(ldir);
-                if cos <= 0.0 {
-                    continue;
-                }
-                let Some(filter) = self.shadow(lift, ldir, dist, false) else {
-                    continue;
-                };
-                let a = l.intensity * cos;
-                let b = match &m.specular {
-                    Some(_) => {
-                        let rv = (-ldir).reflect(n).dot(v);
-                        let lobe = if rv > 0.0 { rv.powf(m.phong) } else { 0.0 };
-                        // below 10⁻⁶ of the light the highlight is dropped (< 10⁻⁴ in Y)
-                        if lobe > PHONG_MIN {
-                            l.intensity * lobe
-                        } else {
-                            0.0
-                        }
-                    }
-                    None => 0.0,
                 };
                 let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
                 acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
@@ -567,20 +596,10 @@ impl<T: Shade> Compiled<T> {
                 for i in 0..ns {
                     for j in 0..ns {
                         let (u1, u2) = ((i as f32 + 0.5) / ns as f32, (j as f32 + 0.5) / ns as f32);
-                        let Some(smp) = l.shape.sample(lift, n, u1, u2) else {
-                            continue;
-                        };
-                        let Some(filter) =
-                            self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), false)
+                        let Some((filter, a, b)) =
+                            self.area_weights(l, m, &hit, (u1, u2), inv_n, false)
                         else {
                             continue;
-                        };
-                        let a = l.radiance * smp.weight * inv_n / PI;
-                        let b = match &m.specular {
-                            Some(_) => {
-                                l.radiance * smp.weight * inv_n * phong_lobe(m.phong, smp.dir, n, v)
-                            }
-                            None => 0.0,
                         };
                         match filter {
                             None => {
@@ -629,22 +648,82 @@ impl<T: Shade> Compiled<T> {
         if let Some(filter) = &m.transmission {
             let w = weight * filter.max;
             if w >= self.cutoff {
-                let eta = if entering { 1.0 / m.ior } else { m.ior };
                 let through = filter.after(tp);
-                let r = match ray.dir.refract(n, eta) {
-                    Some(d) => Ray {
-                        origin: p - n * EPS * 4.0,
-                        dir: d,
-                    },
-                    // total internal reflection
-                    None => Ray {
-                        origin: lift,
-                        dir: ray.dir.reflect(n),
-                    },
-                };
-                self.trace(&r, Some(&through), w, depth + 1, out);
+                self.trace(
+                    &hit.through(ray.dir, m.ior),
+                    Some(&through),
+                    w,
+                    depth + 1,
+                    out,
+                );
             }
         }
+    }
+
+    /// Point light `l` seen from point `p` (the hit or its lift) of the hit `hit` on material
+    /// `m`: the shadow ray's filter and the diffuse and specular weights `(filter, a, b)` for
+    /// [`Self::light_term`]; `None` if the light is behind the surface or blocked. Shared by the
+    /// Whitted and path tracers.
+    #[inline]
+    pub(super) fn point_weights(
+        &self,
+        l: &LightT<T>,
+        m: &Mat<T>,
+        hit: &Frame,
+        p: V3,
+        refraction_blocks: bool,
+    ) -> Option<(Option<T>, f32, f32)> {
+        let Frame { lift, n, v, .. } = *hit;
+        let to = l.position - p;
+        let dist = to.length();
+        if dist <= 0.0 {
+            return None;
+        }
+        let ldir = to * (1.0 / dist);
+        let cos = n.dot(ldir);
+        if cos <= 0.0 {
+            return None;
+        }
+        let filter = self.shadow(lift, ldir, dist, refraction_blocks)?;
+        let a = l.intensity * cos;
+        let b = match &m.specular {
+            Some(_) => {
+                let rv = (-ldir).reflect(n).dot(v);
+                let lobe = if rv > 0.0 { rv.powf(m.phong) } else { 0.0 };
+                // below 10⁻⁶ of the light the highlight is dropped (< 10⁻⁴ in Y)
+                if lobe > PHONG_MIN {
+                    l.intensity * lobe
+                } else {
+                    0.0
+                }
+            }
+            None => 0.0,
+        };
+        Some((filter, a, b))
+    }
+
+    /// One sample `u` of area light `l` from the hit `hit` on material `m`, weighted by `share`
+    /// (1 for one sample): `(filter, a, b)` as for [`Self::point_weights`]; `None` if the
+    /// sample misses or is blocked.
+    #[inline]
+    pub(super) fn area_weights(
+        &self,
+        l: &AreaT<T>,
+        m: &Mat<T>,
+        hit: &Frame,
+        u: (f32, f32),
+        share: f32,
+        refraction_blocks: bool,
+    ) -> Option<(Option<T>, f32, f32)> {
+        let Frame { lift, n, v, .. } = *hit;
+        let smp = l.shape.sample(lift, n, u.0, u.1)?;
+        let filter = self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), refraction_blocks)?;
+        let a = l.radiance * smp.weight * share / PI;
+        let b = match &m.specular {
+            Some(_) => l.radiance * smp.weight * share * phong_lobe(m.phong, smp.dir, n, v),
+            None => 0.0,
+        };
+        Some((filter, a, b))
     }
 
     /// What an emitter of radiance `k · L` adds seen through throughput `tp` (`None` = 1;
