@@ -413,10 +413,14 @@ fn read_head(stream: &mut TcpStream) -> std::io::Result<Option<String>> {
 fn refuse(mut w: TcpStream, status: &str, body: &str) -> std::io::Result<()> {
     respond(&mut w, status, "text/plain", body)?;
     let _ = w.shutdown(Shutdown::Write);
-    let _ = w.set_read_timeout(Some(Duration::from_millis(500)));
+    let deadline = Instant::now() + Duration::from_secs(1);
     let mut sink = [0u8; 4096];
     let mut left = 4 * MAX_HEAD;
     while left > 0 {
+        let wait = deadline.saturating_duration_since(Instant::now());
+        if wait.is_zero() || w.set_read_timeout(Some(wait)).is_err() {
+            break;
+        }
         match w.read(&mut sink) {
             Ok(0) | Err(_) => break,
             Ok(n) => left = left.saturating_sub(n),
