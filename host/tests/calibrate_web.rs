@@ -6,9 +6,11 @@
 #[path = "common/calibrate_run.rs"]
 mod common;
 
-use specpoly::calibrate::patch_display::web::WebDisplay;
+use specpoly::calibrate::patch_display::web::{WebDisplay, MAX_CONNECTIONS, MAX_HEAD};
 use specpoly::calibrate::patch_display::PatchDisplay;
 use specpoly::io::device_spec::DeviceSpec;
+use std::io::{Read, Write};
+use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -143,4 +145,172 @@ fn calibrate_run_with_chromium_as_the_screen() {
     assert!(cal.is_file(), "no calibration written: {done:?}");
     let ti3 = std::fs::read_to_string(dir.path().join("cal.ti3")).unwrap();
     assert!(ti3.starts_with("CTI3"), "{ti3}");
+}
+
+/// The server's port, from its URL.
+fn port(d: &WebDisplay) -> u16 {
+    d.url()
+        .trim_start_matches("http://127.0.0.1:")
+        .trim_end_matches('/')
+        .parse()
+        .unwrap()
+}
+
+/// Sends `raw` on a fresh connection and reads the whole reply (at most 5 s).
+fn exchange(d: &WebDisplay, raw: &[u8]) -> String {
+    let mut s = TcpStream::connect(("127.0.0.1", port(d))).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    s.write_all(raw).unwrap();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// `GET path` with the right `Host` and extra header lines.
+fn get(d: &WebDisplay, path: &str, headers: &str) -> String {
+    let raw = format!(
+        "GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\n{headers}\r\n",
+        port(d)
+    );
+    exchange(d, raw.as_bytes())
+}
+
+/// The token written into the served page.
+fn page_token(d: &WebDisplay) -> String {
+    let page = get(d, "/", "");
+    let i = page.find("const token = \"").expect("a token in the page") + 15;
+    page[i..].split('"').next().unwrap().to_string()
+}
+
+#[test]
+fn oversized_headers_and_bodies_are_refused() {
+    let d = WebDisplay::start(0).unwrap();
+    let big = format!(
+        "GET / HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nX-Pad: {}\r\n\r\n",
+        port(&d),
+        "a".repeat(MAX_HEAD + 1)
+    );
+    let r = exchange(&d, big.as_bytes());
+    assert!(r.starts_with("HTTP/1.1 431"), "{r}");
+    // many small headers add up too
+    let many = format!(
+        "GET / HTTP/1.1\r\nHost: 127.0.0.1:{}\r\n{}\r\n",
+        port(&d),
+        "X-A: b\r\n".repeat(MAX_HEAD / 8 + 1)
+    );
+    let r = exchange(&d, many.as_bytes());
+    assert!(r.starts_with("HTTP/1.1 431"), "{r}");
+    // a request line without end, sent as one stream of bytes
+    let r = exchange(&d, &vec![b'G'; 3 * MAX_HEAD]);
+    assert!(r.starts_with("HTTP/1.1 431"), "{r}");
+    let r = get(&d, "/", "Content-Length: 5\r\n");
+    assert!(r.starts_with("HTTP/1.1 413"), "{r}");
+    let r = exchange(&d, b"POST / HTTP/1.1\r\n\r\n");
+    assert!(r.starts_with("HTTP/1.1 405"), "{r}");
+    // just under the limit is served
+    let ok = get(
+        &d,
+        "/",
+        &format!("X-Pad: {}\r\n", "a".repeat(MAX_HEAD - 200)),
+    );
+    assert!(ok.starts_with("HTTP/1.1 200"), "{ok}");
+}
+
+#[test]
+fn connection_cap_holds() {
+    let d = WebDisplay::start(0).unwrap();
+    let idle: Vec<TcpStream> = (0..MAX_CONNECTIONS)
+        .map(|_| TcpStream::connect(("127.0.0.1", port(&d))).unwrap())
+        .collect();
+    // let the server accept them all
+    std::thread::sleep(Duration::from_millis(300));
+    let r = get(&d, "/", "");
+    assert!(r.starts_with("HTTP/1.1 503"), "{r}");
+    drop(idle);
+    // the slots come back once those clients leave
+    let deadline = Instant::now() + Duration::from_secs(3);
+    loop {
+        let r = get(&d, "/", "");
+        if r.starts_with("HTTP/1.1 200") {
+            break;
+        }
+        assert!(Instant::now() < deadline, "still refused: {r}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn idle_clients_are_cut_off() {
+    let d = WebDisplay::start(0).unwrap();
+    let mut s = TcpStream::connect(("127.0.0.1", port(&d))).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    // a slow client: half a request line, then nothing
+    s.write_all(b"GET /pat").unwrap();
+    let t = Instant::now();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
+    assert!(out.is_empty(), "{}", String::from_utf8_lossy(&out));
+}
+
+#[test]
+fn foreign_host_and_origin_are_refused() {
+    let d = WebDisplay::start(0).unwrap();
+    let p = port(&d);
+    for host in [
+        "evil.example".to_string(),
+        format!("evil.example:{p}"),
+        format!("127.0.0.1:{}", p.wrapping_add(1)),
+        "127.0.0.1".to_string(),
+    ] {
+        let r = exchange(
+            &d,
+            format!("GET / HTTP/1.1\r\nHost: {host}\r\n\r\n").as_bytes(),
+        );
+        assert!(r.starts_with("HTTP/1.1 403"), "{host}: {r}");
+    }
+    let r = exchange(&d, b"GET / HTTP/1.1\r\n\r\n");
+    assert!(r.starts_with("HTTP/1.1 403"), "no Host: {r}");
+    let r = exchange(
+        &d,
+        format!("GET / HTTP/1.1\r\nHost: localhost:{p}\r\n\r\n").as_bytes(),
+    );
+    assert!(r.starts_with("HTTP/1.1 200"), "{r}");
+    let r = get(&d, "/", "Origin: http://evil.example\r\n");
+    assert!(r.starts_with("HTTP/1.1 403"), "{r}");
+    let r = get(&d, "/", &format!("Origin: http://127.0.0.1:{p}\r\n"));
+    assert!(r.starts_with("HTTP/1.1 200"), "{r}");
+}
+
+#[test]
+fn acknowledgements_need_the_token() {
+    let d = WebDisplay::start(0).unwrap();
+    let seq = d.post([0.3, 0.2, 0.1]);
+    let token = page_token(&d);
+    assert_eq!(token.len(), 32);
+    assert_eq!(token, d.token());
+    // another run's token differs
+    assert_ne!(token, WebDisplay::start(0).unwrap().token());
+    let wrong = format!("{:032x}", u128::from_str_radix(&token, 16).unwrap() ^ 1);
+    for path in [
+        format!("/shown?seq={seq}"),
+        format!("/shown?seq={seq}&token="),
+        format!("/shown?seq={seq}&token={wrong}"),
+        format!("/shown?seq={seq}&token={token}x"),
+        format!("/shown?seq={seq}&xtoken={token}"),
+    ] {
+        let r = get(&d, &path, "");
+        assert!(r.starts_with("HTTP/1.1 403"), "{path}: {r}");
+        assert!(!d.wait_shown(seq, Duration::from_millis(20)), "{path}");
+    }
+    // polling needs it too
+    assert!(get(&d, "/patch", "").starts_with("HTTP/1.1 403"));
+    let r = get(&d, &format!("/patch?token={token}"), "");
+    assert!(
+        r.starts_with("HTTP/1.1 200") && r.contains("rgb(77,51,26)"),
+        "{r}"
+    );
+    let r = get(&d, &format!("/shown?seq={seq}&token={token}"), "");
+    assert!(r.starts_with("HTTP/1.1 204"), "{r}");
+    assert!(d.wait_shown(seq, Duration::from_millis(20)));
 }

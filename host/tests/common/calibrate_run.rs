@@ -185,15 +185,27 @@ pub fn fake_browser_into(base: &str, current: Arc<Mutex<[f64; 3]>>) -> FakeBrows
     let (c, s, base) = (current.clone(), stop.clone(), base.to_string());
     let thread = std::thread::spawn(move || {
         let mut seq = 0u64;
+        // like the page: the run's token is written into it, and /patch and /shown need it
+        let mut token = String::new();
         while !s.load(Ordering::SeqCst) {
-            if let Some(body) = http_get(&base, "/patch") {
+            if token.is_empty() {
+                token = http_get(&base, "/")
+                    .and_then(|p| {
+                        let i = p.find("const token = \"")? + 15;
+                        Some(p[i..].split('"').next()?.to_string())
+                    })
+                    .unwrap_or_default();
+                std::thread::sleep(Duration::from_millis(5));
+                continue;
+            }
+            if let Some(body) = http_get(&base, &format!("/patch?token={token}")) {
                 if let Ok(v) = serde_json::from_str::<serde_json::Value>(&body) {
                     let n = v["seq"].as_u64().unwrap_or(0);
                     if n != seq {
                         let rgb = &v["rgb"];
                         *c.lock().unwrap() = [0, 1, 2].map(|i| rgb[i].as_f64().unwrap_or(0.0));
                         seq = n;
-                        let _ = http_get(&base, &format!("/shown?seq={n}"));
+                        let _ = http_get(&base, &format!("/shown?seq={n}&token={token}"));
                     }
                 }
             }

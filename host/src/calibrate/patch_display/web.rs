@@ -8,8 +8,16 @@
 //! | path | reply |
 //! |---|---|
 //! | `GET /` | the page: its background is the current patch, and a script polls `/patch` every 50 ms |
-//! | `GET /patch` | `{"seq":N,"rgb":[r,g,b],"css":"rgb(R,G,B)"}`: the patch number and colour (8-bit in `css`) |
-//! | `GET /shown?seq=N` | the page's acknowledgement that patch `N` is painted (sent two animation frames after setting the background) |
+//! | `GET /patch?token=T` | `{"seq":N,"rgb":[r,g,b],"css":"rgb(R,G,B)"}`: the patch number and colour (8-bit in `css`) |
+//! | `GET /shown?seq=N&token=T` | the page's acknowledgement that patch `N` is painted (sent two animation frames after setting the background) |
+//!
+//! Limits (see `docs/reliability.md`): the request line and headers at most [`MAX_HEAD`]
+//! bytes (else `431`), read within [`HEAD_DEADLINE`]; no request bodies (`413`); GET only
+//! (`405`); at most [`MAX_CONNECTIONS`] connections at once (else `503`); `Host` must be
+//! `127.0.0.1:PORT` or `localhost:PORT` and `Origin`, when sent, `http://` one of those (else
+//! `403`: DNS rebinding and other sites' pages); `T` is a random 128-bit token of this run,
+//! written into the page, and `/patch` or `/shown` without it get `403` (a blind request —
+//! another site's `<img>`, a script that never loaded the page — cannot advance the run).
 //!
 //! [`WebDisplay::show`] returns once the page acknowledged the patch: it waits `wait` seconds
 //! (default 300) for a browser to show the first patch and `timeout` seconds (default 10) for
@@ -22,9 +30,9 @@ use super::PatchDisplay;
 use crate::error::{CliError, Result};
 use crate::io::device_spec::DeviceSpec;
 use specpoly_core::quantize8;
-use std::io::{BufRead, BufReader, Write};
-use std::net::{SocketAddr, TcpListener, TcpStream};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::io::{Read, Write};
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
@@ -36,12 +44,25 @@ struct State {
     requests: u64,
 }
 
+/// Most bytes of request line and headers together; more gets `431` and the connection closed.
+pub const MAX_HEAD: usize = 16 * 1024;
+/// Most connections served at once; one more gets `503` and is closed.
+pub const MAX_CONNECTIONS: usize = 16;
+/// Time a client has to send its request line and headers (and each read's timeout).
+pub const HEAD_DEADLINE: Duration = Duration::from_secs(5);
+
 #[derive(Debug, Default)]
 struct Shared {
     window: Mutex<Window>,
     state: Mutex<State>,
     changed: Condvar,
     stop: AtomicBool,
+    /// Connections being served.
+    active: AtomicUsize,
+    /// The port listened on (for the `Host` / `Origin` checks).
+    port: u16,
+    /// This run's token, 32 hex digits.
+    token: String,
 }
 
 impl Shared {
@@ -98,7 +119,11 @@ impl WebDisplay {
         let addr = listener
             .local_addr()
             .map_err(|e| CliError::data(format!("web display: {e}")))?;
-        let shared = Arc::new(Shared::default());
+        let shared = Arc::new(Shared {
+            port: addr.port(),
+            token: new_token(),
+            ..Shared::default()
+        });
         let s = shared.clone();
         let server = std::thread::Builder::new()
             .name("web-display".into())
@@ -186,6 +211,11 @@ impl WebDisplay {
         true
     }
 
+    /// This run's token (written into the page; `/patch` and `/shown` need it).
+    pub fn token(&self) -> &str {
+        &self.shared.token
+    }
+
     /// How many HTTP requests were served so far.
     pub fn requests(&self) -> u64 {
         self.shared.lock().requests
@@ -239,15 +269,66 @@ fn serve(listener: TcpListener, shared: Arc<Shared>) {
         if shared.stop.load(Ordering::SeqCst) {
             return;
         }
-        let Ok(stream) = conn else { continue };
-        let s = shared.clone();
-        // one thread per connection: a slow client never holds up the page's polling
+        let Ok(mut stream) = conn else { continue };
+        // a thread per connection (a slow client never holds up the page's polling), but at
+        // most MAX_CONNECTIONS of them
+        if shared.active.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
+            shared.active.fetch_sub(1, Ordering::SeqCst);
+            let _ = stream.set_write_timeout(Some(Duration::from_millis(200)));
+            let _ = respond(
+                &mut stream,
+                "503 Service Unavailable",
+                "text/plain",
+                "too many connections\n",
+            );
+            let _ = stream.shutdown(Shutdown::Both);
+            continue;
+        }
+        let guard = Active(shared.clone());
         let _ = std::thread::Builder::new()
             .name("web-display-conn".into())
             .spawn(move || {
-                let _ = handle(stream, &s);
+                let _ = handle(stream, &guard.0);
             });
     }
+}
+
+/// One served connection: gives its slot back when dropped (also if the thread never starts).
+struct Active(Arc<Shared>);
+
+impl Drop for Active {
+    fn drop(&mut self) {
+        self.0.active.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// 128 random bits as 32 hex digits: the operating system's generator (`/dev/urandom`), else
+/// SipHash with std's randomly keyed `RandomState` (itself seeded by the operating system).
+fn new_token() -> String {
+    let mut b = [0u8; 16];
+    let ok = std::fs::File::open("/dev/urandom")
+        .and_then(|mut f| f.read_exact(&mut b))
+        .is_ok();
+    if !ok {
+        use std::hash::{BuildHasher, Hasher};
+        let rs = std::collections::hash_map::RandomState::new();
+        for (i, half) in b.chunks_mut(8).enumerate() {
+            let mut h = rs.build_hasher();
+            h.write_usize(i);
+            h.write_u128(
+                std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0, |d| d.as_nanos()),
+            );
+            half.copy_from_slice(&h.finish().to_le_bytes());
+        }
+    }
+    b.iter().map(|x| format!("{x:02x}")).collect()
+}
+
+/// Equal strings, in time independent of where they differ.
+fn same(a: &str, b: &str) -> bool {
+    a.len() == b.len() && a.bytes().zip(b.bytes()).fold(0u8, |d, (x, y)| d | (x ^ y)) == 0
 }
 
 const PAGE: &str = r#"<!doctype html>
@@ -258,13 +339,14 @@ const PAGE: &str = r#"<!doctype html>
 <script>
 "use strict";
 let seq = __SEQ__;
+const token = "__TOKEN__";
 function ack(n) {
   requestAnimationFrame(() => requestAnimationFrame(() =>
-    fetch("/shown?seq=" + n, {cache: "no-store"}).catch(() => {})));
+    fetch("/shown?seq=" + n + "&token=" + token, {cache: "no-store"}).catch(() => {})));
 }
 async function tick() {
   try {
-    const r = await fetch("/patch", {cache: "no-store"});
+    const r = await fetch("/patch?token=" + token, {cache: "no-store"});
     const p = await r.json();
     if (p.seq !== seq) {
       document.getElementById("patch").style.background = p.css;
@@ -288,26 +370,117 @@ fn respond(w: &mut TcpStream, status: &str, ctype: &str, body: &str) -> std::io:
     w.flush()
 }
 
-fn handle(stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
-    stream.set_read_timeout(Some(Duration::from_secs(5)))?;
-    stream.set_write_timeout(Some(Duration::from_secs(5)))?;
-    let mut reader = BufReader::new(stream.try_clone()?);
-    let mut request = String::new();
-    reader.read_line(&mut request)?;
-    // skip the headers
+/// Reads the request line and headers (at most [`MAX_HEAD`] bytes, within [`HEAD_DEADLINE`]).
+/// `Ok(None)`: too long.
+fn read_head(stream: &mut TcpStream) -> std::io::Result<Option<String>> {
+    let deadline = Instant::now() + HEAD_DEADLINE;
+    let mut head = Vec::with_capacity(1024);
+    let mut buf = [0u8; 2048];
     loop {
-        let mut h = String::new();
-        if reader.read_line(&mut h)? == 0 || h == "\r\n" || h == "\n" {
-            break;
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Err(std::io::ErrorKind::TimedOut.into());
+        }
+        stream.set_read_timeout(Some(left))?;
+        let n = stream.read(&mut buf)?;
+        if n == 0 {
+            return Err(std::io::ErrorKind::UnexpectedEof.into());
+        }
+        let from = head.len().saturating_sub(3);
+        head.extend_from_slice(&buf[..n]);
+        let end = head[from..]
+            .windows(4)
+            .position(|w| w == b"\r\n\r\n")
+            .map(|i| from + i)
+            .or_else(|| {
+                head[from..]
+                    .windows(2)
+                    .position(|w| w == b"\n\n")
+                    .map(|i| from + i)
+            });
+        match end {
+            Some(e) if e <= MAX_HEAD => {
+                return Ok(Some(String::from_utf8_lossy(&head[..e]).into()))
+            }
+            _ if head.len() > MAX_HEAD => return Ok(None),
+            _ => {}
         }
     }
-    let mut w = stream;
+}
+
+/// Answers and closes, reading (a bounded amount of) what the client still sends first, so
+/// that closing does not reset the connection before the client read the answer.
+fn refuse(mut w: TcpStream, status: &str, body: &str) -> std::io::Result<()> {
+    respond(&mut w, status, "text/plain", body)?;
+    let _ = w.shutdown(Shutdown::Write);
+    let deadline = Instant::now() + Duration::from_secs(1);
+    let mut sink = [0u8; 4096];
+    let mut left = 4 * MAX_HEAD;
+    while left > 0 {
+        let wait = deadline.saturating_duration_since(Instant::now());
+        if wait.is_zero() || w.set_read_timeout(Some(wait)).is_err() {
+            break;
+        }
+        match w.read(&mut sink) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => left = left.saturating_sub(n),
+        }
+    }
+    Ok(())
+}
+
+fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
+    stream.set_write_timeout(Some(Duration::from_secs(5)))?;
+    let Some(head) = read_head(&mut stream)? else {
+        return refuse(
+            stream,
+            "431 Request Header Fields Too Large",
+            "request line and headers: at most 16 KiB\n",
+        );
+    };
+    let mut lines = head.lines();
+    let request = lines.next().unwrap_or("");
+    let (mut host, mut origin, mut body) = (None, None, false);
+    for h in lines {
+        let Some((k, v)) = h.split_once(':') else {
+            continue;
+        };
+        let v = v.trim();
+        match k.trim().to_ascii_lowercase().as_str() {
+            "host" => host = Some(v.to_ascii_lowercase()),
+            "origin" => origin = Some(v.to_ascii_lowercase()),
+            "content-length" => body |= v != "0",
+            "transfer-encoding" => body = true,
+            _ => {}
+        }
+    }
     let mut it = request.split_whitespace();
     let (method, target) = (it.next().unwrap_or(""), it.next().unwrap_or(""));
     if method != "GET" {
-        return respond(&mut w, "405 Method Not Allowed", "text/plain", "GET only\n");
+        return refuse(stream, "405 Method Not Allowed", "GET only\n");
     }
+    if body {
+        return refuse(stream, "413 Content Too Large", "no request bodies\n");
+    }
+    let port = shared.port;
+    let hosts = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
+    if !host.is_some_and(|h| hosts.contains(&h)) {
+        return refuse(stream, "403 Forbidden", "Host: 127.0.0.1:PORT only\n");
+    }
+    if origin.is_some_and(|o| !hosts.iter().any(|h| o == format!("http://{h}"))) {
+        return refuse(stream, "403 Forbidden", "foreign Origin\n");
+    }
+    let mut w = stream;
     let (path, query) = target.split_once('?').unwrap_or((target, ""));
+    let param = |name: &str| {
+        query
+            .split('&')
+            .find_map(|kv| kv.strip_prefix(name)?.strip_prefix('='))
+    };
+    let tokened = param("token").is_some_and(|t| same(t, &shared.token));
+    if matches!(path, "/patch" | "/shown") && !tokened {
+        return refuse(w, "403 Forbidden", "missing or wrong token\n");
+    }
     let (seq, rgb) = {
         let mut s = shared.lock();
         s.requests += 1;
@@ -322,7 +495,8 @@ fn handle(stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
                 .replace("__OFF__", &format!("{:.4}", (100.0 - side) / 2.0))
                 .replace("__BG__", &css([win.background; 3]))
                 .replace("__CSS__", &css(rgb))
-                .replace("__SEQ__", &seq.to_string());
+                .replace("__SEQ__", &seq.to_string())
+                .replace("__TOKEN__", &shared.token);
             respond(&mut w, "200 OK", "text/html; charset=utf-8", &page)
         }
         "/patch" => {
@@ -336,10 +510,7 @@ fn handle(stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
             respond(&mut w, "200 OK", "application/json", &body)
         }
         "/shown" => {
-            let n = query
-                .split('&')
-                .find_map(|kv| kv.strip_prefix("seq="))
-                .and_then(|v| v.parse::<u64>().ok());
+            let n = param("seq").and_then(|v| v.parse::<u64>().ok());
             match n {
                 Some(n) => {
                     let mut s = shared.lock();
@@ -350,7 +521,7 @@ fn handle(stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
                     drop(s);
                     respond(&mut w, "204 No Content", "text/plain", "")
                 }
-                None => respond(&mut w, "400 Bad Request", "text/plain", "seq=N\n"),
+                None => respond(&mut w, "400 Bad Request", "text/plain", "seq=N&token=T\n"),
             }
         }
         "/favicon.ico" => respond(&mut w, "204 No Content", "text/plain", ""),
@@ -365,7 +536,7 @@ mod tests {
 
     fn get(addr: SocketAddr, path: &str) -> String {
         let mut s = TcpStream::connect(addr).unwrap();
-        write!(s, "GET {path} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        write!(s, "GET {path} HTTP/1.1\r\nHost: {addr}\r\n\r\n").unwrap();
         let mut out = String::new();
         s.read_to_string(&mut out).unwrap();
         out
@@ -376,12 +547,15 @@ mod tests {
         let mut d = WebDisplay::start(0).unwrap();
         d.first_wait = Duration::from_millis(100);
         let seq = d.post([1.0, 0.5, 0.0]);
-        let r = get(d.addr, "/patch");
+        let t = d.token().to_string();
+        assert_eq!(t.len(), 32);
+        assert!(get(d.addr, "/").contains(&t));
+        let r = get(d.addr, &format!("/patch?token={t}"));
         assert!(r.starts_with("HTTP/1.1 200"), "{r}");
         assert!(r.contains("\"css\":\"rgb(255,128,0)\""), "{r}");
         assert!(get(d.addr, "/").contains("background:rgb(255,128,0)"));
         assert!(!d.wait_shown(seq, Duration::from_millis(20)));
-        assert!(get(d.addr, &format!("/shown?seq={seq}")).starts_with("HTTP/1.1 204"));
+        assert!(get(d.addr, &format!("/shown?seq={seq}&token={t}")).starts_with("HTTP/1.1 204"));
         assert!(d.wait_shown(seq, Duration::from_millis(20)));
         assert!(get(d.addr, "/nope").starts_with("HTTP/1.1 404"));
         // nobody acknowledges the next patch: a clear error
