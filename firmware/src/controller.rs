@@ -122,15 +122,15 @@ impl Controller {
             }
             // not built in (feature `observer-1964`)
             Command::Observer(_) => Reply::Error(Fault::at(ErrorCode::UnknownName, 1)),
-            Command::Xyz(v) => Reply::Colour(self.colour(v)),
-            Command::Xyy(v) => Reply::Colour(self.colour(v.to_xyz())),
+            Command::Xyz(v) => self.show(v),
+            Command::Xyy(v) => self.show(v.to_xyz()),
             Command::Reflect {
                 illuminant,
                 product,
                 ..
             } => {
                 let xyz = self.reflectance_xyz(illuminant, &product);
-                Reply::Colour(self.colour(xyz))
+                self.show(xyz)
             }
             // answered with the flash by `store::handle`; a controller alone has no storage
             Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
@@ -187,6 +187,21 @@ impl Controller {
         self.target = target;
         self.duty = drive.level;
         ColourReport::of(target, &drive, self.map, self.max)
+    }
+
+    /// The reply to a colour command: the colour report, or `err not-finite` (and nothing
+    /// changes: target and duties stay) when any number of the report would not be a finite
+    /// f32 (e.g. `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour
+    /// replies are made, so no `ok` reply carries `nan` or `inf`.
+    fn show(&mut self, target: Xyz) -> Reply {
+        let drive = self.display.drive(target, self.map, self.max);
+        let report = ColourReport::of(target, &drive, self.map, self.max);
+        if !report.is_finite() {
+            return Reply::Error(Fault::new(ErrorCode::NotFinite));
+        }
+        self.target = target;
+        self.duty = drive.level;
+        Reply::Colour(report)
     }
 
     fn state(&self) -> StateReport {
@@ -351,6 +366,130 @@ mod tests {
         assert_eq!(
             run(&mut c, "bogus"),
             Reply::Error(Fault::at(ErrorCode::UnknownCommand, 0))
+        );
+    }
+
+    /// A small xorshift generator: the firmware tests have no proptest.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        fn unit(&mut self) -> f32 {
+            (self.next() >> 40) as f32 / (1u64 << 24) as f32
+        }
+        /// Any f32 magnitude from 1e-45 to 3.4e38 (log-uniform), either sign, or 0.
+        fn wide(&mut self) -> f32 {
+            match self.next() % 8 {
+                0 => 0.0,
+                1 => f32::MAX,
+                2 => 1e-45,
+                _ => {
+                    let v = 10f32.powf(self.unit() * 83.5 - 45.0).min(f32::MAX);
+                    if self.next() % 2 == 0 {
+                        v
+                    } else {
+                        -v
+                    }
+                }
+            }
+        }
+        /// In `(0, 1]`, sometimes tiny.
+        fn positive_unit(&mut self) -> f32 {
+            match self.next() % 4 {
+                0 => 1e-45,
+                1 => 1.0,
+                _ => self.unit().max(1e-45),
+            }
+        }
+    }
+
+    /// A random command within the documented ranges (the parser accepts it).
+    fn random_command(g: &mut Rng) -> String {
+        match g.next() % 8 {
+            0 | 1 => format!("xyz {:e} {:e} {:e}", g.wide(), g.wide(), g.wide()),
+            2 | 3 => format!("xyy {:e} {:e} {:e}", g.unit(), g.positive_unit(), g.wide()),
+            4 => {
+                let n = if g.next() % 2 == 0 { 8 } else { 32 };
+                let preset = if n == 8 { "paper" } else { "default" };
+                let mut l = format!("refl {preset} D65");
+                for _ in 0..n {
+                    l.push_str(&format!(" {:e}", g.wide()));
+                }
+                l
+            }
+            5 => {
+                let mut l = String::from("cal");
+                for _ in 0..3 {
+                    l.push_str(&format!(
+                        " {:e} {:e} {:e}",
+                        g.unit(),
+                        g.positive_unit(),
+                        g.wide().abs().max(1e-45)
+                    ));
+                }
+                l
+            }
+            6 => format!("trc rgb gamma {:e}", 0.1 + 9.9 * g.unit()),
+            _ => String::from(if g.next() % 2 == 0 {
+                "map clip"
+            } else {
+                "map desaturate"
+            }),
+        }
+    }
+
+    #[test]
+    fn every_ok_reply_reads_back_with_finite_numbers() {
+        let mut c = Controller::new(65535);
+        let mut g = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut lines = vec![String::from("xyy 0.5 1e-45 3.4e38")];
+        lines.extend((0..20_000).map(|_| random_command(&mut g)));
+        let mut refused = 0;
+        for line in &lines {
+            let parsed = Command::parse(line);
+            assert!(parsed.is_ok(), "{line}: {parsed:?}");
+            let reply = c.handle(parsed);
+            let mut text = String::new();
+            reply.write(&mut text).unwrap();
+            if let Reply::Colour(r) = reply {
+                assert!(r.is_finite(), "{line} → {text}");
+            }
+            if text.starts_with("ok") {
+                assert!(
+                    !text.contains("nan") && !text.contains("inf"),
+                    "{line} → {text}"
+                );
+                assert_eq!(Reply::parse(&text), Ok(reply), "{line} → {text}");
+            } else {
+                assert!(
+                    reply == Reply::Error(Fault::new(ErrorCode::NotFinite))
+                        || reply == Reply::Error(Fault::new(ErrorCode::Singular)),
+                    "{line} → {text}"
+                );
+                refused += usize::from(text == "err not-finite");
+            }
+        }
+        assert!(refused > 0, "the extremes overflow somewhere");
+    }
+
+    #[test]
+    fn an_overflowing_colour_is_refused_and_changes_nothing() {
+        let mut c = Controller::new(65535);
+        run(&mut c, "xyz 20 20 20");
+        let duty = c.duty();
+        assert_eq!(
+            run(&mut c, "xyy 0.5 1e-45 3.4e38"),
+            Reply::Error(Fault::new(ErrorCode::NotFinite))
+        );
+        assert_eq!(c.duty(), duty);
+        assert_eq!(
+            Reply::parse("err not-finite"),
+            Ok(Reply::Error(Fault::new(ErrorCode::NotFinite)))
         );
     }
 }

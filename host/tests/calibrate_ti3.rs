@@ -59,6 +59,22 @@ fn held_out_accuracy_beats_argyll_shaper_matrix() {
     let back = Calibration::from_toml(&cal.to_toml().unwrap(), "x").unwrap();
     assert_eq!(back.data(), cal.data());
     assert_eq!(cal.data().provenance.patches_verify, 972);
+    // tables run from 0 to 1 (the controller's `trc table` rule); the fit writes them so
+    let tr = &cal.data().transfer;
+    for t in tr.tables() {
+        assert_eq!((t[0], t[t.len() - 1]), (0.0, 1.0));
+    }
+    for (first, last) in [(-0.01, 1.0), (0.0, 1.02)] {
+        let mut d = cal.data().clone();
+        d.transfer.green[0] = first;
+        let n = d.transfer.green.len();
+        d.transfer.green[n - 1] = last;
+        let e = Calibration::new(d).unwrap_err().to_string();
+        assert!(
+            e.contains("transfer.green") && e.contains("start at 0 and end at 1"),
+            "{e}"
+        );
+    }
 
     // the other models, for docs/calibration.md
     for (matrix, transfer) in [

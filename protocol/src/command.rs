@@ -249,7 +249,17 @@ impl Command {
                             v[n] = number(tok, at)?;
                             n += 1;
                         }
-                        Transfer::table(&v[..n]).map_err(|_| Fault::at(ErrorCode::BadCurve, 2))?
+                        let t = Transfer::table(&v[..n])
+                            .map_err(|_| Fault::at(ErrorCode::BadCurve, 2))?;
+                        // linear light from 0 (off) to 1 (full drive): the word at fault
+                        // is the first value (word 3) or the last (word 2 + n)
+                        if v[0] != 0.0 {
+                            return Err(Fault::at(ErrorCode::BadCurve, 3));
+                        }
+                        if v[n - 1] != 1.0 {
+                            return Err(Fault::at(ErrorCode::BadCurve, 2 + n));
+                        }
+                        t
                     }
                     _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
                 };

@@ -36,11 +36,14 @@ pub enum ErrorCode {
     Storage,
     /// `load` found no saved settings of this firmware's format (`not-saved`).
     NotSaved,
+    /// A colour command whose result is not a finite f32 (an overflow inside the colour
+    /// conversion); nothing changes (`not-finite`).
+    NotFinite,
 }
 
 impl ErrorCode {
     /// Every code.
-    pub const ALL: [ErrorCode; 14] = [
+    pub const ALL: [ErrorCode; 15] = [
         ErrorCode::TooLong,
         ErrorCode::BadByte,
         ErrorCode::UnknownCommand,
@@ -55,6 +58,7 @@ impl ErrorCode {
         ErrorCode::BadReply,
         ErrorCode::Storage,
         ErrorCode::NotSaved,
+        ErrorCode::NotFinite,
     ];
 
     /// The wire name.
@@ -74,6 +78,7 @@ impl ErrorCode {
             ErrorCode::BadReply => "bad-reply",
             ErrorCode::Storage => "storage",
             ErrorCode::NotSaved => "not-saved",
+            ErrorCode::NotFinite => "not-finite",
         }
     }
 

@@ -53,6 +53,17 @@ impl ColourReport {
             },
         }
     }
+
+    /// Whether every number of the report is finite, i.e. the report can be written as a
+    /// reply the host reads back ([`Reply::parse`] refuses `nan` and `inf`).
+    pub fn is_finite(&self) -> bool {
+        self.xyz
+            .to_array()
+            .into_iter()
+            .chain(self.led.to_array())
+            .chain(self.linear)
+            .all(f32::is_finite)
+    }
 }
 
 /// A transfer curve's summary in `state` replies.

@@ -148,6 +148,33 @@ proptest! {
     }
 
     #[test]
+    fn tables_must_run_from_0_to_1(steps in proptest::collection::vec(0f32..0.5, 1..63), first in prop_oneof![Just(0f32), 0f32..0.5], last in prop_oneof![Just(1f32), 0.5f32..2.0]) {
+        let mut v = vec![first];
+        for s in &steps {
+            v.push((v[v.len() - 1] + s).min(last));
+        }
+        v.push(last);
+        let line = format!("trc rgb table {}", v.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(" "));
+        let n = v.len();
+        match Command::parse(&line) {
+            Ok(Command::Transfer { curve: Transfer::Table(t), .. }) => {
+                prop_assert!(first == 0.0 && last == 1.0, "{}", line);
+                prop_assert_eq!(t.as_slice(), v.as_slice());
+                // and it writes back as the same line
+                let c = Command::parse(&line).unwrap();
+                prop_assert_eq!(Command::parse(&line_of(&c)), Ok(c));
+            }
+            Err(f) => {
+                prop_assert_eq!(f.code, ErrorCode::BadCurve);
+                let at = if first != 0.0 { 3 } else { 2 + n };
+                prop_assert!(last != 1.0 || first != 0.0, "{}: {:?}", line, f);
+                prop_assert_eq!(f.at, Some(at as u16), "{}", line);
+            }
+            other => prop_assert!(false, "{}: {:?}", line, other),
+        }
+    }
+
+    #[test]
     fn colour_commands_round_trip(x in -1e6f32..1e6, y in -1e6f32..1e6, z in -1e6f32..1e6) {
         let c = Command::Xyz(Xyz::new(x, y, z));
         prop_assert_eq!(Command::parse(&line_of(&c)), Ok(c));
@@ -288,6 +315,10 @@ fn bad_lines_name_the_word_at_fault() {
         ("trc r gamma 0", ErrorCode::OutOfRange, Some(3)),
         ("trc r table 0 0.5 0.4", ErrorCode::BadCurve, Some(2)),
         ("trc r table 0", ErrorCode::BadCurve, Some(2)),
+        ("trc r table 0.1 0.5 1", ErrorCode::BadCurve, Some(3)),
+        ("trc g table 0 0.5 0.9", ErrorCode::BadCurve, Some(5)),
+        ("trc b table 0 1.5", ErrorCode::BadCurve, Some(4)),
+        ("trc b table 1 1", ErrorCode::BadCurve, Some(3)),
         ("refl paper D99 1 2", ErrorCode::UnknownName, Some(2)),
         ("refl rgb D65 1", ErrorCode::UnknownName, Some(1)),
         ("refl paper D65 1 2 3", ErrorCode::WrongCount, Some(6)),

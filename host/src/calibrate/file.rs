@@ -255,6 +255,17 @@ impl Calibration {
                     specpoly_core::display::TABLE_MAX
                 ))
             })?;
+            // the controller's rule for `trc table` (firmware/PROTOCOL.md): off is 0, full is 1
+            if t.kind == TransferKind::Table
+                && (table.first() != Some(&0.0) || table.last() != Some(&1.0))
+            {
+                return Err(CliError::data(format!(
+                    "transfer.{name}: a table must start at 0 and end at 1 (linear light at \
+                     device 0 and 1), not {:?} … {:?}",
+                    table.first(),
+                    table.last()
+                )));
+            }
             curves[c] = match t.kind {
                 TransferKind::Table => tab,
                 TransferKind::Gamma => Transfer::Gamma(t.gamma[c] as f32),

@@ -137,7 +137,7 @@ pub fn raw_primaries(patches: &[Patch], m: &[Measurement]) -> Option<[[f64; 3]; 
 /// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
 /// measured), atomically.
 pub fn save_ti3(path: &Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
-    crate::io::atomic::write(path, cgats::write_ti3(m, info).as_bytes())
+    crate::io::atomic::write(path, cgats::write_ti3(m, info)?.as_bytes())
 }
 
 /// The readings of the fit patches and of the verification patches of `set`, in order.

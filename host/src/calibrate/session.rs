@@ -231,7 +231,7 @@ impl Session {
     fn save(&self) -> Result<()> {
         crate::io::atomic::write(
             &self.path,
-            cgats::write_ti3(&self.measurements(), &self.info).as_bytes(),
+            cgats::write_ti3(&self.measurements(), &self.info)?.as_bytes(),
         )
     }
 }

@@ -461,8 +461,29 @@ pub fn white_patch(meas: &[Measurement]) -> Option<[f64; 3]> {
 }
 
 /// Writes measurements as a CGATS `.ti3` that ArgyllCMS (`colprof`) and DisplayCAL read.
-pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
+/// Refuses (naming the reading) any value that is not finite, as written: [`read_ti3`] refuses
+/// `inf` and `NaN`, so every file this writes reads back.
+pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     use std::fmt::Write;
+    for (i, m) in meas.iter().enumerate() {
+        if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} (device {:?}, XYZ {:?}) has the non-finite \
+                 value {v}, which no .ti3 reader accepts",
+                i + 1,
+                m.device,
+                m.xyz
+            )));
+        }
+        if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} has the device value {v} outside 0–1 \
+                 (device {:?})",
+                i + 1,
+                m.device
+            )));
+        }
+    }
     let mut s = String::new();
     let descriptor = if info.descriptor.is_empty() {
         "Argyll Calibration Target chart information 3"
@@ -487,6 +508,11 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
         None
     };
     let scale = match white {
+        Some(w) if w.iter().any(|v| !v.is_finite()) => {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: the white patch averages to the non-finite XYZ {w:?}"
+            )));
+        }
         Some(w) if w[1] > 0.0 => {
             let _ = writeln!(
                 s,
@@ -511,20 +537,38 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> String {
     let _ = writeln!(s, "NUMBER_OF_SETS {}", meas.len());
     let _ = writeln!(s, "BEGIN_DATA");
     for (i, m) in meas.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            "{} {:.5} {:.5} {:.5} {:.7} {:.7} {:.7}",
-            i + 1,
+        let row = [
             m.device[0] * 100.0,
             m.device[1] * 100.0,
             m.device[2] * 100.0,
             m.xyz[0] * scale,
             m.xyz[1] * scale,
-            m.xyz[2] * scale
+            m.xyz[2] * scale,
+        ];
+        // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
+        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} overflows to {v} when scaled (device {:?}, \
+                 XYZ {:?})",
+                i + 1,
+                m.device,
+                m.xyz
+            )));
+        }
+        let _ = writeln!(
+            s,
+            "{} {:.5} {:.5} {:.5} {:.7} {:.7} {:.7}",
+            i + 1,
+            row[0],
+            row[1],
+            row[2],
+            row[3],
+            row[4],
+            row[5]
         );
     }
     let _ = writeln!(s, "END_DATA");
-    s
+    Ok(s)
 }
 
 /// Reads a .ti3 file.
@@ -565,7 +609,7 @@ mod tests {
             absolute: true,
             ..Default::default()
         };
-        let text = write_ti3(&m, &info);
+        let text = write_ti3(&m, &info).unwrap();
         let t = read_ti3(&text, "x").unwrap();
         let (back, abs) = t.best_units();
         assert!(abs);
@@ -595,5 +639,101 @@ mod tests {
         assert!(e.to_string().contains("no BEGIN_DATA"), "{e}");
         let e = read_ti3(&good.replace("95 100 108", "95 100"), "f").unwrap_err();
         assert!(e.to_string().starts_with("f:9: expected 7 values"), "{e}");
+    }
+
+    #[test]
+    fn non_finite_readings_are_refused_and_no_file_is_written() {
+        let dir = std::env::temp_dir().join(format!("specpoly-ti3-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("inf.ti3");
+        let _ = std::fs::remove_file(&path);
+        for (absolute, bad) in [
+            (false, [f64::INFINITY, 1.0, 1.0]),
+            (true, [1.0, f64::NAN, 1.0]),
+        ] {
+            let m = vec![
+                Measurement {
+                    device: [1.0; 3],
+                    xyz: [95.0, 100.0, 108.0],
+                },
+                Measurement {
+                    device: [0.5, 0.0, 0.0],
+                    xyz: bad,
+                },
+            ];
+            let info = Ti3Info {
+                absolute,
+                ..Default::default()
+            };
+            let e = write_ti3(&m, &info).unwrap_err().to_string();
+            assert!(e.contains("reading 2"), "{e}");
+            let e = crate::calibrate::run::save_ti3(&path, &m, &info).unwrap_err();
+            assert!(e.to_string().contains("cannot write a .ti3"), "{e}");
+            assert!(!path.exists(), "no file is written");
+        }
+        let m = vec![Measurement {
+            device: [1.5, 0.0, 0.0],
+            xyz: [1.0; 3],
+        }];
+        let e = write_ti3(&m, &Ti3Info::default()).unwrap_err().to_string();
+        assert!(e.contains("outside 0–1"), "{e}");
+        // a reading overflowing on the way to the white's Y = 100
+        let m = vec![
+            Measurement {
+                device: [1.0; 3],
+                xyz: [1e-300, 1e-300, 1e-300],
+            },
+            Measurement {
+                device: [0.5, 0.0, 0.0],
+                xyz: [1e300, 1.0, 1.0],
+            },
+        ];
+        let info = Ti3Info {
+            absolute: true,
+            ..Default::default()
+        };
+        assert!(write_ti3(&m, &info)
+            .unwrap_err()
+            .to_string()
+            .contains("overflows"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn every_written_value_reads_back() {
+        // extremes that are finite as written: huge, tiny, negative, zero
+        let vals = [
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-12,
+            0.5,
+            1.0,
+            123456.789,
+            -1e15,
+            1e300,
+            f64::MAX / 100.0,
+        ];
+        for absolute in [false, true] {
+            let mut m = vec![Measurement {
+                device: [1.0; 3],
+                xyz: [95.0, 100.0, 108.0],
+            }];
+            for (i, a) in vals.iter().enumerate() {
+                let b = vals[(i + 3) % vals.len()];
+                let d = vals[(i + 5) % vals.len()];
+                m.push(Measurement {
+                    device: [a.clamp(0.0, 1.0), 0.25, 1.0],
+                    xyz: [*a, b, d],
+                });
+            }
+            let info = Ti3Info {
+                absolute,
+                ..Default::default()
+            };
+            let text = write_ti3(&m, &info).unwrap();
+            let t = read_ti3(&text, "x").unwrap_or_else(|e| panic!("{e}\n{text}"));
+            assert_eq!(t.measurements.len(), m.len());
+        }
     }
 }
