@@ -29,8 +29,15 @@ impl Link<Box<dyn serialport::SerialPort>> {
 }
 
 /// EIO (a pseudo-terminal whose other end has gone) and a broken pipe mean the device left.
+/// serialport reports a `poll` that returned `POLLERR` (a pseudo-terminal or USB serial device
+/// whose other end went away, racing with `POLLHUP`) as `ErrorKind::Other` carrying EIO's text
+/// and no OS code (`serialport` 4, `posix/poll.rs` `wait_fd`): that is a hang-up too.
 fn is_hang_up(e: &std::io::Error) -> bool {
-    e.kind() == ErrorKind::BrokenPipe || e.raw_os_error() == Some(5)
+    e.kind() == ErrorKind::BrokenPipe
+        || e.raw_os_error() == Some(5)
+        || (e.kind() == ErrorKind::Other
+            && e.raw_os_error().is_none()
+            && e.to_string() == "I/O error")
 }
 
 fn clip(s: &str, n: usize) -> String {
@@ -152,5 +159,21 @@ impl<P: Read + Write> Link<P> {
                 Err(e) => return Err(self.io_error(e)),
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_hang_up;
+    use std::io::{Error, ErrorKind};
+
+    /// The three ways a departed device shows up, and two that are not a hang-up.
+    #[test]
+    fn hang_ups() {
+        assert!(is_hang_up(&Error::from(ErrorKind::BrokenPipe)));
+        assert!(is_hang_up(&Error::from_raw_os_error(5)));
+        assert!(is_hang_up(&Error::new(ErrorKind::Other, "I/O error")));
+        assert!(!is_hang_up(&Error::new(ErrorKind::Other, "something else")));
+        assert!(!is_hang_up(&Error::from(ErrorKind::PermissionDenied)));
     }
 }
