@@ -172,8 +172,8 @@ mod tests {
     fn hang_ups() {
         assert!(is_hang_up(&Error::from(ErrorKind::BrokenPipe)));
         assert!(is_hang_up(&Error::from_raw_os_error(5)));
-        assert!(is_hang_up(&Error::new(ErrorKind::Other, "I/O error")));
-        assert!(!is_hang_up(&Error::new(ErrorKind::Other, "something else")));
+        assert!(is_hang_up(&Error::other("I/O error")));
+        assert!(!is_hang_up(&Error::other("something else")));
         assert!(!is_hang_up(&Error::from(ErrorKind::PermissionDenied)));
     }
 }
