@@ -198,10 +198,13 @@ impl Band {
         i * (self.bw + 1) + (self.bw + j - i)
     }
 
+    /// Adds `v` to `A[i][j]` for `i ≥ j`; calls with `i < j` are ignored, so that loops over
+    /// both orders of a symmetric term add it once.
     fn add(&mut self, i: usize, j: usize, v: f64) {
-        let (i, j) = if i >= j { (i, j) } else { (j, i) };
-        let k = self.at(i, j);
-        self.a[k] += v;
+        if i >= j {
+            let k = self.at(i, j);
+            self.a[k] += v;
+        }
     }
 
     fn get(&self, i: usize, j: usize) -> f64 {
