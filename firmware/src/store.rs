@@ -12,6 +12,7 @@
 //! [`handle`] answers the `save` and `load` commands; the firmware calls [`Store::load`] at
 //! start-up and logs why it used the defaults.
 
+use crate::mix;
 use crate::settings::{self, Record, RecordError, RECORD_MAX};
 use crate::Controller;
 use core::ops::Range;
@@ -102,6 +103,18 @@ impl<'a> Value<'a> for Record<'_> {
     }
 }
 
+/// The mixer's record ([`crate::mix`]), written the same way.
+impl<'a> Value<'a> for mix::Record<'_> {
+    fn serialize_into(&self, buffer: &mut [u8]) -> Result<usize, SerializationError> {
+        self.encode(buffer)
+            .ok_or(SerializationError::BufferTooSmall)
+    }
+
+    fn deserialize_from(_: &'a [u8]) -> Result<(Self, usize), SerializationError> {
+        Err(SerializationError::InvalidData)
+    }
+}
+
 /// The settings store over flash `F` (async NOR flash; see [`Blocking`]).
 pub struct Store<F: NorFlash> {
     map: MapStorage<u8, F, Cache<Uncached, Uncached, Uncached, u8>>,
@@ -149,6 +162,21 @@ impl<F: NorFlash> Store<F> {
         }
     }
 
+    /// Appends the mixer's record (after [`Store::save`], which repairs the range if need be).
+    pub fn save_mix(&mut self, record: &mix::Record, buffer: &mut Buffer) -> Result<(), SaveError> {
+        block_on(self.map.store_item(&mut buffer.0, &mix::KEY, record))
+            .map_err(|_| SaveError::Storage)
+    }
+
+    /// The newest intact mixer record's bytes (in `buffer`); `None` when none was saved.
+    pub fn load_mix<'b>(&mut self, buffer: &'b mut Buffer) -> Result<Option<&'b [u8]>, LoadError> {
+        match block_on(self.map.fetch_item::<&[u8]>(&mut buffer.0, &mix::KEY)) {
+            Ok(v) => Ok(v),
+            Err(Error::Corrupted { .. }) => Err(LoadError::Corrupted),
+            Err(_) => Err(LoadError::Storage),
+        }
+    }
+
     /// Whether the whole range is erased (`0xFF`).
     fn blank(&mut self) -> Result<bool, LoadError> {
         let mut chunk = [0u8; 16];
@@ -190,11 +218,19 @@ pub fn handle<F: NorFlash>(
 ) -> Reply {
     let parsed = parse(line);
     match parsed {
-        Ok(Command::Save) => match store.save(&controller.record(), buffer) {
+        Ok(Command::Save) => match store
+            .save(&controller.record(), buffer)
+            .and_then(|()| store.save_mix(&mix::Record(&controller.mixer), buffer))
+        {
             Ok(()) => Reply::Done("save"),
             Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
         },
-        Ok(Command::Load) => match restore(controller, store, buffer) {
+        Ok(Command::Load) => match restore(controller, store, buffer).and_then(|()| {
+            match restore_mix(controller, store, buffer) {
+                Err(LoadError::NotSaved) => Ok(()),
+                r => r,
+            }
+        }) {
             Ok(()) => Reply::Done("load"),
             Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
             Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
@@ -214,6 +250,20 @@ pub fn restore<F: NorFlash>(
     controller
         .apply_record(bytes)
         .map_err(|_| LoadError::NotApplicable)
+}
+
+/// Applies the newest saved mixer record ([`crate::mix`]: channels, curves, fade time);
+/// [`LoadError::NotSaved`] when there is none. On an error the mixer is unchanged.
+pub fn restore_mix<F: NorFlash>(
+    controller: &mut Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Result<(), LoadError> {
+    let bytes = store.load_mix(buffer)?.ok_or(LoadError::NotSaved)?;
+    mix::read(bytes, &mut controller.mixer).map_err(|e| match e {
+        RecordError::Format(v) => LoadError::Format(v),
+        RecordError::Invalid => LoadError::Invalid,
+    })
 }
 
 /// A blocking `embedded-storage` NOR flash seen through the async traits `sequential-storage`

@@ -8,9 +8,10 @@ pub mod check;
 pub mod error;
 pub mod lines;
 pub mod link;
+pub mod mix_check;
 pub mod model;
 
 pub use check::Oracle;
 pub use error::LedError;
 pub use link::Link;
-pub use model::Model;
+pub use model::{MixModel, Model};
