@@ -15,7 +15,7 @@ use crate::led::lines::{self, line, reply_line, Preset};
 use crate::led::mix_check::{MixOracle, Weight};
 use crate::led::{Link, Oracle};
 use crate::light::load_channel;
-use specpoly_core::light::channels::{Curve, Goal};
+use specpoly_core::light::channels::{Curve as ChannelCurve, Goal};
 use specpoly_core::light::Source;
 use specpoly_core::{Illuminant, Observer, Transfer};
 use specpoly_protocol::number::write_f32;
@@ -219,7 +219,7 @@ fn mix_oracle(channels: &[String], weight: Weight) -> Result<MixOracle> {
                 .map_err(|e| CliError::data(format!("{}: {e}", ch.name)))?,
         );
     }
-    let curves = vec![Curve::Linear; sources.len()];
+    let curves = vec![ChannelCurve::Linear; sources.len()];
     Ok(MixOracle::new(sources, curves, weight))
 }
 
