@@ -23,7 +23,7 @@ use specpoly_core::{
 };
 use specpoly_protocol::{
     mix, ColourReport, Command, CurveSummary, DeviceMixer, ErrorCode, Fault, Reflectance, Reply,
-    StateReport, PROTOCOL_VERSION,
+    StateReport, MIX_CHANNELS, PROTOCOL_VERSION,
 };
 
 /// The LED colour controller.
@@ -82,10 +82,15 @@ impl Controller {
         self.max
     }
 
-    /// One fade step of the mixer (the next point solved, its duties shown): `(step, steps)`,
-    /// or `None` when no fade is under way ([`crate::fade`]).
-    pub fn fade_step(&mut self) -> Option<(u16, u16)> {
+    /// One fade step of the mixer (the next point solved): `(step, steps, duties)`, or `None`
+    /// when no fade is under way ([`crate::fade`]).
+    pub fn fade_step(&mut self) -> Option<(u16, u16, [u16; MIX_CHANNELS])> {
         self.mixer.step(self.max)
+    }
+
+    /// The mixed channels' duties shown now (solved again: not kept in RAM).
+    pub fn mix_duty(&self) -> [u16; MIX_CHANNELS] {
+        self.mixer.duty(self.max)
     }
 
     /// The calibrated display model.

@@ -94,7 +94,8 @@ fn main() -> ! {
             pacer = Pacer::new(MILLIS.load(Ordering::Relaxed));
         } else if controller.mixer.shown().is_some() {
             // QEMU has no PWM for the mixed channels: their duties go to the log
-            defmt::info!("mix duty {=[?]}", controller.mixer.duty());
+            let n = controller.mixer.channels.list().len();
+            defmt::info!("mix duty {=[?]}", controller.mix_duty()[..n]);
         }
         let duty = controller.duty();
         if led.set(duty).is_ok() {
@@ -136,12 +137,13 @@ fn answer(
 /// One fade step, its duties logged (`fade K/N duty [..] stack=BYTES`).
 #[inline(never)]
 fn fade_step(controller: &mut Controller) {
-    if let Some((k, n)) = controller.fade_step() {
+    if let Some((k, n, duty)) = controller.fade_step() {
+        let channels = controller.mixer.channels.list().len();
         defmt::info!(
             "fade {=u16}/{=u16} duty {=[?]} stack={=usize}",
             k,
             n,
-            controller.mixer.duty(),
+            duty[..channels],
             stack::high_water()
         );
     }

@@ -819,8 +819,9 @@ fn mixing_on_the_device_agrees_with_the_host() {
     };
     assert_eq!(end.steps, 20);
     let mut sim = Vec::new();
-    while let Some((k, n)) = model.mixer.step(max) {
-        sim.push((k, n, model.mixer.duty().to_vec()));
+    let channels = end.n as usize;
+    while let Some((k, n, d)) = model.mixer.step(max) {
+        sim.push((k, n, d[..channels].to_vec()));
     }
     let log = wait_for_log(&emu, "fade 20/20 ");
     let steps: Vec<(u16, u16, Vec<u16>)> = log
@@ -884,6 +885,30 @@ fn mixing_on_the_device_agrees_with_the_host() {
     );
     std::thread::sleep(Duration::from_millis(200));
     assert_total_ram(&emu.elf, &emu.log());
+}
+
+/// The instructions a mix solve and a fade step take on the Cortex-M4F (selftest under
+/// `-icount shift=0`, 3–6 channels): a fade step must fit 10 ms of a 25 MHz core (100 solved
+/// steps per second), i.e. 250 000 instructions (an M4's instructions take one cycle or more:
+/// docs/performance.md states cycles are not measured).
+#[test]
+fn a_fade_step_fits_100_steps_per_second_at_25_mhz() {
+    let dir = default_build();
+    let (code, out) = run_to_exit(&dir.join("selftest"), &["-icount", "shift=0"]);
+    assert_eq!(code, Some(0), "selftest failed under QEMU:\n{out}");
+    assert!(out.contains("check mix-chromaticity ok"), "{out}");
+    for n in 3..=6 {
+        let solve: u64 = field(&out, &format!("insns mix {n} solve "));
+        let step: u64 = field(&out, &format!("insns mix {n} step "));
+        println!(
+            "{n} channels: solve {solve} instructions, fade step {step} ({:.0} steps/s at 25 MHz)",
+            25e6 / step as f64
+        );
+        assert!(
+            step <= 250_000,
+            "{n} channels: {step} instructions per step"
+        );
+    }
 }
 
 /// The deepest stack use the log reports (`stack=`, after each command) plus the ELF's static

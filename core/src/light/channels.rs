@@ -202,86 +202,42 @@ impl<const M: usize> Channels<M> {
             return Err(MixError::Channels);
         }
         // columns X, Y, Z, scaled so the largest entry is 1
-        let mut a = [[0.0f32; M]; 3];
         let mut scale = 0.0f32;
-        for (i, c) in self.list.iter().enumerate() {
-            for k in 0..3 {
-                a[k][i] = c.xyz[k];
-                scale = scale.max(c.xyz[k].abs());
+        for c in self.list.iter() {
+            for v in c.xyz {
+                scale = scale.max(v.abs());
             }
         }
-        for row in a.iter_mut() {
-            for v in row.iter_mut() {
-                *v /= scale;
-            }
+        let mut a = [[0.0f32; 3]; M];
+        for (col, c) in a.iter_mut().zip(self.list.iter()) {
+            *col = c.xyz.map(|v| v / scale);
         }
         let [x, y] = p.xy();
         let z = 1.0 - x - y;
-        // chromaticity constraints, multiplied through by y
-        let mut b = [[0.0f32; M]; 2];
-        for i in 0..n {
-            b[0][i] = y * a[0][i] - x * a[1][i];
-            b[1][i] = y * a[2][i] - z * a[1][i];
+        // chromaticity constraints, multiplied through by y: Σ dᵢ·bᵢ = 0
+        let mut b = [[0.0f32; 2]; M];
+        for (bi, ai) in b.iter_mut().zip(a.iter()) {
+            *bi = [y * ai[0] - x * ai[1], y * ai[2] - z * ai[1]];
         }
-        let (y_max, brightest) = brightest(&a, &b, n);
+        let (y_max, brightest) = brightest(&a[..n], &b[..n]);
         if !(y_max > 1e-6) {
             return Err(MixError::OutOfGamut);
         }
-        if p.lum >= 1.0 || n == 3 {
-            // at L = 1 the polytope is the brightest point; with three channels it is a point
-            let mut d = brightest;
-            for v in d.iter_mut() {
-                *v *= p.lum.min(1.0);
-            }
-            return Ok(d);
-        }
-        let ly = p.lum * y_max;
-        let t = [x / y * ly, ly, z / y * ly];
-        let mut best = (f32::INFINITY, [0.0f32; M]);
-        for i in 0..n {
-            for j in i + 1..n {
-                for k in j + 1..n {
-                    let cols = [i, j, k];
-                    let Some(inv) = inverse(core::array::from_fn(|r| cols.map(|c| a[r][c]))) else {
-                        continue;
-                    };
-                    for mask in 0u32..1 << (n - 3) {
-                        let mut d = [0.0f32; M];
-                        let mut bit = 0;
-                        for (q, dq) in d.iter_mut().enumerate().take(n) {
-                            if !cols.contains(&q) {
-                                *dq = ((mask >> bit) & 1) as f32;
-                                bit += 1;
-                            }
-                        }
-                        let rhs: [f32; 3] = core::array::from_fn(|r| {
-                            t[r] - (0..n).map(|q| a[r][q] * d[q]).sum::<f32>()
-                        });
-                        let free: [f32; 3] = core::array::from_fn(|r| {
-                            inv[r][0] * rhs[0] + inv[r][1] * rhs[1] + inv[r][2] * rhs[2]
-                        });
-                        if !free.iter().all(|v| unit(*v)) {
-                            continue;
-                        }
-                        for (c, v) in cols.iter().zip(free) {
-                            d[*c] = v.clamp(0.0, 1.0);
-                        }
-                        let cost: f32 = (0..n).map(|q| self.list[q].cost * d[q]).sum();
-                        if cost < best.0 {
-                            best = (cost, d);
-                        }
-                    }
-                }
-            }
-        }
-        if best.0.is_finite() {
-            return Ok(best.1);
-        }
-        // no vertex within the tolerance (a degenerate polytope): the brightest mix scaled
-        // down is on the polytope
+        let lum = p.lum.min(1.0);
         let mut d = brightest;
+        if lum < 1.0 && n > 3 {
+            let ly = lum * y_max;
+            let t = [x / y * ly, ly, z / y * ly];
+            let costs: [f32; M] =
+                core::array::from_fn(|i| self.list.get(i).map_or(0.0, |c| c.cost));
+            if let Some(v) = least_cost(&a[..n], &costs[..n], t) {
+                return Ok(v);
+            }
+        }
+        // at L = 1 the polytope is the brightest point and with three channels a point: the
+        // brightest mix scaled down (also the fallback for a degenerate polytope)
         for v in d.iter_mut() {
-            *v *= p.lum;
+            *v *= lum;
         }
         Ok(d)
     }
@@ -297,35 +253,52 @@ impl<const M: usize> Channels<M> {
     }
 }
 
-/// The vertex of greatest `Σ dᵢYᵢ` on the chromaticity constraints (module docs, step 1).
-fn brightest<const M: usize>(a: &[[f32; M]; 3], b: &[[f32; M]; 2], n: usize) -> (f32, [f32; M]) {
+/// The duties `0`/`1` of the channels other than `free`, by the bits of `mask` in channel
+/// order (the free ones 0).
+fn fixed<const M: usize>(n: usize, free: &[usize], mask: u32) -> [f32; M] {
+    let mut d = [0.0f32; M];
+    let mut bit = 0;
+    for (i, v) in d.iter_mut().enumerate().take(n) {
+        if !free.contains(&i) {
+            *v = ((mask >> bit) & 1) as f32;
+            bit += 1;
+        }
+    }
+    d
+}
+
+/// The vertex of greatest `Σ dᵢYᵢ` on the chromaticity constraints `Σ dᵢbᵢ = 0` (module docs,
+/// step 1): per pair of free duties, every 0/1 setting of the others, a 2×2 solve (Cramer).
+fn brightest<const M: usize>(a: &[[f32; 3]], b: &[[f32; 2]]) -> (f32, [f32; M]) {
+    let n = a.len();
     let mut best = (0.0f32, [0.0f32; M]);
     for p in 0..n {
         for q in p + 1..n {
-            let det = b[0][p] * b[1][q] - b[0][q] * b[1][p];
+            let det = b[p][0] * b[q][1] - b[q][0] * b[p][1];
             if det.abs() < 1e-12 {
                 continue;
             }
             for mask in 0u32..1 << (n - 2) {
-                let mut d = [0.0f32; M];
-                let mut bit = 0;
-                for (i, di) in d.iter_mut().enumerate().take(n) {
-                    if i != p && i != q {
-                        *di = ((mask >> bit) & 1) as f32;
-                        bit += 1;
+                let d = fixed::<M>(n, &[p, q], mask);
+                let (mut r0, mut r1, mut y) = (0.0f32, 0.0f32, 0.0f32);
+                for i in 0..n {
+                    if d[i] > 0.0 {
+                        r0 -= b[i][0];
+                        r1 -= b[i][1];
+                        y += a[i][1];
                     }
                 }
-                let r0 = -(0..n).map(|i| b[0][i] * d[i]).sum::<f32>();
-                let r1 = -(0..n).map(|i| b[1][i] * d[i]).sum::<f32>();
-                let dp = (r0 * b[1][q] - r1 * b[0][q]) / det;
-                let dq = (b[0][p] * r1 - b[1][p] * r0) / det;
+                let dp = (r0 * b[q][1] - r1 * b[q][0]) / det;
+                let dq = (b[p][0] * r1 - b[p][1] * r0) / det;
                 if !(unit(dp) && unit(dq)) {
                     continue;
                 }
-                d[p] = dp.clamp(0.0, 1.0);
-                d[q] = dq.clamp(0.0, 1.0);
-                let y: f32 = (0..n).map(|i| a[1][i] * d[i]).sum();
+                let (dp, dq) = (dp.clamp(0.0, 1.0), dq.clamp(0.0, 1.0));
+                y += a[p][1] * dp + a[q][1] * dq;
                 if y > best.0 {
+                    let mut d = d;
+                    d[p] = dp;
+                    d[q] = dq;
                     best = (y, d);
                 }
             }
@@ -334,20 +307,65 @@ fn brightest<const M: usize>(a: &[[f32; M]; 3], b: &[[f32; M]; 2], n: usize) -> 
     best
 }
 
-/// The inverse of a 3×3 matrix by cofactors; `None` when (nearly) singular.
-fn inverse(m: [[f32; 3]; 3]) -> Option<[[f32; 3]; 3]> {
-    let c = |r: usize, k: usize| {
-        let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
-        let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
-        m[r1][k1] * m[r2][k2] - m[r1][k2] * m[r2][k1]
+/// The vertex of least `Σ cᵢdᵢ` of `{A·d = t, 0 ≤ d ≤ 1}` (module docs, step 2): per triple of
+/// free duties one 3×3 inverse, then every 0/1 setting of the others; `None` when no vertex is
+/// within the tolerance.
+fn least_cost<const M: usize>(a: &[[f32; 3]], cost: &[f32], t: [f32; 3]) -> Option<[f32; M]> {
+    let n = a.len();
+    let mut best = (f32::INFINITY, [0.0f32; M]);
+    for i in 0..n {
+        for j in i + 1..n {
+            for k in j + 1..n {
+                let Some(inv) = inverse([a[i], a[j], a[k]]) else {
+                    continue;
+                };
+                for mask in 0u32..1 << (n - 3) {
+                    let mut d = fixed::<M>(n, &[i, j, k], mask);
+                    let mut rhs = t;
+                    let mut c = 0.0f32;
+                    for q in 0..n {
+                        if d[q] > 0.0 {
+                            for r in 0..3 {
+                                rhs[r] -= a[q][r];
+                            }
+                            c += cost[q];
+                        }
+                    }
+                    let free = inv.map(|row| row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]);
+                    if !free.iter().all(|v| unit(*v)) {
+                        continue;
+                    }
+                    for (col, v) in [i, j, k].into_iter().zip(free) {
+                        d[col] = v.clamp(0.0, 1.0);
+                        c += cost[col] * d[col];
+                    }
+                    if c < best.0 {
+                        best = (c, d);
+                    }
+                }
+            }
+        }
+    }
+    best.0.is_finite().then_some(best.1)
+}
+
+/// The inverse of the 3×3 matrix whose *columns* are `cols`, by the adjugate in f32 (not
+/// [`crate::Mat3::inverse`], which works in f64: soft float on a Cortex-M4F, and a solve
+/// inverts up to 20 of these); `None` when (nearly) singular.
+fn inverse(cols: [[f32; 3]; 3]) -> Option<[[f32; 3]; 3]> {
+    // m[r][c] = cols[c][r]; the inverse is the transposed cofactor matrix over the determinant
+    let m = |r: usize, c: usize| cols[c][r];
+    let cof = |r: usize, c: usize| {
+        let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+        m(r1, c1) * m(r2, c2) - m(r1, c2) * m(r2, c1)
     };
-    let det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
+    let det = m(0, 0) * cof(0, 0) + m(0, 1) * cof(0, 1) + m(0, 2) * cof(0, 2);
     if !(det.abs() > 1e-9) {
         return None;
     }
-    // the inverse is the transposed cofactor matrix over the determinant
-    Some(core::array::from_fn(|r| {
-        core::array::from_fn(|k| c(k, r) / det)
+    let r = 1.0 / det;
+    Some(core::array::from_fn(|i| {
+        core::array::from_fn(|j| cof(j, i) * r)
     }))
 }
 
@@ -418,7 +436,9 @@ impl Fade {
     /// The point a fraction `s ∈ [0, 1]` of the way.
     pub fn at(&self, s: f32) -> Point {
         let lerp = |a: f32, b: f32| a + (b - a) * s;
-        let l = lerp(libm::cbrtf(self.from.lum), libm::cbrtf(self.to.lum));
+        // L^{1/3} with the powf the curves use (no second cube-root routine in a device's flash)
+        let cbrt = |v: f32| crate::math::powf(v, 1.0 / 3.0);
+        let l = lerp(cbrt(self.from.lum), cbrt(self.to.lum));
         Point {
             uv: [
                 lerp(self.from.uv[0], self.to.uv[0]),
@@ -444,8 +464,9 @@ pub struct Solved<const M: usize> {
     pub steps: u16,
 }
 
-/// The device's mixing state: channels, the fade time, the fade to the last target (finished
-/// when the target is shown) and the duties shown.
+/// The device's mixing state: channels, the fade time and the fade to the last target
+/// (finished when the target is shown; a target at `u′v′ = (0, 0)`, which no light has, until
+/// one is given). The duties shown are not kept (RAM): [`Mixer::duty`] solves them again.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mixer<const M: usize> {
     /// The channels.
@@ -453,8 +474,6 @@ pub struct Mixer<const M: usize> {
     /// Fade time for new targets, ms (0: at once).
     pub fade_ms: u32,
     fade: Fade,
-    lit: bool,
-    duty: [u16; M],
 }
 
 impl<const M: usize> Mixer<M> {
@@ -473,19 +492,20 @@ impl<const M: usize> Mixer<M> {
                 step: 0,
                 steps: 0,
             },
-            lit: false,
-            duty: [0; M],
         }
     }
 
-    /// The duties shown now (one per channel).
-    pub fn duty(&self) -> &[u16] {
-        &self.duty[..self.channels.list().len()]
+    /// The duties shown now (zeros past the channel count, and all zeros before any target or
+    /// when the point shown cannot be made by the channels now).
+    pub fn duty(&self, max: u16) -> [u16; M] {
+        self.shown()
+            .and_then(|p| self.channels.solve(p).ok())
+            .map_or([0; M], |d| self.channels.duties(&d, max))
     }
 
     /// The point shown now, if a target was ever shown.
     pub fn shown(&self) -> Option<Point> {
-        self.lit.then(|| self.fade.now())
+        (self.fade.to.uv != [0.0; 2]).then(|| self.fade.now())
     }
 
     /// Whether a fade is under way.
@@ -500,14 +520,12 @@ impl<const M: usize> Mixer<M> {
         let point = goal.point().ok_or(MixError::BadTarget)?;
         let light = self.channels.solve(point)?;
         let duty = self.channels.duties(&light, max);
-        if self.fade_ms > 0 {
+        self.fade = if self.fade_ms > 0 {
             let from = self.shown().unwrap_or(Point { lum: 0.0, ..point });
-            self.fade = Fade::new(from, point, self.fade_ms);
+            Fade::new(from, point, self.fade_ms)
         } else {
-            self.fade = Fade::at_once(point);
-            self.duty = duty;
-        }
-        self.lit = true;
+            Fade::at_once(point)
+        };
         Ok(Solved {
             point,
             light,
@@ -517,15 +535,15 @@ impl<const M: usize> Mixer<M> {
         })
     }
 
-    /// One fade step: the next point solved and shown; returns (step, steps), or `None` when no
-    /// fade is under way. A step that cannot be solved (the channels changed meanwhile) ends
+    /// One fade step: the next point solved; returns (step, steps, its duties), or `None` when
+    /// no fade is under way. A step that cannot be solved (the channels changed meanwhile) ends
     /// the fade where it is.
-    pub fn step(&mut self, max: u16) -> Option<(u16, u16)> {
+    pub fn step(&mut self, max: u16) -> Option<(u16, u16, [u16; M])> {
         let p = self.fade.next_point()?;
         match self.channels.solve(p) {
             Ok(light) => {
-                self.duty = self.channels.duties(&light, max);
-                Some(self.fade.progress())
+                let (k, n) = self.fade.progress();
+                Some((k, n, self.channels.duties(&light, max)))
             }
             Err(_) => {
                 self.fade = Fade::at_once(p);
@@ -592,10 +610,8 @@ mod tests {
         );
         // the least drive among every mix of the same colour: the white's duty on a grid, the
         // other three solved for it
-        let rgb = inverse(core::array::from_fn(|r| {
-            core::array::from_fn(|k| c.list()[k].xyz[r])
-        }))
-        .unwrap();
+        let l = c.list();
+        let rgb = inverse([l[0].xyz, l[1].xyz, l[2].xyz]).unwrap();
         let mut least = f32::INFINITY;
         for w in 0..=10_000 {
             let w = w as f32 / 10_000.0;
@@ -658,7 +674,9 @@ mod tests {
         let target = end.point;
         let mut last = f32::INFINITY;
         let mut n = 0;
-        while let Some((k, all)) = m.step(65535) {
+        let mut duty = [0; 6];
+        while let Some((k, all, d)) = m.step(65535) {
+            duty = d;
             n += 1;
             assert_eq!((k, all), (n, 25));
             let p = m.shown().unwrap();
@@ -668,7 +686,8 @@ mod tests {
             last = dist;
         }
         assert_eq!(n, 25);
-        assert_eq!(m.duty(), &end.duty[..4]);
+        assert_eq!(duty, end.duty);
+        assert_eq!(m.duty(65535), end.duty);
         assert!(!m.fading());
     }
 }
