@@ -154,6 +154,7 @@ impl Controller {
             // answered with the flash by `store::handle`; a controller alone has no storage
             Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
             // the shared answer of the mixing commands (the host's simulated controller too)
+            // the shared answer of the mixing commands (the host's simulated controller too)
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 mix::answer(&mut self.mixer, &cmd, self.max)
                     .unwrap_or(Reply::Error(Fault::new(ErrorCode::UnknownCommand)))

@@ -59,7 +59,7 @@ impl Record<'_> {
             for v in [c.xyz[0], c.xyz[1], c.xyz[2], c.cost] {
                 put(&v.to_le_bytes());
             }
-            match c.curve {
+            match c.curve() {
                 Curve::Linear => put(&[0]),
                 Curve::Srgb => put(&[1]),
                 Curve::Gamma(g) => {
@@ -92,11 +92,7 @@ pub fn read(bytes: &[u8], mixer: &mut DeviceMixer) -> Result<(), RecordError> {
     if fade_ms > FADE_MAX_MS || n > MIX_CHANNELS {
         return Err(RecordError::Invalid);
     }
-    let mut channels = [Channel {
-        xyz: [0.0; 3],
-        cost: 0.0,
-        curve: Curve::Linear,
-    }; MIX_CHANNELS];
+    let mut channels = [Channel::new([0.0; 3], 0.0, Curve::Linear); MIX_CHANNELS];
     for c in channels.iter_mut().take(n) {
         let v = take(16)?;
         let [x, y, z, cost] = [0, 4, 8, 12].map(|i| f32_of(&v[i..]));
@@ -107,7 +103,7 @@ pub fn read(bytes: &[u8], mixer: &mut DeviceMixer) -> Result<(), RecordError> {
         }
         c.xyz = [x, y, z];
         c.cost = cost;
-        c.curve = match take(1)?[0] {
+        let curve = match take(1)?[0] {
             0 => Curve::Linear,
             1 => Curve::Srgb,
             2 => {
@@ -119,6 +115,7 @@ pub fn read(bytes: &[u8], mixer: &mut DeviceMixer) -> Result<(), RecordError> {
             }
             _ => return Err(RecordError::Invalid),
         };
+        c.set_curve(curve);
     }
     if at != bytes.len() {
         return Err(RecordError::Invalid);

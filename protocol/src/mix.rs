@@ -236,12 +236,8 @@ pub fn answer(mixer: &mut DeviceMixer, cmd: &Command, max: u16) -> Option<Reply>
         }
         Command::Channel(ChannelCommand::Set { index, xyz, cost }) => {
             let i = *index as usize;
-            let curve = mixer.channels.list().get(i).map(|c| c.curve);
-            let c = Channel {
-                xyz: *xyz,
-                cost: *cost,
-                curve: curve.unwrap_or_default(),
-            };
+            let curve = mixer.channels.list().get(i).map(Channel::curve);
+            let c = Channel::new(*xyz, *cost, curve.unwrap_or_default());
             mixer.channels.set(i, c).map(|_| Reply::Done("channel"))
         }
         Command::Channel(ChannelCommand::Curve { index, curve }) => mixer

@@ -66,15 +66,46 @@ impl Curve {
     }
 }
 
-/// One LED channel.
+/// One LED channel (20 B: the curve is kept as one f32, see [`Channel::curve`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Channel {
     /// CIE 1931 `X, Y, Z` at full drive (any unit common to all channels; `Y > 0`).
     pub xyz: [f32; 3],
     /// The weight of its duty in the drive minimised with more than three channels (≥ 0).
     pub cost: f32,
-    /// Its transfer curve.
-    pub curve: Curve,
+    /// The curve: `γ` of `l = v^γ` (1: linear), or 0 for sRGB.
+    gamma: f32,
+}
+
+impl Channel {
+    /// A channel from its tristimulus values, weight and curve.
+    pub fn new(xyz: [f32; 3], cost: f32, curve: Curve) -> Self {
+        let mut c = Self {
+            xyz,
+            cost,
+            gamma: 1.0,
+        };
+        c.set_curve(curve);
+        c
+    }
+
+    /// Its transfer curve (`gamma 1` reads back as linear, the same curve).
+    pub fn curve(&self) -> Curve {
+        match self.gamma {
+            0.0 => Curve::Srgb,
+            1.0 => Curve::Linear,
+            g => Curve::Gamma(g),
+        }
+    }
+
+    /// Sets its transfer curve.
+    pub fn set_curve(&mut self, curve: Curve) {
+        self.gamma = match curve {
+            Curve::Linear => 1.0,
+            Curve::Srgb => 0.0,
+            Curve::Gamma(g) => g,
+        };
+    }
 }
 
 /// What a mix is asked for.
@@ -185,7 +216,10 @@ impl<const M: usize> Channels<M> {
 
     /// Sets channel `i`'s transfer curve (the channel must exist).
     pub fn set_curve(&mut self, i: usize, curve: Curve) -> Result<(), MixError> {
-        self.list.get_mut(i).ok_or(MixError::Channels)?.curve = curve;
+        self.list
+            .get_mut(i)
+            .ok_or(MixError::Channels)?
+            .set_curve(curve);
         Ok(())
     }
 
@@ -214,12 +248,7 @@ impl<const M: usize> Channels<M> {
         }
         let [x, y] = p.xy();
         let z = 1.0 - x - y;
-        // chromaticity constraints, multiplied through by y: Σ dᵢ·bᵢ = 0
-        let mut b = [[0.0f32; 2]; M];
-        for (bi, ai) in b.iter_mut().zip(a.iter()) {
-            *bi = [y * ai[0] - x * ai[1], y * ai[2] - z * ai[1]];
-        }
-        let (y_max, brightest) = brightest(&a[..n], &b[..n]);
+        let (y_max, brightest) = brightest(&a[..n], [x, y, z]);
         if !(y_max > 1e-6) {
             return Err(MixError::OutOfGamut);
         }
@@ -228,9 +257,7 @@ impl<const M: usize> Channels<M> {
         if lum < 1.0 && n > 3 {
             let ly = lum * y_max;
             let t = [x / y * ly, ly, z / y * ly];
-            let costs: [f32; M] =
-                core::array::from_fn(|i| self.list.get(i).map_or(0.0, |c| c.cost));
-            if let Some(v) = least_cost(&a[..n], &costs[..n], t) {
+            if let Some(v) = least_cost(&a[..n], &self.list, t) {
                 return Ok(v);
             }
         }
@@ -247,7 +274,7 @@ impl<const M: usize> Channels<M> {
     pub fn duties(&self, d: &[f32; M], max: u16) -> [u16; M] {
         let mut out = [0u16; M];
         for (i, c) in self.list.iter().enumerate() {
-            out[i] = quantize(c.curve.transfer().encode(d[i]), max);
+            out[i] = quantize(c.curve().transfer().encode(d[i]), max);
         }
         out
     }
@@ -267,39 +294,44 @@ fn fixed<const M: usize>(n: usize, free: &[usize], mask: u32) -> [f32; M] {
     d
 }
 
-/// The vertex of greatest `Σ dᵢYᵢ` on the chromaticity constraints `Σ dᵢbᵢ = 0` (module docs,
-/// step 1): per pair of free duties, every 0/1 setting of the others, a 2×2 solve (Cramer).
-fn brightest<const M: usize>(a: &[[f32; 3]], b: &[[f32; 2]]) -> (f32, [f32; M]) {
+/// The vertex of greatest `Σ dᵢYᵢ` at chromaticity `xyz = (x, y, z)`, i.e. on the constraints
+/// `Σ dᵢbᵢ = 0` with `bᵢ = (y·Xᵢ − x·Yᵢ, y·Zᵢ − z·Yᵢ)` (module docs, step 1): per pair of free
+/// duties, every 0/1 setting of the others, a 2×2 solve (Cramer).
+fn brightest<const M: usize>(a: &[[f32; 3]], xyz: [f32; 3]) -> (f32, [f32; M]) {
     let n = a.len();
+    let [x, y, z] = xyz;
+    let bv = |i: usize| [y * a[i][0] - x * a[i][1], y * a[i][2] - z * a[i][1]];
     let mut best = (0.0f32, [0.0f32; M]);
     for p in 0..n {
         for q in p + 1..n {
-            let det = b[p][0] * b[q][1] - b[q][0] * b[p][1];
+            let (bp, bq) = (bv(p), bv(q));
+            let det = bp[0] * bq[1] - bq[0] * bp[1];
             if det.abs() < 1e-12 {
                 continue;
             }
             for mask in 0u32..1 << (n - 2) {
                 let d = fixed::<M>(n, &[p, q], mask);
-                let (mut r0, mut r1, mut y) = (0.0f32, 0.0f32, 0.0f32);
+                let (mut r0, mut r1, mut lum) = (0.0f32, 0.0f32, 0.0f32);
                 for i in 0..n {
                     if d[i] > 0.0 {
-                        r0 -= b[i][0];
-                        r1 -= b[i][1];
-                        y += a[i][1];
+                        let bi = bv(i);
+                        r0 -= bi[0];
+                        r1 -= bi[1];
+                        lum += a[i][1];
                     }
                 }
-                let dp = (r0 * b[q][1] - r1 * b[q][0]) / det;
-                let dq = (b[p][0] * r1 - b[p][1] * r0) / det;
+                let dp = (r0 * bq[1] - r1 * bq[0]) / det;
+                let dq = (bp[0] * r1 - bp[1] * r0) / det;
                 if !(unit(dp) && unit(dq)) {
                     continue;
                 }
                 let (dp, dq) = (dp.clamp(0.0, 1.0), dq.clamp(0.0, 1.0));
-                y += a[p][1] * dp + a[q][1] * dq;
-                if y > best.0 {
+                lum += a[p][1] * dp + a[q][1] * dq;
+                if lum > best.0 {
                     let mut d = d;
                     d[p] = dp;
                     d[q] = dq;
-                    best = (y, d);
+                    best = (lum, d);
                 }
             }
         }
@@ -310,7 +342,11 @@ fn brightest<const M: usize>(a: &[[f32; 3]], b: &[[f32; 2]]) -> (f32, [f32; M]) 
 /// The vertex of least `Σ cᵢdᵢ` of `{A·d = t, 0 ≤ d ≤ 1}` (module docs, step 2): per triple of
 /// free duties one 3×3 inverse, then every 0/1 setting of the others; `None` when no vertex is
 /// within the tolerance.
-fn least_cost<const M: usize>(a: &[[f32; 3]], cost: &[f32], t: [f32; 3]) -> Option<[f32; M]> {
+fn least_cost<const M: usize>(
+    a: &[[f32; 3]],
+    channels: &[Channel],
+    t: [f32; 3],
+) -> Option<[f32; M]> {
     let n = a.len();
     let mut best = (f32::INFINITY, [0.0f32; M]);
     for i in 0..n {
@@ -328,7 +364,7 @@ fn least_cost<const M: usize>(a: &[[f32; 3]], cost: &[f32], t: [f32; 3]) -> Opti
                             for r in 0..3 {
                                 rhs[r] -= a[q][r];
                             }
-                            c += cost[q];
+                            c += channels[q].cost;
                         }
                     }
                     let free = inv.map(|row| row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]);
@@ -337,7 +373,7 @@ fn least_cost<const M: usize>(a: &[[f32; 3]], cost: &[f32], t: [f32; 3]) -> Opti
                     }
                     for (col, v) in [i, j, k].into_iter().zip(free) {
                         d[col] = v.clamp(0.0, 1.0);
-                        c += cost[col] * d[col];
+                        c += channels[col].cost * d[col];
                     }
                     if c < best.0 {
                         best = (c, d);
@@ -569,11 +605,7 @@ mod tests {
         .into_iter()
         .enumerate()
         {
-            let ch = Channel {
-                xyz,
-                cost: 1.0,
-                curve: Curve::Linear,
-            };
+            let ch = Channel::new(xyz, 1.0, Curve::Linear);
             c.set(i, ch).unwrap();
         }
         c

@@ -57,11 +57,7 @@ fn mix(checks: &mut Checks, counter: &mut Counter) {
         let mut m = DeviceMixer::new();
         for (i, [x, y, big_y]) in CHANNELS.iter().take(n).enumerate() {
             let xyz = [x / y * big_y, *big_y, (1.0 - x - y) / y * big_y];
-            let c = Channel {
-                xyz,
-                cost: 1.0,
-                curve: Curve::Gamma(2.2),
-            };
+            let c = Channel::new(xyz, 1.0, Curve::Gamma(2.2));
             let _ = m.channels.set(i, c);
         }
         let goal = Goal::Cct {
