@@ -93,9 +93,7 @@ fn main() -> ! {
             // a new fade: its first step one period from now
             pacer = Pacer::new(MILLIS.load(Ordering::Relaxed));
         } else if controller.mixer.shown().is_some() {
-            // QEMU has no PWM for the mixed channels: their duties go to the log
-            let n = controller.mixer.channels.list().len();
-            defmt::info!("mix duty {=[?]}", controller.mix_duty()[..n]);
+            log_mix(controller);
         }
         let duty = controller.duty();
         if led.set(duty).is_ok() {
@@ -132,6 +130,14 @@ fn answer(
     let _ = reply.write(uart);
     uart.write_byte(b'\n');
     true
+}
+
+/// The mixed channels' duties (QEMU has no PWM for them): `mix duty [..]`. Not inlined: the
+/// solve behind them is not wanted in `main`'s frame, which lives for ever.
+#[inline(never)]
+fn log_mix(controller: &Controller) {
+    let n = controller.mixer.channels.list().len();
+    defmt::info!("mix duty {=[?]}", controller.mix_duty()[..n]);
 }
 
 /// One fade step, its duties logged (`fade K/N duty [..] stack=BYTES`).

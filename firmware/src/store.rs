@@ -223,24 +223,43 @@ pub fn handle<F: NorFlash>(
 ) -> Reply {
     let parsed = parse(line);
     match parsed {
-        Ok(Command::Save) => match store
-            .save(&controller.record(), buffer)
-            .and_then(|()| store.save_mix(&mix::Record(&controller.mixer), buffer))
-        {
-            Ok(()) => Reply::Done("save"),
-            Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
-        },
-        Ok(Command::Load) => match restore(controller, store, buffer).and_then(|()| {
-            match restore_mix(controller, store, buffer) {
-                Err(LoadError::NotSaved) => Ok(()),
-                r => r,
-            }
-        }) {
-            Ok(()) => Reply::Done("load"),
-            Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
-            Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
-        },
+        Ok(Command::Save) => save(controller, store, buffer),
+        Ok(Command::Load) => load(controller, store, buffer),
         other => controller.handle(other),
+    }
+}
+
+/// `save`: both records. Not inlined: `sequential-storage`'s futures are large, and `handle`'s
+/// frame is on every command's path.
+#[inline(never)]
+fn save<F: NorFlash>(controller: &Controller, store: &mut Store<F>, buffer: &mut Buffer) -> Reply {
+    match store
+        .save(&controller.record(), buffer)
+        .and_then(|()| store.save_mix(&mix::Record(&controller.mixer), buffer))
+    {
+        Ok(()) => Reply::Done("save"),
+        Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
+    }
+}
+
+/// `load`: the calibration record, then the mixer's if one was saved. Not inlined (see
+/// [`save`]).
+#[inline(never)]
+fn load<F: NorFlash>(
+    controller: &mut Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Reply {
+    let r = restore(controller, store, buffer).and_then(|()| {
+        match restore_mix(controller, store, buffer) {
+            Err(LoadError::NotSaved) => Ok(()),
+            r => r,
+        }
+    });
+    match r {
+        Ok(()) => Reply::Done("load"),
+        Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
+        Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
     }
 }
 

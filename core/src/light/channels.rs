@@ -512,6 +512,12 @@ pub struct Mixer<const M: usize> {
     fade: Fade,
 }
 
+impl<const M: usize> Default for Mixer<M> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<const M: usize> Mixer<M> {
     /// No channels, no fade, nothing shown.
     pub const fn new() -> Self {
