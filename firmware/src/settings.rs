@@ -1,6 +1,10 @@
 //! The controller's settings as one versioned flash record: calibration (primaries'
 //! chromaticities and luminances), the three transfer curves, the gamut map and the observer.
 //!
+//! The multi-channel mixer's settings are a second record of their own ([`crate::mix`], map
+//! key 2), so this format stays 1 and the store's work buffer, sized by this record, does not
+//! grow.
+//!
 //! Record format [`FORMAT`] = 1, little-endian, at most [`RECORD_MAX`] bytes:
 //!
 //! | bytes | field |
