@@ -31,19 +31,32 @@ pub enum Transfer {
 }
 
 impl Transfer {
-    /// A tabulated curve; values must be finite and non-decreasing, 2 ≤ n ≤ [`TABLE_MAX`].
-    pub fn table(values: &[f32]) -> Result<Self, Error> {
-        if values.len() < 2 || values.len() > TABLE_MAX {
+    /// Whether `values` make a table ([`Transfer::table`]'s conditions), read as they come: a
+    /// device checks a stored table without a copy of it.
+    pub fn check_table(values: impl IntoIterator<Item = f32>) -> Result<(), Error> {
+        let mut n = 0;
+        let mut last = f32::NEG_INFINITY;
+        for v in values {
+            if n == TABLE_MAX {
+                return Err(Error::Capacity);
+            }
+            if !v.is_finite() {
+                return Err(Error::NonFinite(n));
+            }
+            if v < last {
+                return Err(Error::NotIncreasing(n));
+            }
+            (last, n) = (v, n + 1);
+        }
+        if n < 2 {
             return Err(Error::Capacity);
         }
-        for (i, v) in values.iter().enumerate() {
-            if !v.is_finite() {
-                return Err(Error::NonFinite(i));
-            }
-            if i > 0 && *v < values[i - 1] {
-                return Err(Error::NotIncreasing(i));
-            }
-        }
+        Ok(())
+    }
+
+    /// A tabulated curve; values must be finite and non-decreasing, 2 ≤ n ≤ [`TABLE_MAX`].
+    pub fn table(values: &[f32]) -> Result<Self, Error> {
+        Self::check_table(values.iter().copied())?;
         let mut t = Vec::new();
         // capacity checked above
         let _ = t.extend_from_slice(values);

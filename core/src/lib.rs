@@ -50,7 +50,10 @@
 //! (two tables, two tolerances); the two writers of `pixel::export` (a C header and a Rust
 //! source: the same tables in two languages); the documented constants and result structs of
 //! `light::cct` and `light::tm30` (one doc line per item); the tests of `pixel::transform`
-//! (one `Options` literal and one `PanelTransform` each).
+//! (one `Options` literal and one `PanelTransform` each). `light::channels` inverts 3×3 systems
+//! in f32 by the adjugate and solves 2×2 ones by Cramer's rule rather than calling
+//! [`solve`]/[`Mat3::inverse`] (f64): on the Cortex-M4F f64 is soft float and a six-channel mix
+//! takes 20 inverses and 240 2×2 solves per fade step (docs/leds.md).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -22,8 +22,8 @@ use specpoly_core::{
     Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
 use specpoly_protocol::{
-    ColourReport, Command, CurveSummary, ErrorCode, Fault, Reflectance, Reply, StateReport,
-    PROTOCOL_VERSION,
+    mix, ColourReport, Command, CurveSummary, DeviceMixer, ErrorCode, Fault, Reflectance, Reply,
+    StateReport, MIX_CHANNELS, PROTOCOL_VERSION,
 };
 
 /// The LED colour controller.
@@ -36,6 +36,8 @@ pub struct Controller {
     target: Xyz,
     duty: [u16; 3],
     max: u16,
+    /// The multi-channel mixer (`channel`, `xy`, `cct`, `fade`: [`crate::mix`]).
+    pub mixer: DeviceMixer,
 }
 
 impl Controller {
@@ -59,6 +61,7 @@ impl Controller {
             target: Xyz::default(),
             duty: [0; 3],
             max,
+            mixer: DeviceMixer::new(),
         }
     }
 
@@ -72,6 +75,22 @@ impl Controller {
     /// The duties the LED should show now.
     pub fn duty(&self) -> [u16; 3] {
         self.duty
+    }
+
+    /// The full-scale duty.
+    pub fn max(&self) -> u16 {
+        self.max
+    }
+
+    /// One fade step of the mixer (the next point solved): `(step, steps, duties)`, or `None`
+    /// when no fade is under way ([`crate::fade`]).
+    pub fn fade_step(&mut self) -> Option<(u16, u16, [u16; MIX_CHANNELS])> {
+        self.mixer.step(self.max)
+    }
+
+    /// The mixed channels' duties shown now (solved again: not kept in RAM).
+    pub fn mix_duty(&self) -> [u16; MIX_CHANNELS] {
+        self.mixer.duty(self.max)
     }
 
     /// The calibrated display model.
@@ -134,6 +153,12 @@ impl Controller {
             }
             // answered with the flash by `store::handle`; a controller alone has no storage
             Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
+            // the shared answer of the mixing commands (the host's simulated controller too)
+            // the shared answer of the mixing commands (the host's simulated controller too)
+            Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
+                mix::answer(&mut self.mixer, &cmd, self.max)
+                    .unwrap_or(Reply::Error(Fault::new(ErrorCode::UnknownCommand)))
+            }
         }
     }
 

@@ -5,6 +5,9 @@
 //! §7.3). Commands arrive as lines on the UART ([`specpoly_protocol`], `PROTOCOL.md`); the
 //! [`controller`] computes XYZ and duties; the [`led`] driver sets three PWM channels.
 //!
+//! With 3–6 LED channels uploaded (`channel`), the controller also solves `xy` and `cct` targets
+//! on the device and fades between them ([`mix`], [`fade`]; `specpoly_core::light::channels`).
+//!
 //! Settings survive resets in flash ([`settings`]: the record, [`store`]: `sequential-storage`).
 //! The controller, the driver and the store are target-independent and unit-tested on the host
 //! (the store against `sequential-storage`'s mock flash); the board
@@ -19,8 +22,10 @@
 #![warn(missing_docs)]
 
 pub mod controller;
+pub mod fade;
 pub mod led;
 pub mod lights;
+pub mod mix;
 pub mod settings;
 pub mod store;
 

@@ -2,11 +2,14 @@
 //! in flash are loaded (or the defaults kept, with the reason logged). Lines from UART0 go
 //! through the shared protocol parser to the [`Controller`] (`save`/`load` to the settings
 //! [`Store`]); the reply goes back on the UART and the duties to the LED, and (QEMU has no PWM)
-//! to the defmt log: `duty R G B max=M stack=BYTES`.
+//! to the defmt log: `duty R G B max=M stack=BYTES`. Mixed channels (`channel`, `xy`, `cct`)
+//! are logged as `mix duty [..]`, fade steps as `fade K/N duty [..] stack=BYTES`, one every
+//! 10 ms of SysTick time.
 #![no_std]
 #![no_main]
 
 use core::mem::MaybeUninit;
+use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m_rt::{entry, exception};
 use specpoly_firmware::board::{
     flash::{RamFlash, PAGE, PAGES},
@@ -14,12 +17,16 @@ use specpoly_firmware::board::{
     stack,
     uart::Uart,
 };
+use specpoly_firmware::fade::Pacer;
 use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
 use specpoly_protocol::{Fault, LineReader, Reply, MAX_LINE};
 
 /// SysTick period: the core sleeps in `wfi` and wakes on a UART byte or after 1 ms at most.
 const TICK: u32 = 25_000;
+
+/// Milliseconds since start (SysTick), for fade steps.
+static MILLIS: AtomicU32 = AtomicU32::new(0);
 
 #[entry]
 fn main() -> ! {
@@ -61,8 +68,17 @@ fn main() -> ! {
         Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
         Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
     }
+    match store::restore_mix(controller, &mut store, buffer) {
+        Ok(()) => defmt::info!("mix settings loaded from flash"),
+        Err(LoadError::NotSaved) => {}
+        Err(e) => defmt::warn!("saved mix settings ignored ({=str})", e.name()),
+    }
     defmt::info!("specpoly-led ready");
+    let mut pacer = Pacer::new(0);
     loop {
+        if controller.mixer.fading() && pacer.due(MILLIS.load(Ordering::Relaxed)) {
+            fade_step(controller);
+        }
         let Some(byte) = uart.read() else {
             cortex_m::asm::wfi();
             continue;
@@ -72,6 +88,12 @@ fn main() -> ! {
         };
         if !answer(line, controller, &mut store, buffer, &mut uart) {
             continue;
+        }
+        if controller.mixer.fading() {
+            // a new fade: its first step one period from now
+            pacer = Pacer::new(MILLIS.load(Ordering::Relaxed));
+        } else if controller.mixer.shown().is_some() {
+            log_mix(controller);
         }
         let duty = controller.duty();
         if led.set(duty).is_ok() {
@@ -110,5 +132,30 @@ fn answer(
     true
 }
 
+/// The mixed channels' duties (QEMU has no PWM for them): `mix duty [..]`. Not inlined: the
+/// solve behind them is not wanted in `main`'s frame, which lives for ever.
+#[inline(never)]
+fn log_mix(controller: &Controller) {
+    let n = controller.mixer.channels.list().len();
+    defmt::info!("mix duty {=[?]}", controller.mix_duty()[..n]);
+}
+
+/// One fade step, its duties logged (`fade K/N duty [..] stack=BYTES`).
+#[inline(never)]
+fn fade_step(controller: &mut Controller) {
+    if let Some((k, n, duty)) = controller.fade_step() {
+        let channels = controller.mixer.channels.list().len();
+        defmt::info!(
+            "fade {=u16}/{=u16} duty {=[?]} stack={=usize}",
+            k,
+            n,
+            duty[..channels],
+            stack::high_water()
+        );
+    }
+}
+
 #[exception]
-fn SysTick() {}
+fn SysTick() {
+    MILLIS.fetch_add(1, Ordering::Relaxed);
+}

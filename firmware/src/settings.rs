@@ -1,6 +1,10 @@
 //! The controller's settings as one versioned flash record: calibration (primaries'
 //! chromaticities and luminances), the three transfer curves, the gamut map and the observer.
 //!
+//! The multi-channel mixer's settings are a second record of their own ([`crate::mix`], map
+//! key 2), so this format stays 1 and the store's work buffer, sized by this record, does not
+//! grow.
+//!
 //! Record format [`FORMAT`] = 1, little-endian, at most [`RECORD_MAX`] bytes:
 //!
 //! | bytes | field |
@@ -139,17 +143,25 @@ pub fn read(bytes: &[u8], mut curves: Option<&mut [Transfer; 3]>) -> Result<Head
             }
             3 => {
                 let n = r.u8()? as usize;
-                let mut v = [0.0f32; TABLE_MAX];
-                if n > TABLE_MAX {
-                    return Err(RecordError::Invalid);
-                }
-                for x in v.iter_mut().take(n) {
-                    *x = r.f32()?;
-                }
-                let table = Transfer::table(&v[..n]).map_err(|_| RecordError::Invalid)?;
-                match curves.as_deref_mut() {
-                    Some(c) => c[i] = table,
-                    None => drop(table),
+                let values = r
+                    .bytes
+                    .get(r.at..r.at + 4 * n)
+                    .ok_or(RecordError::Invalid)?;
+                r.at += 4 * n;
+                let floats = values
+                    .chunks_exact(4)
+                    .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+                // checked where it lies, then read straight into the controller's curve: no
+                // 64-point copy on the stack (the deepest path is a `load` of such a record)
+                Transfer::check_table(floats.clone()).map_err(|_| RecordError::Invalid)?;
+                if let Some(c) = curves.as_deref_mut() {
+                    c[i] = Transfer::Table(heapless::Vec::new());
+                    if let Transfer::Table(v) = &mut c[i] {
+                        for x in floats {
+                            // at most TABLE_MAX, checked above
+                            let _ = v.push(x);
+                        }
+                    }
                 }
                 continue;
             }

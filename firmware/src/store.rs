@@ -12,6 +12,7 @@
 //! [`handle`] answers the `save` and `load` commands; the firmware calls [`Store::load`] at
 //! start-up and logs why it used the defaults.
 
+use crate::mix;
 use crate::settings::{self, Record, RecordError, RECORD_MAX};
 use crate::Controller;
 use core::ops::Range;
@@ -89,12 +90,25 @@ pub enum SaveError {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BadRange;
 
-/// Written from the borrowed record; read back as bytes (`fetch_item::<&[u8]>`) and decoded
-/// by [`settings::read`], so no owned copy of the settings is ever built.
-impl<'a> Value<'a> for Record<'_> {
+/// What the store writes: the settings record or the mixer's, borrowed. One type for both, so
+/// `sequential-storage`'s writer is compiled once (≈ 1 KiB of flash each). Written from the
+/// borrowed record; read back as bytes (`fetch_item::<&[u8]>`) and decoded by
+/// [`settings::read`] or [`mix::read`], so no owned copy of the settings is ever built.
+#[derive(Clone, Copy, Debug)]
+pub enum Item<'a> {
+    /// The calibration record ([`settings`], key [`KEY`]).
+    Settings(Record<'a>),
+    /// The mixer's record ([`mix`], key [`mix::KEY`]).
+    Mix(mix::Record<'a>),
+}
+
+impl<'a> Value<'a> for Item<'_> {
     fn serialize_into(&self, buffer: &mut [u8]) -> Result<usize, SerializationError> {
-        self.encode(buffer)
-            .ok_or(SerializationError::BufferTooSmall)
+        match self {
+            Item::Settings(r) => r.encode(buffer),
+            Item::Mix(r) => r.encode(buffer),
+        }
+        .ok_or(SerializationError::BufferTooSmall)
     }
 
     fn deserialize_from(_: &'a [u8]) -> Result<(Self, usize), SerializationError> {
@@ -121,10 +135,11 @@ impl<F: NorFlash> Store<F> {
     /// Appends `settings` as the newest record. A range the crate finds corrupted beyond its
     /// own repair (bytes that were never its pages) is erased once and the save retried.
     pub fn save(&mut self, record: &Record, buffer: &mut Buffer) -> Result<(), SaveError> {
-        match block_on(self.map.store_item(&mut buffer.0, &KEY, record)) {
+        let item = Item::Settings(*record);
+        match block_on(self.map.store_item(&mut buffer.0, &KEY, &item)) {
             Err(Error::Corrupted { .. }) => {
                 block_on(self.map.erase_all()).map_err(|_| SaveError::Storage)?;
-                block_on(self.map.store_item(&mut buffer.0, &KEY, record))
+                block_on(self.map.store_item(&mut buffer.0, &KEY, &item))
                     .map_err(|_| SaveError::Storage)
             }
             r => r.map_err(|_| SaveError::Storage),
@@ -144,6 +159,24 @@ impl<F: NorFlash> Store<F> {
                 Ok(false) => Err(LoadError::Corrupted),
                 Err(e) => Err(e),
             },
+            Err(Error::Corrupted { .. }) => Err(LoadError::Corrupted),
+            Err(_) => Err(LoadError::Storage),
+        }
+    }
+
+    /// Appends the mixer's record (after [`Store::save`], which repairs the range if need be).
+    pub fn save_mix(&mut self, record: &mix::Record, buffer: &mut Buffer) -> Result<(), SaveError> {
+        block_on(
+            self.map
+                .store_item(&mut buffer.0, &mix::KEY, &Item::Mix(*record)),
+        )
+        .map_err(|_| SaveError::Storage)
+    }
+
+    /// The newest intact mixer record's bytes (in `buffer`); `None` when none was saved.
+    pub fn load_mix<'b>(&mut self, buffer: &'b mut Buffer) -> Result<Option<&'b [u8]>, LoadError> {
+        match block_on(self.map.fetch_item::<&[u8]>(&mut buffer.0, &mix::KEY)) {
+            Ok(v) => Ok(v),
             Err(Error::Corrupted { .. }) => Err(LoadError::Corrupted),
             Err(_) => Err(LoadError::Storage),
         }
@@ -190,16 +223,43 @@ pub fn handle<F: NorFlash>(
 ) -> Reply {
     let parsed = parse(line);
     match parsed {
-        Ok(Command::Save) => match store.save(&controller.record(), buffer) {
-            Ok(()) => Reply::Done("save"),
-            Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
-        },
-        Ok(Command::Load) => match restore(controller, store, buffer) {
-            Ok(()) => Reply::Done("load"),
-            Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
-            Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
-        },
+        Ok(Command::Save) => save(controller, store, buffer),
+        Ok(Command::Load) => load(controller, store, buffer),
         other => controller.handle(other),
+    }
+}
+
+/// `save`: both records. Not inlined: `sequential-storage`'s futures are large, and `handle`'s
+/// frame is on every command's path.
+#[inline(never)]
+fn save<F: NorFlash>(controller: &Controller, store: &mut Store<F>, buffer: &mut Buffer) -> Reply {
+    match store
+        .save(&controller.record(), buffer)
+        .and_then(|()| store.save_mix(&mix::Record(&controller.mixer), buffer))
+    {
+        Ok(()) => Reply::Done("save"),
+        Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
+    }
+}
+
+/// `load`: the calibration record, then the mixer's if one was saved. Not inlined (see
+/// [`save`]).
+#[inline(never)]
+fn load<F: NorFlash>(
+    controller: &mut Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Reply {
+    let r = restore(controller, store, buffer).and_then(|()| {
+        match restore_mix(controller, store, buffer) {
+            Err(LoadError::NotSaved) => Ok(()),
+            r => r,
+        }
+    });
+    match r {
+        Ok(()) => Reply::Done("load"),
+        Err(LoadError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
+        Err(_) => Reply::Error(Fault::new(ErrorCode::NotSaved)),
     }
 }
 
@@ -214,6 +274,20 @@ pub fn restore<F: NorFlash>(
     controller
         .apply_record(bytes)
         .map_err(|_| LoadError::NotApplicable)
+}
+
+/// Applies the newest saved mixer record ([`crate::mix`]: channels, curves, fade time);
+/// [`LoadError::NotSaved`] when there is none. On an error the mixer is unchanged.
+pub fn restore_mix<F: NorFlash>(
+    controller: &mut Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Result<(), LoadError> {
+    let bytes = store.load_mix(buffer)?.ok_or(LoadError::NotSaved)?;
+    mix::read(bytes, &mut controller.mixer).map_err(|e| match e {
+        RecordError::Format(v) => LoadError::Format(v),
+        RecordError::Invalid => LoadError::Invalid,
+    })
 }
 
 /// A blocking `embedded-storage` NOR flash seen through the async traits `sequential-storage`

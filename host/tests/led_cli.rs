@@ -4,7 +4,7 @@
 //! no panic. (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
 
 use serialport::{SerialPort, TTYPort};
-use specpoly::led::Model;
+use specpoly::led::{MixModel, Model};
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
 use specpoly_protocol::{Command, CurveSummary, LineReader, Reply, StateReport, MAX_LINE};
 use std::io::{ErrorKind, Read, Write};
@@ -77,7 +77,7 @@ fn srgb_model() -> Model {
     }
 }
 
-fn answer(b: Behaviour, model: &Model, line: &str) -> String {
+fn answer(b: Behaviour, model: &Model, mix: &mut MixModel, line: &str) -> String {
     let reply = match (b, Command::parse(line)) {
         (Behaviour::Garbage, _) => return "bonjour".into(),
         (Behaviour::Version2, _) => {
@@ -112,6 +112,17 @@ fn answer(b: Behaviour, model: &Model, line: &str) -> String {
                 ..
             }),
         ) => Reply::Colour(model.colour(model.reflectance_xyz(illuminant, &product))),
+        // the mixing commands: the host's simulated controller (the firmware's own calls)
+        (_, Ok(c @ (Command::Channel(_) | Command::Mix(_) | Command::Fade(_)))) => {
+            match mix.answer(&c) {
+                Some(Reply::Mix(mut r)) if matches!(b, Behaviour::Wrong) => {
+                    r.duty[0] = r.duty[0].saturating_add(100);
+                    Reply::Mix(r)
+                }
+                Some(r) => r,
+                None => Reply::Done("cal"),
+            }
+        }
         (_, Ok(_)) => Reply::Done("cal"),
     };
     let mut s = String::new();
@@ -121,6 +132,7 @@ fn answer(b: Behaviour, model: &Model, line: &str) -> String {
 
 fn serve(mut port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
     let model = srgb_model();
+    let mut mix = MixModel::new(model.max);
     let mut lines = LineReader::<MAX_LINE>::new();
     while !stop.load(Ordering::SeqCst) {
         let mut buf = [0u8; 256];
@@ -142,7 +154,7 @@ fn serve(mut port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
             if matches!(b, Behaviour::Silent) {
                 continue;
             }
-            let out = answer(b, &model, &line);
+            let out = answer(b, &model, &mut mix, &line);
             let _ = port.write_all(out.as_bytes());
             let _ = port.write_all(b"\r\n");
             let _ = port.flush();
@@ -231,6 +243,86 @@ fn a_device_that_disagrees_fails_the_check() {
     let f = fake(Behaviour::Wrong);
     let out = specpoly(&["led", "--port", &f.path, "--check", "xyz", "20", "21", "22"]);
     fails_cleanly(&out, "disagrees with the host");
+}
+
+/// `--channel` uploads the channels' XYZ from their spectra, then `cct`/`xy` are mixed on the
+/// device; `--check` recomputes the mix from the spectra (`specpoly::led::mix_check`).
+#[test]
+fn channels_are_uploaded_and_mixes_checked() {
+    let leds = concat!(env!("CARGO_MANIFEST_DIR"), "/../data/leds/rgbwa.csv");
+    let mut args: Vec<String> = Vec::new();
+    for c in ["red", "green", "blue", "white", "amber"] {
+        args.push("--channel".into());
+        args.push(format!("{c}={leds}#{c}"));
+    }
+    let run = |b: Behaviour, extra: &[&str]| {
+        let f = fake(b);
+        let mut all: Vec<&str> = vec!["led", "--port", &f.path];
+        all.extend(args.iter().map(String::as_str));
+        all.extend(extra);
+        specpoly(&all)
+    };
+    for (extra, key) in [
+        (
+            &["--check", "cct", "3000", "--lum", "0.8"][..],
+            "ok mix xy=",
+        ),
+        (
+            &[
+                "--optimize",
+                "efficacy",
+                "--fade",
+                "500",
+                "xy",
+                "0.3127",
+                "0.329",
+                "--check",
+            ],
+            "steps=50",
+        ),
+        (&["cct", "4000", "--duv", "-0.006"], "ok mix"),
+    ] {
+        let out = run(Behaviour::Faithful, extra);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(stdout.contains(key), "{extra:?}: {stdout}");
+        if extra.contains(&"--check") {
+            assert!(stdout.contains("check: the host agrees"), "{stdout}");
+        }
+    }
+    let out = run(
+        Behaviour::Wrong,
+        &["--check", "cct", "3000", "--lum", "0.8"],
+    );
+    fails_cleanly(&out, "disagrees with the host");
+    let out = run(Behaviour::Faithful, &["xy", "0.08", "0.85"]);
+    fails_cleanly(&out, "out-of-gamut");
+    // usage: too few channels, a CCT outside the locus table
+    let f = fake(Behaviour::Faithful);
+    for bad in [
+        vec![
+            "led",
+            "--port",
+            &f.path,
+            "--channel",
+            "r=x.csv",
+            "cct",
+            "3000",
+        ],
+        vec!["led", "--port", &f.path, "cct", "500"],
+    ] {
+        let out = specpoly(&bad);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{bad:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }
 
 #[test]

@@ -1,9 +1,11 @@
 //! Commands (host → controller): parsing and formatting. The grammar is in firmware/PROTOCOL.md.
 
+use crate::mix::ChannelCommand;
 use crate::number::{parse_f32, write_f32, NumberError};
 use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
 use core::str::SplitAsciiWhitespace;
+use specpoly_core::light::channels::Goal;
 use specpoly_core::{
     display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Observer, PaperSpectrum,
     Spectrum, Transfer, Xyy, Xyz,
@@ -145,9 +147,15 @@ pub enum Command {
     Save,
     /// `load`: the settings last saved, now.
     Load,
+    /// `channel …`: a mixing channel ([`crate::mix`]).
+    Channel(ChannelCommand),
+    /// `xy x y [lum L]` or `cct K [duv D] [lum L]`: a mix of the channels.
+    Mix(Goal),
+    /// `fade MS`: the fade time for new mix targets.
+    Fade(u32),
 }
 
-fn number(tok: &str, at: usize) -> Result<f32, Fault> {
+pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
     parse_f32(tok).map_err(|e| match e {
         NumberError::Syntax => Fault::at(ErrorCode::BadNumber, at),
         NumberError::Range => Fault::at(ErrorCode::OutOfRange, at),
@@ -155,18 +163,18 @@ fn number(tok: &str, at: usize) -> Result<f32, Fault> {
 }
 
 /// Words of a line with their positions.
-struct Words<'a> {
+pub(crate) struct Words<'a> {
     it: SplitAsciiWhitespace<'a>,
     pos: usize,
 }
 
 impl<'a> Words<'a> {
-    fn next(&mut self) -> Option<(&'a str, usize)> {
+    pub(crate) fn next(&mut self) -> Option<(&'a str, usize)> {
         let w = self.it.next()?;
         self.pos += 1;
         Some((w, self.pos))
     }
-    fn need(&mut self) -> Result<(&'a str, usize), Fault> {
+    pub(crate) fn need(&mut self) -> Result<(&'a str, usize), Fault> {
         self.next()
             .ok_or(Fault::at(ErrorCode::MissingArgument, self.pos + 1))
     }
@@ -330,6 +338,10 @@ impl Command {
                     factors,
                 }
             }
+            "channel" => crate::mix::parse_channel(&mut w)?,
+            "xy" => crate::mix::parse_goal(&mut w, false)?,
+            "cct" => crate::mix::parse_goal(&mut w, true)?,
+            "fade" => crate::mix::parse_fade(&mut w)?,
             _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
         };
         w.end()?;
@@ -389,6 +401,9 @@ impl Command {
                 product,
                 ..
             } => write_reflect(w, *illuminant, core::slice::from_ref(product)),
+            Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
+                crate::mix::write_command(w, self)
+            }
         }
     }
 }

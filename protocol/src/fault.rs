@@ -39,11 +39,15 @@ pub enum ErrorCode {
     /// A colour command whose result is not a finite f32 (an overflow inside the colour
     /// conversion); nothing changes (`not-finite`).
     NotFinite,
+    /// A mix target with fewer than three channels set (`no-channels`).
+    NoChannels,
+    /// A mix target the channels cannot make (`out-of-gamut`); nothing changes.
+    OutOfGamut,
 }
 
 impl ErrorCode {
     /// Every code.
-    pub const ALL: [ErrorCode; 15] = [
+    pub const ALL: [ErrorCode; 17] = [
         ErrorCode::TooLong,
         ErrorCode::BadByte,
         ErrorCode::UnknownCommand,
@@ -59,6 +63,8 @@ impl ErrorCode {
         ErrorCode::Storage,
         ErrorCode::NotSaved,
         ErrorCode::NotFinite,
+        ErrorCode::NoChannels,
+        ErrorCode::OutOfGamut,
     ];
 
     /// The wire name.
@@ -79,6 +85,8 @@ impl ErrorCode {
             ErrorCode::Storage => "storage",
             ErrorCode::NotSaved => "not-saved",
             ErrorCode::NotFinite => "not-finite",
+            ErrorCode::NoChannels => "no-channels",
+            ErrorCode::OutOfGamut => "out-of-gamut",
         }
     }
 

@@ -8,6 +8,7 @@
 //!
 //! - [`LineReader`] assembles bounded lines from bytes;
 //! - [`Command`] is a request (host → controller), [`Reply`] an answer (controller → host);
+//! - [`mix`]: the multi-channel mixing commands and the one place they are answered;
 //! - [`number`] reads and writes decimals without `core`'s large float tables.
 //!
 //! `duplicates --repo protocol` lists two same-shape pairs, kept: the reply reader's `Keys`
@@ -20,12 +21,14 @@
 pub mod command;
 pub mod fault;
 pub mod line;
+pub mod mix;
 pub mod number;
 pub mod reply;
 
 pub use command::{write_reflect, Channels, Command, Reflectance};
 pub use fault::{ErrorCode, Fault};
 pub use line::LineReader;
+pub use mix::{ChannelCommand, DeviceMixer, MixReport, MIX_CHANNELS};
 pub use reply::{ColourReport, CurveSummary, Gamut, Reply, StateReport};
 
 /// Protocol version, reported by `hello` and `state`. Incremented when a command or reply

@@ -128,12 +128,16 @@ pub enum Reply {
     Colour(ColourReport),
     /// `ok state …`
     State(StateReport),
+    /// `ok mix …` ([`crate::mix`])
+    Mix(crate::mix::MixReport),
     /// `err CODE [at=N]`
     Error(Fault),
 }
 
 /// Settings acknowledged by [`Reply::Done`].
-pub const SETTINGS: [&str; 6] = ["cal", "trc", "map", "observer", "save", "load"];
+pub const SETTINGS: [&str; 8] = [
+    "cal", "trc", "map", "observer", "save", "load", "channel", "fade",
+];
 
 fn write_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
     w.write_char(' ')?;
@@ -226,6 +230,7 @@ impl Reply {
                 w.write_str(s.observer.name())?;
                 write_duty(w, s.duty, s.max)
             }
+            Reply::Mix(r) => crate::mix::write_report(w, r),
             Reply::Error(f) => f.write(w),
         }
     }
@@ -249,6 +254,9 @@ impl Reply {
         let kind = it.next().ok_or(bad)?;
         if let Some(s) = SETTINGS.iter().find(|s| **s == kind) {
             return Ok(Reply::Done(s));
+        }
+        if kind == "mix" {
+            return crate::mix::parse_report(it);
         }
         let mut keys = Keys::default();
         if kind == "hello" && it.next() != Some("specpoly-led") {

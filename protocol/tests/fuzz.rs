@@ -6,12 +6,13 @@
 //! toolchain or cargo-fuzz.
 
 use proptest::prelude::*;
+use specpoly_core::light::channels::{Curve, Goal};
 use specpoly_core::{
     DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum, Transfer, Xyy, Xyz,
 };
 use specpoly_protocol::{
-    write_reflect, Channels, ColourReport, Command, CurveSummary, ErrorCode, Fault, Gamut,
-    LineReader, Reflectance, Reply, StateReport, MAX_LINE, MAX_REPLY,
+    write_reflect, ChannelCommand, Channels, ColourReport, Command, CurveSummary, ErrorCode, Fault,
+    Gamut, LineReader, MixReport, Reflectance, Reply, StateReport, MAX_LINE, MAX_REPLY,
 };
 
 fn line_of(c: &Command) -> String {
@@ -85,6 +86,19 @@ const WORDS: &[&str] = &[
     "=",
     ",",
     "at=3",
+    "channel",
+    "curve",
+    "clear",
+    "xy",
+    "cct",
+    "duv",
+    "lum",
+    "fade",
+    "5",
+    "4000",
+    "mix",
+    "light=0.5,0.25,1",
+    "steps=3",
 ];
 
 fn spectrum_default(seed: f32) -> DefaultSpectrum {
@@ -197,6 +211,28 @@ proptest! {
     }
 
     #[test]
+    fn mix_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), d in proptest::array::uniform6(any::<u16>()), n in 3..=6u8, m in any::<u16>(), k in any::<u16>()) {
+        prop_assume!(v.iter().all(|x| x.is_finite()));
+        let mut r = MixReport {
+            xy: [v[0], v[1]],
+            lum: v[2],
+            light: [v[3], v[4], v[5], v[6], v[7], v[8]],
+            duty: d,
+            n,
+            max: m,
+            steps: k,
+        };
+        for i in n as usize..6 {
+            r.light[i] = 0.0;
+            r.duty[i] = 0;
+        }
+        let r = Reply::Mix(r);
+        let s = reply_of(&r);
+        prop_assert!(s.len() <= MAX_REPLY, "{} bytes", s.len());
+        prop_assert_eq!(Reply::parse(&s), Ok(r));
+    }
+
+    #[test]
     fn state_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), gm in any::<f32>()) {
         prop_assume!(v.iter().all(|x| x.is_finite()) && gm.is_finite());
         let r = Reply::State(StateReport {
@@ -256,6 +292,26 @@ fn every_command_round_trips() {
             product: Reflectance::Default(spectrum_default(-0.3)),
             factors: 1,
         },
+        Command::Channel(ChannelCommand::Set {
+            index: 5,
+            xyz: [0.95, 1.0, 0.85],
+            cost: 0.003,
+        }),
+        Command::Channel(ChannelCommand::Curve {
+            index: 0,
+            curve: Curve::Gamma(2.2),
+        }),
+        Command::Channel(ChannelCommand::Clear),
+        Command::Mix(Goal::Xy {
+            xy: [0.3127, 0.329],
+            lum: 0.5,
+        }),
+        Command::Mix(Goal::Cct {
+            cct: 4000.0,
+            duv: -0.006,
+            lum: 1.0,
+        }),
+        Command::Fade(600_000),
     ];
     for c in commands {
         let l = line_of(&c);

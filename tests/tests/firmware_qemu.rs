@@ -5,7 +5,9 @@
 //! - end to end: the host's `specpoly led` code ↔ QEMU's UART on a pseudo-terminal ↔ firmware,
 //!   whose every colour reply must agree with the host's independent f64 computation within
 //!   the one tolerance table `specpoly::led::check::TOLERANCES` (which `led --check` uses too);
-//! - the `fast-math` build (micromath): its colour error against the libm build, in ΔE00.
+//! - the `fast-math` build (micromath): its colour error against the libm build, in ΔE00;
+//! - multi-channel mixing (`channel`, `xy`, `cct`, `fade`): the firmware against the host's
+//!   simulated controller (equal replies) and the independent f64 check from the spectra.
 //!
 //! The firmware logs through defmt (semihosting under QEMU): QEMU's standard output carries
 //! binary frames, decoded here with `defmt-decoder` and the ELF's `.defmt` table ([`log_of`]).
@@ -14,7 +16,10 @@
 //! without them these tests fail with a message saying so. They never skip.
 
 use specpoly::led::lines::{refl, Preset};
-use specpoly::led::{Link, Oracle};
+use specpoly::led::mix_check::{MixAgreement, MixOracle, Weight};
+use specpoly::led::{Link, MixModel, Oracle};
+use specpoly_core::light::channels::{Curve, Goal};
+use specpoly_core::light::Source;
 use specpoly_core::{delta_e2000, Display, GamutMap, Illuminant, Lab, Observer, Transfer, Xyz};
 use specpoly_protocol::{Command, Gamut, Reply};
 use std::io::{BufRead, BufReader, Read};
@@ -25,9 +30,10 @@ use std::time::{Duration, Instant};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
 /// The controller with defmt alone fits 32 KiB (32 320 B); keeping settings in flash with
-/// `sequential-storage` adds ≈ 13 KiB (docs/performance.md, "## Firmware"). Real parts have
-/// 256–512 KiB.
-const FLASH_BUDGET: u64 = 48 * 1024;
+/// `sequential-storage` adds ≈ 13 KiB, mixing 3–6 LED channels on the device (issue 15:
+/// solver, locus table, four commands, their settings record) ≈ 9.5 KiB (docs/performance.md,
+/// "## Firmware"). Real parts have 256–512 KiB.
+const FLASH_BUDGET: u64 = 52 * 1024;
 const RAM_BUDGET: u64 = 4 * 1024;
 /// Static RAM plus the deepest stack use (painted) over every command and a start-up that
 /// loads saved settings (docs/performance.md, "## Firmware").
@@ -591,6 +597,319 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     let duty_lines = log.lines().filter(|l| l.starts_with("duty ")).count();
     assert!(duty_lines >= 2 * lines.len(), "{log}");
     assert_total_ram(&emu.elf, &log);
+}
+
+/// The channel sets the mixing test uploads: the LED sets of `data/leds/` (one with measured
+/// curves, two with efficacy weights) and a seeded random set of five Gaussian LEDs.
+fn mix_sets() -> Vec<(&'static str, MixOracle)> {
+    let leds = |file: &str, cols: &[&str]| -> Vec<Source> {
+        cols.iter()
+            .map(|c| {
+                let p = repo().join("data/leds").join(format!("{file}#{c}"));
+                let n = specpoly::spectrum_names::light(p.to_str().unwrap()).expect("LED data");
+                Source::new(&n.tabulated()).expect("a light")
+            })
+            .collect()
+    };
+    let linear = |n: usize| vec![Curve::Linear; n];
+    let rgbwa = leds("rgbwa.csv", &["red", "green", "blue", "white", "amber"]);
+    let mut six = rgbwa.clone();
+    six.extend(leds("tunable_white.csv", &["warm"]));
+    // five Gaussian LEDs, centres and widths from a seeded xorshift
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut unit = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let random: Vec<Source> = [450.0, 500.0, 540.0, 590.0, 630.0]
+        .iter()
+        .map(|c: &f64| {
+            let (centre, width, peak) =
+                (c + 20.0 * (unit() - 0.5), 8.0 + 20.0 * unit(), 0.5 + unit());
+            Source::from_fn(|nm| peak * (-0.5 * ((nm - centre) / width).powi(2)).exp()).unwrap()
+        })
+        .collect();
+    vec![
+        (
+            "rgb",
+            MixOracle::new(
+                leds("rgb.csv", &["red", "green", "blue"]),
+                linear(3),
+                Weight::Power,
+            ),
+        ),
+        (
+            "tunable_white",
+            MixOracle::new(
+                leds("tunable_white.csv", &["warm", "cool", "red"]),
+                linear(3),
+                Weight::Power,
+            ),
+        ),
+        (
+            "rgbwa",
+            MixOracle::new(rgbwa.clone(), linear(5), Weight::Power),
+        ),
+        (
+            "rgbwa, efficacy, gamma 2.2 and sRGB curves",
+            MixOracle::new(
+                rgbwa,
+                vec![
+                    Curve::Gamma(2.2),
+                    Curve::Linear,
+                    Curve::Srgb,
+                    Curve::Gamma(2.2),
+                    Curve::Linear,
+                ],
+                Weight::Efficacy,
+            ),
+        ),
+        (
+            "rgbwa + warm white, efficacy",
+            MixOracle::new(six, linear(6), Weight::Efficacy),
+        ),
+        ("random", MixOracle::new(random, linear(5), Weight::Power)),
+    ]
+}
+
+/// The mix targets: the Planckian locus at 2700–6500 K, off it, D65 and two other
+/// chromaticities, at several luminances.
+fn mix_goals() -> Vec<Goal> {
+    let mut g = Vec::new();
+    for cct in [2700.0, 3000.0, 4000.0, 5000.0, 6500.0] {
+        for lum in [1.0, 0.8, 0.3] {
+            g.push(Goal::Cct { cct, duv: 0.0, lum });
+        }
+    }
+    g.push(Goal::Cct {
+        cct: 4000.0,
+        duv: -0.006,
+        lum: 0.5,
+    });
+    g.push(Goal::Cct {
+        cct: 2700.0,
+        duv: -0.002,
+        lum: 0.6,
+    });
+    g.push(Goal::Cct {
+        cct: 10_000.0,
+        duv: 0.01,
+        lum: 0.4,
+    });
+    g.push(Goal::Xy {
+        xy: [0.3127, 0.329],
+        lum: 0.7,
+    });
+    g.push(Goal::Xy {
+        xy: [0.45, 0.41],
+        lum: 0.2,
+    });
+    g.push(Goal::Xy {
+        xy: [0.25, 0.55],
+        lum: 1.0,
+    });
+    g.push(Goal::Xy {
+        xy: [0.08, 0.85],
+        lum: 1.0,
+    });
+    g
+}
+
+/// One line to the device and the same command to the host's simulated controller: the replies
+/// must be equal (the same core and protocol calls on both).
+fn both<P: std::io::Read + std::io::Write>(
+    link: &mut Link<P>,
+    model: &mut MixModel,
+    cmd: &Command,
+) -> Reply {
+    let line = specpoly::led::lines::line(cmd);
+    let text = link.exchange(&line).expect("a reply");
+    let dev = Reply::parse(&text).unwrap_or_else(|e| panic!("{line}: {text}: {e}"));
+    let sim = model.answer(cmd).expect("a mixing command");
+    assert_eq!(
+        dev, sim,
+        "{line}: the firmware and the host's simulated controller"
+    );
+    dev
+}
+
+/// `channel`, `xy`, `cct`, `fade` on the device: every reply equals the host's simulated
+/// controller's and passes the independent f64 check from the channels' spectra
+/// (`specpoly::led::mix_check`: Δu′v′ ≤ 0.0005 before quantisation, ≤ 0.0002 after 16-bit
+/// quantisation, luminance, least weighted drive); out-of-gamut targets are refused where the
+/// host's own mixer finds them out of gamut; a fade logs 10 ms steps that start near the old
+/// target, approach the new one monotonically and end on its duties; the mixer's settings
+/// survive `save`/`load`; RAM stays within the budget.
+#[test]
+fn mixing_on_the_device_agrees_with_the_host() {
+    let emu = Emulator::start();
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    let max = link.hello().expect("hello");
+    let mut model = MixModel::new(max);
+    assert_eq!(link.exchange("xy 0.3 0.3").unwrap(), "err no-channels");
+    assert_eq!(
+        link.exchange("channel 1 1 1 1").unwrap(),
+        "err out-of-range at=1"
+    );
+    let (mut worst, mut solved, mut refused) = (MixAgreement::default(), 0, 0);
+    for (name, oracle) in mix_sets() {
+        for cmd in oracle.commands() {
+            assert!(matches!(both(&mut link, &mut model, &cmd), Reply::Done(_)));
+        }
+        for goal in mix_goals() {
+            match both(&mut link, &mut model, &Command::Mix(goal)) {
+                Reply::Mix(r) => {
+                    let a = oracle
+                        .verify(&goal, &r)
+                        .unwrap_or_else(|e| panic!("{name} {goal:?}: {e}; device {r:?}"));
+                    worst = worst.max(a);
+                    solved += 1;
+                }
+                Reply::Error(f) => {
+                    assert_eq!(f.code, specpoly_protocol::ErrorCode::OutOfGamut, "{name}");
+                    assert!(
+                        oracle.out_of_gamut(&goal),
+                        "{name} {goal:?}: the host mixes it"
+                    );
+                    refused += 1;
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+    }
+    println!(
+        "mixing, {solved} targets solved, {refused} out of gamut: worst Δu′v′ target {:.2e}, \
+         before quantisation {:.2e}, after {:.2e}; luminance {:.2e}; drive above optimum {:.2e}",
+        worst.target, worst.chromaticity, worst.quantised, worst.luminance, worst.drive
+    );
+    assert!(
+        solved >= 60 && refused >= 6,
+        "{solved} solved, {refused} refused"
+    );
+
+    // a fade on rgbwa from 2700 K at 0.3 to 6500 K at 0.9 in 200 ms: 20 steps
+    let sets = mix_sets();
+    let oracle = &sets[2].1;
+    for cmd in oracle.commands() {
+        both(&mut link, &mut model, &cmd);
+    }
+    let from = Goal::Cct {
+        cct: 2700.0,
+        duv: 0.0,
+        lum: 0.3,
+    };
+    let to = Goal::Cct {
+        cct: 6500.0,
+        duv: 0.0,
+        lum: 0.9,
+    };
+    both(&mut link, &mut model, &Command::Fade(0));
+    let start = match both(&mut link, &mut model, &Command::Mix(from)) {
+        Reply::Mix(r) => r,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        both(&mut link, &mut model, &Command::Fade(200)),
+        Reply::Done("fade")
+    );
+    let end = match both(&mut link, &mut model, &Command::Mix(to)) {
+        Reply::Mix(r) => r,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(end.steps, 20);
+    let mut sim = Vec::new();
+    let channels = end.n as usize;
+    while let Some((k, n, d)) = model.mixer.step(max) {
+        sim.push((k, n, d[..channels].to_vec()));
+    }
+    let log = wait_for_log(&emu, "fade 20/20 ");
+    let steps: Vec<(u16, u16, Vec<u16>)> = log
+        .lines()
+        .filter_map(|l| l.strip_prefix("fade "))
+        .map(|l| {
+            let (k, rest) = l.split_once('/').unwrap();
+            let (n, rest) = rest.split_once(" duty [").unwrap();
+            let duty = rest.split(']').next().unwrap();
+            let duty = duty.split(", ").map(|d| d.parse().unwrap()).collect();
+            (k.parse().unwrap(), n.parse().unwrap(), duty)
+        })
+        .collect();
+    assert_eq!(steps, sim, "the device's fade steps are the host model's");
+    assert_eq!(
+        steps.last().unwrap().2,
+        end.duty(),
+        "the last step is the target"
+    );
+    let at = |d: &[u16]| oracle.emitted(d, max).unwrap();
+    let (uv0, _) = at(start.duty());
+    let (uv1, _) = at(end.duty());
+    let total = (uv1[0] - uv0[0]).hypot(uv1[1] - uv0[1]);
+    let (first, _) = at(&steps[0].2);
+    assert!(
+        (first[0] - uv0[0]).hypot(first[1] - uv0[1]) < 1.5 * total / 20.0,
+        "the first step starts near the old target"
+    );
+    // closer to the new chromaticity and brighter (relative to the most light at each step's
+    // chromaticity, the quantity interpolated) at every step
+    let (mut last_dist, mut last_lum) = (f64::INFINITY, 0.0);
+    for (k, _, d) in &steps {
+        let (uv, y) = at(d);
+        let dist = (uv[0] - uv1[0]).hypot(uv[1] - uv1[1]);
+        let lum = y / oracle.most_light_at(uv).expect("in gamut");
+        assert!(
+            dist <= last_dist + 1e-6 && lum >= last_lum,
+            "step {k}: not monotone"
+        );
+        (last_dist, last_lum) = (dist, lum);
+    }
+    assert!(
+        last_dist < 1e-9 && (last_lum - 0.9).abs() < 1e-3,
+        "{last_lum}"
+    );
+
+    // the mixer's settings survive save / load
+    assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
+    assert_eq!(link.exchange("channel clear").unwrap(), "ok channel");
+    assert_eq!(link.exchange("cct 4000").unwrap(), "err no-channels");
+    assert_eq!(link.send("load").unwrap(), Reply::Done("load"));
+    both(&mut link, &mut model, &Command::Fade(0));
+    both(
+        &mut link,
+        &mut model,
+        &Command::Mix(Goal::Cct {
+            cct: 4000.0,
+            duv: 0.0,
+            lum: 0.5,
+        }),
+    );
+    std::thread::sleep(Duration::from_millis(200));
+    assert_total_ram(&emu.elf, &emu.log());
+}
+
+/// The instructions a mix solve and a fade step take on the Cortex-M4F (selftest under
+/// `-icount shift=0`, 3–6 channels): a fade step must fit 10 ms of a 25 MHz core (100 solved
+/// steps per second), i.e. 250 000 instructions (an M4's instructions take one cycle or more:
+/// docs/performance.md states cycles are not measured).
+#[test]
+fn a_fade_step_fits_100_steps_per_second_at_25_mhz() {
+    let dir = default_build();
+    let (code, out) = run_to_exit(&dir.join("selftest"), &["-icount", "shift=0"]);
+    assert_eq!(code, Some(0), "selftest failed under QEMU:\n{out}");
+    assert!(out.contains("check mix-chromaticity ok"), "{out}");
+    for n in 3..=6 {
+        let solve: u64 = field(&out, &format!("insns mix {n} solve "));
+        let step: u64 = field(&out, &format!("insns mix {n} step "));
+        println!(
+            "{n} channels: solve {solve} instructions, fade step {step} ({:.0} steps/s at 25 MHz)",
+            25e6 / step as f64
+        );
+        assert!(
+            step <= 250_000,
+            "{n} channels: {step} instructions per step"
+        );
+    }
 }
 
 /// The deepest stack use the log reports (`stack=`, after each command) plus the ELF's static

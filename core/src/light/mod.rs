@@ -15,10 +15,16 @@
 //! - [`tm30`]: CIE 224:2017 / ANSI-IES TM-30 fidelity Rf and gamut index Rg;
 //! - [`mix`]: duties of 3–6 channels for a chromaticity or CCT target, the freedom spent on Rf,
 //!   Ra, luminous efficacy or least drive.
+//! - [`locus`]: the Planckian locus as a 25-node table (f32, cubic Hermite in mired), for
+//!   devices;
+//! - [`channels`]: the device's mixer (f32): 3–`M` channels' XYZ, `xy`/CCT targets, the least
+//!   weighted drive, fades.
 
 pub mod cam02;
 pub mod cct;
+pub mod channels;
 pub mod cri;
+pub mod locus;
 pub mod mix;
 pub mod reference;
 pub mod samples;

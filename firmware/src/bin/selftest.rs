@@ -4,6 +4,7 @@
 //!
 //! - `check NAME ok|FAIL`;
 //! - `insns PRESET WHAT N`: instructions per call (meaningful under `-icount shift=0`);
+//!   `insns mix N solve|step I` for mixing N channels;
 //! - `colour I duty R G B`: duties of a fixed set of colours on an sRGB-curve LED (compared
 //!   between the libm and the `fast-math` builds on the host);
 //! - `stack BYTES`: the deepest stack use (painted);
@@ -15,13 +16,14 @@ use core::fmt::Write as _;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::debug;
 use heapless::String;
+use specpoly_core::light::channels::{Channel, Curve, Goal};
 use specpoly_core::{
     DefaultSpectrum, Illuminant, Layout, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
 };
 use specpoly_firmware::board::{icount::Counter, stack};
 use specpoly_firmware::Controller;
 use specpoly_protocol::{
-    write_reflect, Command, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
+    write_reflect, Command, DeviceMixer, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
 };
 
 /// A smooth test reflectance: a sigmoid-like ramp, as Chebyshev coefficients per span.
@@ -35,6 +37,74 @@ fn ramp<const S: usize, L: Layout<S>>(level: f32) -> Spectrum<S, 4, L> {
         c[3][sp] = 0.002;
     }
     s
+}
+
+/// Six LED channels as `x, y, Y` at full drive (red, green, blue, a 4000 K white, amber, a
+/// warm white; typical of the sets in data/leds/).
+const CHANNELS: [[f32; 3]; 6] = [
+    [0.69, 0.30, 0.25],
+    [0.17, 0.72, 0.9],
+    [0.14, 0.05, 0.1],
+    [0.38, 0.38, 1.0],
+    [0.58, 0.42, 0.5],
+    [0.46, 0.41, 0.9],
+];
+
+/// Instructions per mix solve (3–6 channels) and per fade step; the solved chromaticity.
+fn mix(checks: &mut Checks, counter: &mut Counter) {
+    let mut worst = 0.0f32;
+    for n in 3..=6 {
+        let mut m = DeviceMixer::new();
+        for (i, [x, y, big_y]) in CHANNELS.iter().take(n).enumerate() {
+            let xyz = [x / y * big_y, *big_y, (1.0 - x - y) / y * big_y];
+            let c = Channel::new(xyz, 1.0, Curve::Gamma(2.2));
+            let _ = m.channels.set(i, c);
+        }
+        let goal = Goal::Cct {
+            cct: 4000.0,
+            duv: 0.0,
+            lum: 0.5,
+        };
+        let Some(p) = goal.point() else {
+            checks.check("mix-target", false);
+            return;
+        };
+        let insns = counter.insns_per_call(20, || {
+            core::hint::black_box(m.channels.solve(core::hint::black_box(p)).ok());
+        });
+        defmt::info!("insns mix {} solve {}", n, insns);
+        // a whole fade step: the next point, its solve, curves and quantisation
+        m.fade_ms = 0;
+        let _ = m.target(goal, u16::MAX);
+        m.fade_ms = 600_000;
+        let _ = m.target(
+            Goal::Cct {
+                cct: 6500.0,
+                duv: 0.0,
+                lum: 1.0,
+            },
+            u16::MAX,
+        );
+        let insns = counter.insns_per_call(20, || {
+            core::hint::black_box(m.step(u16::MAX));
+        });
+        defmt::info!("insns mix {} step {}", n, insns);
+        // the light the fractions make has the target's chromaticity
+        if let Ok(d) = m.channels.solve(p) {
+            let mut xyz = [0.0f32; 3];
+            for (i, c) in m.channels.list().iter().enumerate() {
+                for k in 0..3 {
+                    xyz[k] += d[i] * c.xyz[k];
+                }
+            }
+            let s = xyz[0] + xyz[1] + xyz[2];
+            let t = p.xy();
+            worst = worst.max((xyz[0] / s - t[0]).abs().max((xyz[1] / s - t[1]).abs()));
+        } else {
+            worst = f32::INFINITY;
+        }
+    }
+    checks.check("mix-chromaticity", worst < 1e-5);
 }
 
 struct Checks {
@@ -218,7 +288,10 @@ fn main() -> ! {
         defmt::info!("insns {} line-2-factors {}", preset, insns);
     }
 
-    // 4. colours on an sRGB-curve LED, for the libm / fast-math comparison on the host
+    // 4. mixing 3–6 channels (xy/CCT targets solved on the device) and fade steps
+    mix(&mut checks, &mut counter);
+
+    // 5. colours on an sRGB-curve LED, for the libm / fast-math comparison on the host
     let _ = handle(&mut c, "trc rgb srgb");
     let mut i = 0;
     for x in [0.25f32, 0.3, 0.35, 0.4, 0.45] {

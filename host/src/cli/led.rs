@@ -12,10 +12,14 @@ use crate::cli::args::{self, Curve, Gamut};
 use crate::error::{CliError, Result};
 use crate::io::stdout::print;
 use crate::led::lines::{self, line, reply_line, Preset};
+use crate::led::mix_check::{MixOracle, Weight};
 use crate::led::{Link, Oracle};
+use crate::light::load_channel;
+use specpoly_core::light::channels::{Curve as ChannelCurve, Goal};
+use specpoly_core::light::Source;
 use specpoly_core::{Illuminant, Observer, Transfer};
 use specpoly_protocol::number::write_f32;
-use specpoly_protocol::{Channels, Command, Reply};
+use specpoly_protocol::{Channels, Command, MixReport, Reply, MIX_CHANNELS};
 use std::time::Duration;
 
 /// Arguments of `specpoly led`.
@@ -45,6 +49,17 @@ pub struct LedArgs {
     /// feature `observer-1964`).
     #[arg(long, value_name = "1931|1964", value_parser = args::observer)]
     pub observer: Option<Observer>,
+    /// A mixing channel: NAME=FILE.csv[#COLUMN], its SPD at full drive; 3 to 6 of them, in
+    /// order. Uploaded as `channel` lines (its XYZ from the SPD at 1 nm) before the action.
+    #[arg(long = "channel", value_name = "NAME=FILE.csv[#COLUMN]")]
+    pub channels: Vec<String>,
+    /// With more than three channels: what the device spends the freedom on (the weights
+    /// uploaded with the channels): least total drive, or greatest luminous efficacy.
+    #[arg(long, value_enum, default_value = "power")]
+    pub optimize: Weight,
+    /// Fade time for new `xy`/`cct` targets, ms (0 to 600000).
+    #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u32).range(0..=600_000))]
+    pub fade: Option<u32>,
     /// Recompute the answer on the host (an independent f64 computation) and fail unless the
     /// controller agrees within the tolerance table of `specpoly::led::check`. May stand before
     /// or after the action (`led --port P refl colorchecker#red --check`).
@@ -90,6 +105,27 @@ pub enum LedAction {
         #[arg(required = true)]
         spectra: Vec<String>,
     },
+    /// Mix the channels (--channel) to a chromaticity x, y on the device.
+    Xy {
+        /// x (CIE 1931)
+        x: f32,
+        /// y
+        y: f32,
+        /// Relative luminance: the fraction of the most the channels give there (0 to 1).
+        #[arg(long, default_value_t = 1.0)]
+        lum: f32,
+    },
+    /// Mix the channels (--channel) to a correlated colour temperature on the device.
+    Cct {
+        /// CCT, K (1000 to 25000)
+        k: f32,
+        /// Distance from the Planckian locus (|duv| ≤ 0.05, positive above)
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        duv: f32,
+        /// Relative luminance (0 to 1).
+        #[arg(long, default_value_t = 1.0)]
+        lum: f32,
+    },
     /// Print the controller's calibration and duties.
     State,
     /// Print the controller's protocol version and limits.
@@ -109,9 +145,12 @@ fn check(
     sent: &str,
     got: &Reply,
     curves: Option<[Transfer; 3]>,
+    mix: Option<&MixOracle>,
 ) -> Result<()> {
-    let Reply::Colour(dev) = got else {
-        return Ok(());
+    let dev = match got {
+        Reply::Colour(dev) => dev,
+        Reply::Mix(r) => return check_mix(sent, r, mix),
+        _ => return Ok(()),
     };
     let dev_err = |e: crate::led::LedError| CliError::data(e.to_string());
     let state = match link.send("state").map_err(dev_err)? {
@@ -146,6 +185,44 @@ fn check(
     }
 }
 
+/// Checks a mix reply against the host's f64 computation from the channels' spectra.
+fn check_mix(sent: &str, r: &MixReport, oracle: Option<&MixOracle>) -> Result<()> {
+    let oracle =
+        oracle.ok_or_else(|| CliError::usage("--check of a mix needs its --channel spectra"))?;
+    let Ok(Command::Mix(goal)) = Command::parse(sent) else {
+        return Ok(());
+    };
+    match oracle.verify(&goal, r) {
+        Ok(a) => print(&format!(
+            "check: the host agrees (Δu′v′ {:.1e} before, {:.1e} after quantisation)\n",
+            a.chromaticity, a.quantised
+        )),
+        Err(d) => Err(CliError::data(format!(
+            "the controller disagrees with the host: {d}"
+        ))),
+    }
+}
+
+/// The mixing channels of `--channel`, with the weights of `--optimize`.
+fn mix_oracle(channels: &[String], weight: Weight) -> Result<MixOracle> {
+    if !(3..=MIX_CHANNELS).contains(&channels.len()) {
+        return Err(CliError::usage(format!(
+            "{} channels: the controller mixes 3 to {MIX_CHANNELS} --channel NAME=FILE.csv[#COLUMN]",
+            channels.len()
+        )));
+    }
+    let mut sources = Vec::new();
+    for c in channels {
+        let ch = load_channel(c)?;
+        sources.push(
+            Source::new(&ch.spd.tabulated())
+                .map_err(|e| CliError::data(format!("{}: {e}", ch.name)))?,
+        );
+    }
+    let curves = vec![ChannelCurve::Linear; sources.len()];
+    Ok(MixOracle::new(sources, curves, weight))
+}
+
 /// Runs `specpoly led`.
 pub fn run(args: &LedArgs) -> Result<()> {
     // build every line first: usage errors before touching the device
@@ -168,6 +245,16 @@ pub fn run(args: &LedArgs) -> Result<()> {
     if let Some(o) = args.observer {
         settings.push(line(&Command::Observer(o)));
     }
+    let mix = if args.channels.is_empty() {
+        None
+    } else {
+        let oracle = mix_oracle(&args.channels, args.optimize)?;
+        settings.extend(oracle.commands().iter().map(line));
+        Some(oracle)
+    };
+    if let Some(ms) = args.fade {
+        settings.push(line(&Command::Fade(ms)));
+    }
     let action = match &args.action {
         LedAction::Xyz { x, y, z } => line(&Command::Xyz(specpoly_core::Xyz::new(*x, *y, *z))),
         LedAction::Xyy { x, y, big_y } => {
@@ -184,6 +271,15 @@ pub fn run(args: &LedArgs) -> Result<()> {
             illuminant,
             spectra,
         } => lines::refl(*repr, *illuminant, spectra)?,
+        LedAction::Xy { x, y, lum } => goal(Goal::Xy {
+            xy: [*x, *y],
+            lum: *lum,
+        })?,
+        LedAction::Cct { k, duv, lum } => goal(Goal::Cct {
+            cct: *k,
+            duv: *duv,
+            lum: *lum,
+        })?,
         LedAction::State => "state".to_owned(),
         LedAction::Hello => "hello".to_owned(),
         LedAction::Raw { line } => line.clone(),
@@ -207,9 +303,16 @@ pub fn run(args: &LedArgs) -> Result<()> {
             ),
             None => None,
         };
-        check(&mut link, &action, &reply, curves)?;
+        check(&mut link, &action, &reply, curves, mix.as_ref())?;
     }
     Ok(())
+}
+
+/// The line of a mix target, checked by the controller's own parser before anything is sent.
+fn goal(g: Goal) -> Result<String> {
+    let l = line(&Command::Mix(g));
+    Command::parse(&l).map_err(|f| CliError::usage(format!("{l}: {f}")))?;
+    Ok(l)
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 //! reference in [`crate::led::check`], not by this.
 
 use specpoly_core::{Display, GamutMap, Illuminant, Moments, Observer, Xyz};
-use specpoly_protocol::{ColourReport, Reflectance};
+use specpoly_protocol::{ColourReport, Command, DeviceMixer, Reflectance, Reply};
 
 /// A controller's calibration and settings, as the host knows them.
 #[derive(Clone, Debug)]
@@ -38,5 +38,31 @@ impl Model {
             self.map,
             self.max,
         )
+    }
+}
+
+/// The controller's multi-channel mixer as the host models it: the protocol's shared answer
+/// ([`specpoly_protocol::mix::answer`]) on the core's mixer, the very calls the firmware makes.
+/// `tests/tests/firmware_qemu.rs` checks that the firmware's replies equal these.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MixModel {
+    /// Channels, fade time and the point shown.
+    pub mixer: DeviceMixer,
+    /// Full-scale duty.
+    pub max: u16,
+}
+
+impl MixModel {
+    /// No channels, PWM full scale `max`.
+    pub fn new(max: u16) -> Self {
+        Self {
+            mixer: DeviceMixer::new(),
+            max,
+        }
+    }
+
+    /// The reply to a mixing command (`channel`, `xy`, `cct`, `fade`); `None` for others.
+    pub fn answer(&mut self, cmd: &Command) -> Option<Reply> {
+        specpoly_protocol::mix::answer(&mut self.mixer, cmd, self.max)
     }
 }
