@@ -10,7 +10,7 @@
 
 use crate::cli::args::{self, Curve, Gamut};
 use crate::error::{CliError, Result};
-use crate::io::stdout::print;
+use crate::io::stdout::{print, print_json};
 use crate::led::lines::{self, line, reply_line, Preset};
 use crate::led::{Link, Oracle};
 use specpoly_core::{Illuminant, Observer, Transfer};
@@ -50,6 +50,11 @@ pub struct LedArgs {
     /// or after the action (`led --port P refl colorchecker#red --check`).
     #[arg(long, global = true)]
     pub check: bool,
+    /// Print the reply (and the check) as JSON: `reply` (the kind: `colour`, `state`, `hello`,
+    /// a setting, `err`), the reply's values under their protocol names, `line` (the reply as
+    /// sent), and `check` (`agrees`, `detail`) with `--check`. May follow the action.
+    #[arg(long, global = true)]
+    pub json: bool,
     /// What to show or ask.
     #[command(subcommand)]
     pub action: LedAction,
@@ -103,22 +108,24 @@ pub enum LedAction {
 
 /// Checks a colour reply against the host's computation from the controller's `state`, with
 /// the transfer curves of `curves` (a calibration file just sent) when `state` only names
-/// their size (tables).
+/// their size (tables). `Some(detail)` when the host agrees, `None` when there is nothing to
+/// check.
 fn check(
     link: &mut Link<Box<dyn serialport::SerialPort>>,
     sent: &str,
     got: &Reply,
     curves: Option<[Transfer; 3]>,
-) -> Result<()> {
+) -> Result<Option<String>> {
     let Reply::Colour(dev) = got else {
-        return Ok(());
+        return Ok(None);
     };
     let dev_err = |e: crate::led::LedError| CliError::data(e.to_string());
     let state = match link.send("state").map_err(dev_err)? {
         Reply::State(s) => s,
         other => {
             return Err(CliError::data(format!(
-                "unexpected reply to state: {other:?}"
+                "unexpected reply to state: `{}`",
+                reply_line(&other)
             )))
         }
     };
@@ -126,19 +133,19 @@ fn check(
         CliError::data("--check needs the tabulated curves: give them with --calibration")
     })?;
     let Ok(cmd) = Command::parse(sent) else {
-        return Ok(());
+        return Ok(None);
     };
     if oracle.target(&cmd).is_none() {
-        return Ok(());
+        return Ok(None);
     }
     match oracle.verify(&cmd, dev) {
         Ok(a) => {
             let mut s = String::new();
             let _ = write_f32(&mut s, a.xyz() as f32);
-            print(&format!(
-                "check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})\n",
+            Ok(Some(format!(
+                "the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})",
                 a.duty
-            ))
+            )))
         }
         Err(d) => Err(CliError::data(format!(
             "the controller disagrees with the host: {d}"
@@ -197,7 +204,10 @@ pub fn run(args: &LedArgs) -> Result<()> {
         link.send(s).map_err(dev_err)?;
     }
     let reply = link.send(&action).map_err(dev_err)?;
-    print(&format!("{}\n", reply_line(&reply)))?;
+    if !args.json {
+        print(&format!("{}\n", reply_line(&reply)))?;
+    }
+    let mut agreed = None;
     if args.check {
         let curves = match &args.calibration {
             Some(path) => Some(
@@ -207,9 +217,69 @@ pub fn run(args: &LedArgs) -> Result<()> {
             ),
             None => None,
         };
-        check(&mut link, &action, &reply, curves)?;
+        agreed = check(&mut link, &action, &reply, curves)?;
+    }
+    if args.json {
+        let mut v = reply_json(&reply);
+        if args.check {
+            v["check"] = serde_json::json!({"agrees": true, "detail": agreed});
+        }
+        return print_json(&v);
+    }
+    if let Some(d) = agreed {
+        print(&format!("check: {d}\n"))?;
     }
     Ok(())
+}
+
+/// A reply as JSON: `reply` (its kind), `line` (the reply as sent) and its values under the
+/// protocol's key names (firmware/PROTOCOL.md), numbers as numbers.
+pub fn reply_json(r: &Reply) -> serde_json::Value {
+    use serde_json::json;
+    let line = reply_line(r);
+    let mut v = match r {
+        Reply::Hello {
+            protocol,
+            max_line,
+            max,
+        } => json!({"reply": "hello", "protocol": protocol, "max_line": max_line, "max": max}),
+        Reply::Done(what) => json!({"reply": what}),
+        Reply::Colour(c) => json!({
+            "reply": "colour",
+            "xyz": c.xyz.to_array(),
+            "led": c.led.to_array(),
+            "linear": c.linear,
+            "duty": c.duty,
+            "max": c.max,
+            "gamut": match c.gamut {
+                specpoly_protocol::Gamut::In => "in".to_string(),
+                specpoly_protocol::Gamut::Out(m) =>
+                    format!("out:{}", specpoly_protocol::command::map_name(m)),
+            },
+        }),
+        Reply::State(s) => {
+            // the state line's own words for the curves, map and observer
+            let word = |key: &str| {
+                line.split_whitespace()
+                    .find_map(|t| t.strip_prefix(key))
+                    .unwrap_or_default()
+                    .to_string()
+            };
+            json!({
+                "reply": "state",
+                "protocol": s.protocol,
+                "primaries": s.primaries,
+                "trc": word("trc=").split(',').collect::<Vec<_>>(),
+                "map": word("map="),
+                "observer": word("observer="),
+                "duty": s.duty,
+                "max": s.max,
+            })
+        }
+        Reply::Error(f) => json!({"reply": "err", "code": f.code.name(), "at": f.at}),
+    };
+    v["line"] = json!(line);
+    v
 }
 
 #[cfg(test)]
