@@ -151,7 +151,8 @@ pub fn criteria_table(outcomes: &[Outcome], level: Level) -> String {
             (Some(_), true) => ("fail", "FAIL".to_string()),
             (Some(_), false) => (
                 "pass",
-                match (o.nominal_pass, o.recommended_pass) {
+                match (c.recommended, o.recommended_pass) {
+                    (None, _) => "pass".to_string(),
                     (_, Some(true)) => "pass (recommended)".to_string(),
                     _ => "pass (nominal)".to_string(),
                 },
@@ -256,7 +257,7 @@ pub fn gamut_svg(cal: &Calibration) -> String {
         y: (0.0, 0.6),
     };
     let mut s = String::from(
-        "<svg id=\"gamut\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 800 550\" role=\"img\">",
+        "<svg id=\"gamut\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 880 550\" role=\"img\">",
     );
     s.push_str(&f.axes((0.1, 0.1), ("u′", "v′"), 1));
     // the spectral locus from the observer table, closed by the purple line
