@@ -344,6 +344,38 @@ fn json_everywhere_results_are_printed() {
         let r = specpoly(&args);
         json(&r, what);
     }
+    // calibrate run: progress on stderr, the result as JSON on stdout
+    let run_cal = dir.path().join("crt.toml");
+    let r = specpoly(&[
+        "calibrate",
+        "run",
+        "--display",
+        "sim:crt,seed=1",
+        "--instrument",
+        "sim",
+        "--ramp-steps",
+        "3",
+        "--verify",
+        "2",
+        "-o",
+        run_cal.to_str().unwrap(),
+        "--json",
+    ]);
+    let v = json(&r, "calibrate run");
+    for k in [
+        "readings",
+        "patches_measured",
+        "patches_verify",
+        "fit_delta_e00",
+    ] {
+        assert!(v.get(k).is_some(), "calibrate run: no {k}");
+    }
+    assert_eq!(v["patches_verify"], 2);
+    let err = text(&r.stderr);
+    assert!(
+        err.contains(&format!("wrote {}", run_cal.display())),
+        "{err}"
+    );
     let v = json(
         &specpoly(&[
             "calibrate",
