@@ -215,8 +215,48 @@ impl Mul<f64> for Lab {
     }
 }
 
-/// CIEDE2000 colour difference (kL = kC = kH = 1), following Sharma, Wu & Dalal (2005).
-pub fn delta_e2000(p: Lab, q: Lab) -> f64 {
+/// The parts of a CIEDE2000 difference (kL = kC = kH = 1) between a reference `p` and a sample
+/// `q`, following Sharma, Wu & Dalal (2005), eqs. 1–22: the modified chromas `C′ = √(a′² + b′²)`
+/// with `a′ = (1 + G)·a*`, the differences `ΔL′ = L₂ − L₁`, `ΔC′ = C′₂ − C′₁`,
+/// `ΔH′ = 2·√(C′₁C′₂)·sin(Δh′/2)`, the weights `S_L`, `S_C`, `S_H` and the rotation `R_T`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct De2000Terms {
+    /// `C′₁`, `C′₂`: chroma after the `a*` rescaling by `1 + G`.
+    pub c_prime: [f64; 2],
+    /// `h′₁`, `h′₂` in degrees, 0–360 (0 for an achromatic colour).
+    pub h_prime: [f64; 2],
+    /// `ΔL′`.
+    pub dl: f64,
+    /// `ΔC′ = C′₂ − C′₁`.
+    pub dc: f64,
+    /// `ΔH′`.
+    pub dh: f64,
+    /// `S_L`.
+    pub sl: f64,
+    /// `S_C = 1 + 0.045·C̄′`.
+    pub sc: f64,
+    /// `S_H`.
+    pub sh: f64,
+    /// `R_T`.
+    pub rt: f64,
+}
+
+impl De2000Terms {
+    /// ΔE00 = √((ΔL′/S_L)² + (ΔC′/S_C)² + (ΔH′/S_H)² + R_T·(ΔC′/S_C)·(ΔH′/S_H)).
+    pub fn delta_e(&self) -> f64 {
+        let (x, y, z) = (self.dl / self.sl, self.dc / self.sc, self.dh / self.sh);
+        libm::sqrt(x * x + y * y + z * z + self.rt * y * z)
+    }
+
+    /// The weighted chroma difference `ΔC′/(k_C·S_C)` (k_C = 1), signed: the chroma term of
+    /// ΔE00, which DisplayCAL's grey-balance criterion averages as `|ΔC′00|`.
+    pub fn weighted_dc(&self) -> f64 {
+        self.dc / self.sc
+    }
+}
+
+/// The terms of the CIEDE2000 difference from `p` to `q` ([`De2000Terms`]).
+pub fn de2000_terms(p: Lab, q: Lab) -> De2000Terms {
     use core::f64::consts::PI;
     let deg = PI / 180.0;
     let c1 = libm::hypot(p.a, p.b);
@@ -276,12 +316,22 @@ pub fn delta_e2000(p: Lab, q: Lab) -> f64 {
     let cb7 = libm::pow(cbarp, 7.0);
     let rc = 2.0 * libm::sqrt(cb7 / (cb7 + libm::pow(25.0, 7.0)));
     let l50 = (lbar - 50.0) * (lbar - 50.0);
-    let sl = 1.0 + 0.015 * l50 / libm::sqrt(20.0 + l50);
-    let sc = 1.0 + 0.045 * cbarp;
-    let sh = 1.0 + 0.015 * cbarp * t;
-    let rt = -libm::sin(2.0 * dtheta) * rc;
-    let (x, y, z) = (dl / sl, dc / sc, dhh / sh);
-    libm::sqrt(x * x + y * y + z * z + rt * y * z)
+    De2000Terms {
+        c_prime: [c1p, c2p],
+        h_prime: [h1 / deg, h2 / deg],
+        dl,
+        dc,
+        dh: dhh,
+        sl: 1.0 + 0.015 * l50 / libm::sqrt(20.0 + l50),
+        sc: 1.0 + 0.045 * cbarp,
+        sh: 1.0 + 0.015 * cbarp * t,
+        rt: -libm::sin(2.0 * dtheta) * rc,
+    }
+}
+
+/// CIEDE2000 colour difference (kL = kC = kH = 1), following Sharma, Wu & Dalal (2005).
+pub fn delta_e2000(p: Lab, q: Lab) -> f64 {
+    de2000_terms(p, q).delta_e()
 }
 
 /// The Bradford cone-response matrix (Lam 1985).

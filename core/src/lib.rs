@@ -79,7 +79,9 @@ pub mod spectrum;
 pub mod tabulated;
 
 pub use cheb::Cheb;
-pub use colorimetry::{bradford, chromaticity, delta_e2000, Lab, Xyy, Xyz};
+pub use colorimetry::{
+    bradford, chromaticity, de2000_terms, delta_e2000, De2000Terms, Lab, Xyy, Xyz,
+};
 pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
 pub use drive::Drive;
 pub use error::Error;

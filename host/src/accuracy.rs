@@ -291,13 +291,42 @@ impl Results {
 
 /// Builds the Markdown report.
 pub fn report() -> Result<String> {
+    Ok(report_and_summary()?.0)
+}
+
+/// The Markdown report and its headline figures as JSON (`accuracy --json`): per method its
+/// name, values stored per colour and ΔE00 `colours`/`mean`/`p95`/`max` over the full set for
+/// each observer (`cie1964`, `cie1931`).
+pub fn report_and_summary() -> Result<(String, serde_json::Value)> {
     let r = Results::compute()?;
+    let d = markdown(&r)?;
+    let st = |v: &[Sample]| {
+        let s = stats(v, |_| true);
+        serde_json::json!({"colours": s.n, "mean": s.mean, "p95": s.p95, "max": s.max})
+    };
+    let methods: Vec<serde_json::Value> = r
+        .methods
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            serde_json::json!({
+                "method": m.name(),
+                "values": m.size(),
+                "cie1964": st(&r.s64[i]),
+                "cie1931": st(&r.s31[i]),
+            })
+        })
+        .collect();
+    Ok((d, serde_json::json!({ "methods": methods })))
+}
+
+fn markdown(r: &Results) -> Result<String> {
     let mut d = String::new();
-    method_section(&mut d, &r)?;
-    every_representation(&mut d, &r)?;
-    equal_size(&mut d, &r)?;
-    per_illuminant(&mut d, &r)?;
-    tuning_and_validation(&mut d, &r)?;
+    method_section(&mut d, r)?;
+    every_representation(&mut d, r)?;
+    equal_size(&mut d, r)?;
+    per_illuminant(&mut d, r)?;
+    tuning_and_validation(&mut d, r)?;
     table1_section(&mut d)?;
     Ok(d)
 }

@@ -1,5 +1,15 @@
-//! The CLI's one error type. Every failure is one line on stderr and an exit code:
-//! 2 for usage errors (bad arguments, unknown names), 1 for data and I/O errors.
+//! The CLI's one error type. Every failure is one line on stderr and an exit code, the same in
+//! every command:
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | done (`calibrate verify`: every criterion met) |
+//! | 1 | bad data, a failed device or computation, a file that exists but cannot be read or written, a failed tolerance (`calibrate verify`, `led --check`) |
+//! | 2 | the command line is wrong: unknown option or value, unknown built-in name, or an input file that does not exist, named on the command line or in a file it names (clap's own errors included) |
+//!
+//! A missing input file counts as a usage error because something names a file that is not
+//! there, exactly like an unknown built-in name (`xyz nosuch.csv` and `xyz nosuch` fail alike). Errors are one line: clap's ([`clap_error_line`]) and TOML's
+//! ([`crate::io::toml_error`]) are folded to one.
 
 use std::path::Path;
 
@@ -31,12 +41,18 @@ impl CliError {
         }
     }
 
-    /// An I/O error on `path`.
+    /// An I/O error on `path` (exit 1). An input file that does not exist is
+    /// [`CliError::missing`] instead ([`crate::io::read`] does this).
     pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
         CliError::Io {
             path: path.as_ref().display().to_string(),
             source,
         }
+    }
+
+    /// An input file named on the command line that does not exist (exit 2).
+    pub fn missing(path: impl AsRef<Path>) -> Self {
+        CliError::Usage(format!("{}: no such file", path.as_ref().display()))
     }
 
     /// A usage error.
@@ -52,3 +68,79 @@ impl CliError {
 
 /// The CLI's result type.
 pub type Result<T, E = CliError> = std::result::Result<T, E>;
+
+/// A clap error as one line (`unexpected argument '--x' found (tip: …); usage: specpoly …`), or
+/// `None` for `--help` and `--version`, which clap prints itself.
+pub fn clap_error_line(e: &clap::Error) -> Option<String> {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+        return None;
+    }
+    let text = e.render().to_string();
+    let usage = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("Usage: "))
+        .map(str::trim);
+    if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+        return Some(format!(
+            "a command is missing; usage: {}; `--help` lists the commands",
+            usage.unwrap_or("specpoly <COMMAND>")
+        ));
+    }
+    let mut main: Option<&str> = None;
+    let mut extra = Vec::new();
+    let mut tips = Vec::new();
+    for l in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if let Some(m) = l.strip_prefix("error: ") {
+            if main.is_none() {
+                main = Some(m.trim_end_matches(':'));
+                continue;
+            }
+        }
+        let boilerplate = l.starts_with("Usage: ") || l.starts_with("For more information");
+        if let Some(t) = l.strip_prefix("tip: ") {
+            tips.push(t);
+        } else if !boilerplate && main.is_some() {
+            extra.push(l);
+        }
+    }
+    let mut s = main.unwrap_or("bad command line").to_string();
+    if !extra.is_empty() {
+        s.push_str(": ");
+        s.push_str(&extra.join(", "));
+    }
+    if !tips.is_empty() {
+        s.push_str(&format!(" (tip: {})", tips.join("; ")));
+    }
+    if let Some(u) = usage {
+        s.push_str(&format!("; usage: {u}"));
+    }
+    Some(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    fn line(args: &[&str]) -> Option<String> {
+        let e = crate::cli::Cli::try_parse_from(args).expect_err("an error");
+        clap_error_line(&e)
+    }
+
+    #[test]
+    fn clap_errors_fold_to_one_line() {
+        let l = line(&["specpoly", "xyz", "colorchecker#red", "--bogus"]).unwrap();
+        assert!(
+            l.contains("--bogus") && l.contains("usage: specpoly xyz"),
+            "{l}"
+        );
+        assert!(!l.contains('\n'), "{l}");
+        let l = line(&["specpoly", "plot", "colorchecker#red"]).unwrap();
+        assert!(l.contains("--output"), "{l}");
+        let l = line(&["specpoly", "calibrate"]).unwrap();
+        assert!(l.contains("usage: specpoly calibrate"), "{l}");
+        assert_eq!(line(&["specpoly", "--help"]), None);
+        assert_eq!(line(&["specpoly", "--version"]), None);
+    }
+}

@@ -165,7 +165,7 @@ fn rust_source_and_bad_arguments() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(!bad.exists());
-    // a missing calibration: bad data, one line, nothing written
+    // a missing calibration: a usage error (as in every command), nothing written
     let out = specpoly(&[
         "calibrate".as_ref(),
         "export".as_ref(),
@@ -176,7 +176,7 @@ fn rust_source_and_bad_arguments() {
         "-o".as_ref(),
         bad.as_os_str(),
     ]);
-    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(out.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&out.stderr).trim().lines().count(),
         1

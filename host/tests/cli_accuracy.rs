@@ -37,10 +37,19 @@ fn report_through_the_binary() {
     let d = tempfile::tempdir().unwrap();
     let out = d.path().join("accuracy.md");
     let r = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(["accuracy", "-o", out.to_str().unwrap()])
+        .args(["accuracy", "-o", out.to_str().unwrap(), "--json"])
         .output()
         .unwrap();
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // --json: each method's figures as numbers, the same method list as the document
+    let v: serde_json::Value = serde_json::from_slice(&r.stdout).expect("JSON on stdout");
+    let methods = v["methods"].as_array().unwrap();
+    assert_eq!(methods.len(), accuracy::methods().len());
+    for m in methods {
+        for obs in ["cie1964", "cie1931"] {
+            assert!(m[obs]["mean"].as_f64().unwrap() >= 0.0, "{m}");
+        }
+    }
     let doc = std::fs::read_to_string(&out).unwrap();
     for needle in [
         "## Every representation",

@@ -236,6 +236,30 @@ fn a_faithful_device_passes_the_check() {
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("check: the host agrees"), "{stdout}");
+
+    // --json (the CLI convention): the reply's values as numbers, the check's verdict
+    let out = specpoly(&[
+        "led", "--port", &f.path, "xyz", "20", "21", "22", "--check", "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(v["reply"], "colour");
+    assert_eq!(v["check"]["agrees"], true);
+    let duty: Vec<u64> = v["duty"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d.as_u64().unwrap())
+        .collect();
+    assert_eq!(duty, expected.duty.map(u64::from).to_vec());
+    assert_eq!(
+        Reply::parse(v["line"].as_str().unwrap()),
+        Ok(Reply::Colour(expected))
+    );
 }
 
 #[test]

@@ -32,6 +32,7 @@
 
 pub use super::fit::lattice::Lattice;
 use crate::error::{CliError, Result};
+use crate::io::toml_error::one_line;
 use serde::{Deserialize, Serialize};
 use specpoly_core::{Display, Transfer, Xyz};
 use std::path::Path;
@@ -308,9 +309,9 @@ impl Calibration {
             {
                 return Err(CliError::data(format!(
                     "transfer.{name}: a table must start at 0 and end at 1 (linear light at \
-                     device 0 and 1), not {:?} … {:?}",
-                    table.first(),
-                    table.last()
+                     device 0 and 1), not {} … {}",
+                    table.first().copied().unwrap_or(f64::NAN),
+                    table.last().copied().unwrap_or(f64::NAN)
                 )));
             }
             curves[c] = match t.kind {
@@ -409,7 +410,7 @@ impl Calibration {
     pub fn from_toml(text: &str, source: &str) -> Result<Self> {
         let value: toml::Value = text
             .parse()
-            .map_err(|e: toml::de::Error| CliError::data(format!("{source}: {}", one_line(&e))))?;
+            .map_err(|e: toml::de::Error| CliError::data(one_line(&e, text, source)))?;
         match value.get("format").and_then(|v| v.as_str()) {
             Some(FORMAT) => {}
             Some(f) => {
@@ -434,7 +435,7 @@ impl Calibration {
         }
         let data: CalibrationData = value
             .try_into()
-            .map_err(|e: toml::de::Error| CliError::data(format!("{source}: {}", one_line(&e))))?;
+            .map_err(|e: toml::de::Error| CliError::data(one_line(&e, text, source)))?;
         Calibration::new(data).map_err(|e| CliError::data(format!("{source}: {e}")))
     }
 
@@ -442,21 +443,6 @@ impl Calibration {
     pub fn save(&self, path: &Path) -> Result<()> {
         crate::io::atomic::write(path, self.to_toml()?.as_bytes())
     }
-}
-
-fn one_line(e: &toml::de::Error) -> String {
-    let s = e.to_string();
-    let lines: Vec<&str> = s
-        .lines()
-        .map(str::trim)
-        .filter(|l| {
-            let gutter = l.split('|').next().unwrap_or("");
-            let numbered = l.contains('|') && gutter.trim().chars().all(|c| c.is_ascii_digit());
-            let caret = l.chars().all(|c| c == '^' || c.is_whitespace());
-            !l.is_empty() && !numbered && !caret
-        })
-        .collect();
-    lines.join("; ")
 }
 
 /// Loads a calibration file.

@@ -1,6 +1,7 @@
 //! Monitor calibration: patch sets, where patches are shown, where readings come from, the
 //! fit of Cowan's model, calibration files, ICC export and verification.
 
+pub mod criteria;
 pub mod export;
 pub mod file;
 pub mod fit;
@@ -9,6 +10,7 @@ pub mod instrument;
 pub mod interrupt;
 pub mod patch_display;
 pub mod patches;
+pub mod report_html;
 pub mod run;
 pub mod session;
 pub mod sim;

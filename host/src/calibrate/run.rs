@@ -180,7 +180,7 @@ pub fn fit_and_save(
 pub fn patch_set(patches: Option<&Path>, ramp_steps: usize, verify: usize) -> Result<Vec<Patch>> {
     match patches {
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| CliError::io(p, e))?;
+            let text = crate::io::read::text(p)?;
             patches::from_devices(&crate::io::ti1::read_ti1(&text, &p.display().to_string())?)
         }
         None => patches::standard(ramp_steps, verify),

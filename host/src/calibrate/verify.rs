@@ -3,12 +3,15 @@
 //! Both the prediction and the measurement are converted to CIELAB relative to the
 //! calibration's measured white (so the display white is `L* = 100, a* = b* = 0`, the usual
 //! white-relative convention of display verification), and compared with ΔE00 (Sharma, Wu &
-//! Dalal 2005). Tolerances are DisplayCAL's for a measurement report: nominal mean ≤ 1.5,
-//! max ≤ 4; recommended mean ≤ 1, max ≤ 3.
+//! Dalal 2005). [`Verification`] holds every patch's result and the pass/fail outcome of
+//! DisplayCAL's and ISO 14861's criteria ([`super::criteria`]); `calibrate verify` prints it as
+//! text or JSON and draws it as an HTML page ([`super::report_html`]).
 
+use super::criteria::{self, Outcome, PatchResult};
 use super::file::Calibration;
 use crate::error::{CliError, Result};
 use crate::measurement::Measurement;
+use crate::stats::Stats;
 use specpoly_core::{delta_e2000, Lab};
 
 /// DisplayCAL's nominal tolerance: (mean, max).
@@ -57,4 +60,47 @@ pub fn measurements_for(
             xyz: p.xyz.map(|v| v * k),
         })
         .collect())
+}
+
+/// A calibration checked against measured patches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verification {
+    /// Every patch, in file order.
+    pub patches: Vec<PatchResult>,
+    /// ΔE00 count, mean, 95th percentile and maximum.
+    pub stats: Stats,
+    /// Each criterion of [`criteria::CRITERIA`], judged.
+    pub outcomes: Vec<Outcome>,
+    /// The white the CIELAB values are relative to (the calibration's).
+    pub white: [f64; 3],
+}
+
+impl Verification {
+    /// Compares the calibration's prediction of each measurement's device values with the
+    /// measurement; `lines` are the measurements' lines in their file (1-based, same order).
+    pub fn new(cal: &Calibration, meas: &[Measurement], lines: &[usize]) -> Verification {
+        let white = cal.data().white;
+        let patches: Vec<PatchResult> = meas
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let line = lines.get(i).copied().unwrap_or(i + 1);
+                PatchResult::new(line, m.device, cal.predict(m.device), m.xyz, white)
+            })
+            .collect();
+        let de: Vec<f64> = patches.iter().map(|p| p.delta_e00).collect();
+        Verification {
+            stats: Stats::of(&de),
+            outcomes: criteria::evaluate(&patches, white),
+            patches,
+            white,
+        }
+    }
+
+    /// The patch with the largest ΔE00 (a NaN counts as largest).
+    pub fn worst(&self) -> Option<&PatchResult> {
+        self.patches
+            .iter()
+            .max_by(|a, b| a.delta_e00.total_cmp(&b.delta_e00))
+    }
 }

@@ -16,6 +16,9 @@ pub struct AccuracyArgs {
     /// Where to write the Markdown report.
     #[arg(short = 'o', long = "output", default_value = "docs/accuracy.md")]
     pub output: PathBuf,
+    /// Also print each representation's ΔE00 summary as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `specpoly accuracy`.
@@ -29,11 +32,14 @@ pub fn run(a: &AccuracyArgs) -> Result<()> {
             ));
         }
     }
-    let doc = crate::accuracy::report()?;
+    let (doc, summary) = crate::accuracy::report_and_summary()?;
     crate::io::atomic::write(&a.output, doc.as_bytes())?;
     eprintln!(
         "wrote {}",
         crate::io::escape::one_line(&a.output.display().to_string())
     );
+    if a.json {
+        return crate::io::stdout::print_json(&summary);
+    }
     Ok(())
 }

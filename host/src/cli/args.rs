@@ -81,6 +81,14 @@ pub fn transfer(s: &str) -> Result<Curve> {
     }
 }
 
+/// The command-line name of a `ValueEnum` value (`rgb565`, `least-squares`): what messages and
+/// written files show instead of its Rust `Debug` form.
+pub fn name<T: clap::ValueEnum>(v: &T) -> String {
+    v.to_possible_value()
+        .map(|p| p.get_name().to_string())
+        .unwrap_or_default()
+}
+
 /// Gamut mapping for colours a display cannot show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Gamut {

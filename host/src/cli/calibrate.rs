@@ -3,13 +3,11 @@
 
 use crate::calibrate::file::{self, Calibration, TransferKind};
 use crate::calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
-use crate::calibrate::{export, icc, verify};
+use crate::calibrate::{export, icc};
 use crate::error::{CliError, Result};
 use crate::io::cgats;
 use crate::io::stdout::{print, print_json};
-use crate::stats::Stats;
 use specpoly_core::chromaticity;
-use std::io::BufRead;
 use std::path::PathBuf;
 
 /// `specpoly calibrate` subcommands.
@@ -19,10 +17,12 @@ pub enum CalibrateCommand {
     Fit(FitArgs),
     /// Print a calibration's primaries, white, black and curves.
     Show(ShowArgs),
-    /// Predict XYZ for device RGB triples (0–1) read from stdin, one per line.
-    Predict(PredictArgs),
-    /// ΔE00 of a calibration's predictions against measured patches of a .ti3.
-    Verify(VerifyArgs),
+    /// Predict XYZ for device RGB triples (0–1) read from stdin, one per line, each answered
+    /// as it arrives.
+    Predict(crate::cli::calibrate_verify::PredictArgs),
+    /// ΔE00 of a calibration's predictions against measured patches of a .ti3: DisplayCAL's and
+    /// ISO 14861's criteria, pass/fail (exit 1 on a failure), optionally an HTML report.
+    Verify(crate::cli::calibrate_verify::VerifyArgs),
     /// Export an ICC v4 matrix/TRC display profile.
     Icc(IccArgs),
     /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
@@ -77,6 +77,9 @@ pub struct FitArgs {
     /// Keep every patch (no outlier test).
     #[arg(long)]
     pub keep_outliers: bool,
+    /// JSON instead of text (keys in docs/calibration.md).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `calibrate show`.
@@ -87,25 +90,6 @@ pub struct ShowArgs {
     /// JSON instead of text (keys in docs/calibration.md).
     #[arg(long)]
     pub json: bool,
-}
-
-/// `calibrate predict`.
-#[derive(Debug, clap::Args)]
-pub struct PredictArgs {
-    /// The calibration file.
-    #[arg(long)]
-    pub calibration: PathBuf,
-}
-
-/// `calibrate verify`.
-#[derive(Debug, clap::Args)]
-pub struct VerifyArgs {
-    /// The calibration file.
-    #[arg(long)]
-    pub calibration: PathBuf,
-    /// The measured patches.
-    #[arg(long)]
-    pub ti3: PathBuf,
 }
 
 /// `calibrate icc`.
@@ -152,8 +136,8 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
     match c {
         CalibrateCommand::Fit(a) => fit_cmd(&a),
         CalibrateCommand::Show(a) => show(&a),
-        CalibrateCommand::Predict(a) => predict(&a),
-        CalibrateCommand::Verify(a) => verify_cmd(&a),
+        CalibrateCommand::Predict(a) => crate::cli::calibrate_verify::predict(&a),
+        CalibrateCommand::Verify(a) => crate::cli::calibrate_verify::verify(&a),
         CalibrateCommand::Icc(a) => icc_cmd(&a),
         CalibrateCommand::Export(a) => export_cmd(&a),
         CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
@@ -212,6 +196,13 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         ));
     }
     cal.save(&a.output)?;
+    eprintln!(
+        "wrote {}",
+        crate::io::escape::one_line(&a.output.display().to_string())
+    );
+    if a.json {
+        return print_json(&fit_json(&cal, &a.output, fit_set.len()));
+    }
     let d = cal.data();
     let mut s = format!(
         "fitted {} patches from {} → {}\n",
@@ -270,6 +261,28 @@ pub fn fit_facts(f: &file::FitReport) -> String {
         s.push_str(&format!("constrained: {c}\n"));
     }
     s
+/// The JSON `calibrate fit --json` (and `run --json`) prints about a fitted calibration
+/// written to `output` from `fitted` patches (keys documented in docs/calibration.md).
+pub fn fit_json(cal: &Calibration, output: &std::path::Path, fitted: usize) -> serde_json::Value {
+    let d = cal.data();
+    serde_json::json!({
+        "output": output.display().to_string(),
+        "source": d.provenance.source,
+        "units": d.units,
+        "matrix": d.fit.matrix,
+        "patches_fit": fitted,
+        "fit_delta_e00": d.fit.residual,
+        "held_out_delta_e00": d.fit.verification,
+        "additivity": match (d.fit.additivity_delta_e00, d.fit.additivity_luminance_percent) {
+            (Some(de), Some(pc)) => serde_json::json!({"delta_e00": de, "luminance_percent": pc}),
+            _ => serde_json::Value::Null,
+        },
+        "notes": d.provenance.notes,
+        "model": d.fit.model,
+        "model_candidates": d.fit.candidates,
+        "outliers": d.fit.outliers,
+        "constrained": d.fit.constrained,
+    })
 }
 
 /// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
@@ -320,8 +333,11 @@ fn show(a: &ShowArgs) -> Result<()> {
         s.push_str(&format!("{n:<6} {x:8.4} {y:8.4} {:10.4}\n", v[1]));
     }
     s.push_str(&format!(
-        "gamma  R {:.3}  G {:.3}  B {:.3}  (model uses the {:?} curve)\n",
-        d.transfer.gamma[0], d.transfer.gamma[1], d.transfer.gamma[2], d.transfer.kind
+        "gamma  R {:.3}  G {:.3}  B {:.3}  (model uses the {} curve)\n",
+        d.transfer.gamma[0],
+        d.transfer.gamma[1],
+        d.transfer.gamma[2],
+        crate::cli::args::name(&d.transfer.kind)
     ));
     s.push_str(&format!(
         "matrix {}; fit ΔE00 mean {:.3}, max {:.3} over {} patches\n",
@@ -341,88 +357,6 @@ fn show(a: &ShowArgs) -> Result<()> {
     print(&s)
 }
 
-/// Parses one line of `predict` input: three numbers in `[0, 1]`.
-pub fn parse_rgb(line: &str, n: usize) -> Result<[f64; 3]> {
-    let parts: Vec<&str> = line
-        .split(|c: char| c.is_whitespace() || c == ',')
-        .filter(|s| !s.is_empty())
-        .collect();
-    if parts.len() != 3 {
-        return Err(CliError::data(format!(
-            "stdin:{n}: expected three device values R G B in 0–1, found {} values",
-            parts.len()
-        )));
-    }
-    let mut v = [0.0; 3];
-    for (k, p) in parts.iter().enumerate() {
-        v[k] = match p.parse::<f64>() {
-            Ok(x) if (0.0..=1.0).contains(&x) => x,
-            Ok(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is outside 0–1"))),
-            Err(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is not a number"))),
-        };
-    }
-    Ok(v)
-}
-
-fn predict(a: &PredictArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
-    let stdin = std::io::stdin();
-    let mut out = String::new();
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.map_err(|e| CliError::io("stdin", e))?;
-        let t = line.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let rgb = parse_rgb(t, i + 1)?;
-        let x = cal.predict(rgb);
-        out.push_str(&format!("{:.6} {:.6} {:.6}\n", x[0], x[1], x[2]));
-    }
-    print(&out)
-}
-
-fn verify_cmd(a: &VerifyArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
-    let ti3 = cgats::read_ti3_file(&a.ti3)?;
-    let m = verify::measurements_for(&cal, &ti3)?;
-    let de = verify::delta_e(&cal, &m);
-    let s = Stats::of(&de);
-    let pf = |t: (f64, f64)| {
-        if s.within(t) {
-            "pass"
-        } else {
-            "FAIL"
-        }
-    };
-    let worst = de
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.total_cmp(b.1))
-        .map(|(i, _)| i)
-        .unwrap_or(0);
-    let w = &m[worst];
-    let text = format!(
-        "{} patches of {} against {}\nΔE00 mean {:.3}  p95 {:.3}  max {:.3} (line {}: RGB {:.4} {:.4} {:.4})\nnominal     (mean ≤ {}, max ≤ {}): {}\nrecommended (mean ≤ {}, max ≤ {}): {}\n",
-        s.n,
-        a.ti3.display(),
-        a.calibration.display(),
-        s.mean,
-        s.p95,
-        s.max,
-        ti3.lines[worst],
-        w.device[0],
-        w.device[1],
-        w.device[2],
-        verify::NOMINAL.0,
-        verify::NOMINAL.1,
-        pf(verify::NOMINAL),
-        verify::RECOMMENDED.0,
-        verify::RECOMMENDED.1,
-        pf(verify::RECOMMENDED),
-    );
-    print(&text)
-}
-
 fn icc_cmd(a: &IccArgs) -> Result<()> {
     let cal = file::load(&a.calibration)?;
     let desc = a.description.clone().unwrap_or_else(|| {
@@ -433,22 +367,23 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
     });
     let bytes = icc::profile(&cal, &desc)?;
     crate::io::atomic::write(&a.output, &bytes)?;
-    print(&format!(
-        "wrote {} ({} bytes, ICC v4.4 matrix/TRC display profile)\n",
-        a.output.display(),
+    eprintln!(
+        "wrote {} ({} bytes, ICC v4.4 matrix/TRC display profile)",
+        crate::io::escape::one_line(&a.output.display().to_string()),
         bytes.len()
-    ))
+    );
+    Ok(())
 }
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
     let cal = file::load(&a.calibration)?;
     let p = export::transform(&cal, a.source, a.white, a.bits)?;
     let origin = format!(
-        "calibration {}, source {:?}, white {:?}, {:?}",
+        "calibration {}, source {}, white {}, {}",
         a.calibration.display(),
-        a.source,
-        a.white,
-        a.bits
+        crate::cli::args::name(&a.source),
+        crate::cli::args::name(&a.white),
+        crate::cli::args::name(&a.bits)
     );
     let text = export::source_text(&p, a.format, &a.name, &origin)?;
     crate::io::atomic::write(&a.output, text.as_bytes())?;

@@ -62,12 +62,22 @@ pub struct RunArgs {
     /// `CAL.ti3` exists: keep it as `CAL.ti3.1` (`.2`, …) and start over.
     #[arg(long)]
     pub force: bool,
+    /// Progress on stderr, and the result as JSON on stdout (keys in docs/calibration.md).
+    #[arg(long)]
+    pub json: bool,
 }
 
-/// Prints one line on stdout.
+/// Prints one line of progress: on stdout, or on stderr when stdout carries `--json`.
 fn line(s: &str) -> Result<()> {
+    if JSON.load(std::sync::atomic::Ordering::Relaxed) {
+        eprintln!("{}", crate::io::escape::one_line(s));
+        return Ok(());
+    }
     crate::io::stdout::print(&format!("{s}\n"))
 }
+
+/// Whether this run prints JSON (set once at the start of [`run`]).
+static JSON: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 /// The chromaticity ([`specpoly_core::chromaticity`]; a black reading shows the equal-energy
 /// point) and luminance of an XYZ.
@@ -78,6 +88,7 @@ fn xyy(p: [f64; 3]) -> [f64; 3] {
 
 /// Runs `specpoly calibrate run`.
 pub fn run(a: &RunArgs) -> Result<()> {
+    JSON.store(a.json, std::sync::atomic::Ordering::Relaxed);
     let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify)?;
     let ti3 = ti3_path(&a.output);
     if ti3 == a.output {
@@ -169,6 +180,17 @@ pub fn run(a: &RunArgs) -> Result<()> {
         &fit_set,
         &verify_set,
     )?;
+    eprintln!(
+        "wrote {}",
+        crate::io::escape::one_line(&a.output.display().to_string())
+    );
+    if a.json {
+        let mut v = crate::cli::calibrate::fit_json(&cal, &a.output, fit_set.len());
+        v["readings"] = serde_json::json!(ti3.display().to_string());
+        v["patches_measured"] = serde_json::json!(taken.len());
+        v["patches_verify"] = serde_json::json!(verify_set.len());
+        return crate::io::stdout::print_json(&v);
+    }
     print_fit(&cal, &a.output)
 }
 

@@ -10,7 +10,7 @@
 
 use crate::cli::args::{self, Curve, Gamut};
 use crate::error::{CliError, Result};
-use crate::io::stdout::print;
+use crate::io::stdout::{print, print_json};
 use crate::led::lines::{self, line, reply_line, Preset};
 use crate::led::mix_check::{MixOracle, Weight};
 use crate::led::{Link, Oracle};
@@ -65,6 +65,11 @@ pub struct LedArgs {
     /// or after the action (`led --port P refl colorchecker#red --check`).
     #[arg(long, global = true)]
     pub check: bool,
+    /// Print the reply (and the check) as JSON: `reply` (the kind: `colour`, `state`, `hello`,
+    /// a setting, `err`), the reply's values under their protocol names, `line` (the reply as
+    /// sent), and `check` (`agrees`, `detail`) with `--check`. May follow the action.
+    #[arg(long, global = true)]
+    pub json: bool,
     /// What to show or ask.
     #[command(subcommand)]
     pub action: LedAction,
@@ -139,25 +144,27 @@ pub enum LedAction {
 
 /// Checks a colour reply against the host's computation from the controller's `state`, with
 /// the transfer curves of `curves` (a calibration file just sent) when `state` only names
-/// their size (tables).
+/// their size (tables). `Some(detail)` when the host agrees, `None` when there is nothing to
+/// check.
 fn check(
     link: &mut Link<Box<dyn serialport::SerialPort>>,
     sent: &str,
     got: &Reply,
     curves: Option<[Transfer; 3]>,
     mix: Option<&MixOracle>,
-) -> Result<()> {
+) -> Result<Option<String>> {
     let dev = match got {
         Reply::Colour(dev) => dev,
-        Reply::Mix(r) => return check_mix(sent, r, mix),
-        _ => return Ok(()),
+        Reply::Mix(r) => return check_mix(sent, r, mix).map(Some),
+        _ => return Ok(None),
     };
     let dev_err = |e: crate::led::LedError| CliError::data(e.to_string());
     let state = match link.send("state").map_err(dev_err)? {
         Reply::State(s) => s,
         other => {
             return Err(CliError::data(format!(
-                "unexpected reply to state: {other:?}"
+                "unexpected reply to state: `{}`",
+                reply_line(&other)
             )))
         }
     };
@@ -165,19 +172,19 @@ fn check(
         CliError::data("--check needs the tabulated curves: give them with --calibration")
     })?;
     let Ok(cmd) = Command::parse(sent) else {
-        return Ok(());
+        return Ok(None);
     };
     if oracle.target(&cmd).is_none() {
-        return Ok(());
+        return Ok(None);
     }
     match oracle.verify(&cmd, dev) {
         Ok(a) => {
             let mut s = String::new();
             let _ = write_f32(&mut s, a.xyz() as f32);
-            print(&format!(
-                "check: the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})\n",
+            Ok(Some(format!(
+                "the host agrees (|ΔXYZ| ≤ {s}, |Δduty| ≤ {})",
                 a.duty
-            ))
+            )))
         }
         Err(d) => Err(CliError::data(format!(
             "the controller disagrees with the host: {d}"
@@ -186,15 +193,15 @@ fn check(
 }
 
 /// Checks a mix reply against the host's f64 computation from the channels' spectra.
-fn check_mix(sent: &str, r: &MixReport, oracle: Option<&MixOracle>) -> Result<()> {
+fn check_mix(sent: &str, r: &MixReport, oracle: Option<&MixOracle>) -> Result<String> {
     let oracle =
         oracle.ok_or_else(|| CliError::usage("--check of a mix needs its --channel spectra"))?;
     let Ok(Command::Mix(goal)) = Command::parse(sent) else {
-        return Ok(());
+        return Err(CliError::usage(format!("`{sent}` is not a mix target")));
     };
     match oracle.verify(&goal, r) {
-        Ok(a) => print(&format!(
-            "check: the host agrees (Δu′v′ {:.1e} before, {:.1e} after quantisation)\n",
+        Ok(a) => Ok(format!(
+            "the host agrees (Δu′v′ {:.1e} before, {:.1e} after quantisation)",
             a.chromaticity, a.quantised
         )),
         Err(d) => Err(CliError::data(format!(
@@ -293,7 +300,10 @@ pub fn run(args: &LedArgs) -> Result<()> {
         link.send(s).map_err(dev_err)?;
     }
     let reply = link.send(&action).map_err(dev_err)?;
-    print(&format!("{}\n", reply_line(&reply)))?;
+    if !args.json {
+        print(&format!("{}\n", reply_line(&reply)))?;
+    }
+    let mut agreed = None;
     if args.check {
         let curves = match &args.calibration {
             Some(path) => Some(
@@ -303,7 +313,17 @@ pub fn run(args: &LedArgs) -> Result<()> {
             ),
             None => None,
         };
-        check(&mut link, &action, &reply, curves, mix.as_ref())?;
+        agreed = check(&mut link, &action, &reply, curves, mix.as_ref())?;
+    }
+    if args.json {
+        let mut v = reply_json(&reply);
+        if args.check {
+            v["check"] = serde_json::json!({"agrees": true, "detail": agreed});
+        }
+        return print_json(&v);
+    }
+    if let Some(d) = agreed {
+        print(&format!("check: {d}\n"))?;
     }
     Ok(())
 }
@@ -313,6 +333,65 @@ fn goal(g: Goal) -> Result<String> {
     let l = line(&Command::Mix(g));
     Command::parse(&l).map_err(|f| CliError::usage(format!("{l}: {f}")))?;
     Ok(l)
+}
+
+/// A reply as JSON: `reply` (its kind), `line` (the reply as sent) and its values under the
+/// protocol's key names (firmware/PROTOCOL.md), numbers as numbers.
+pub fn reply_json(r: &Reply) -> serde_json::Value {
+    use serde_json::json;
+    let line = reply_line(r);
+    let mut v = match r {
+        Reply::Hello {
+            protocol,
+            max_line,
+            max,
+        } => json!({"reply": "hello", "protocol": protocol, "max_line": max_line, "max": max}),
+        Reply::Done(what) => json!({"reply": what}),
+        Reply::Colour(c) => json!({
+            "reply": "colour",
+            "xyz": c.xyz.to_array(),
+            "led": c.led.to_array(),
+            "linear": c.linear,
+            "duty": c.duty,
+            "max": c.max,
+            "gamut": match c.gamut {
+                specpoly_protocol::Gamut::In => "in".to_string(),
+                specpoly_protocol::Gamut::Out(m) =>
+                    format!("out:{}", specpoly_protocol::command::map_name(m)),
+            },
+        }),
+        Reply::State(s) => {
+            // the state line's own words for the curves, map and observer
+            let word = |key: &str| {
+                line.split_whitespace()
+                    .find_map(|t| t.strip_prefix(key))
+                    .unwrap_or_default()
+                    .to_string()
+            };
+            json!({
+                "reply": "state",
+                "protocol": s.protocol,
+                "primaries": s.primaries,
+                "trc": word("trc=").split(',').collect::<Vec<_>>(),
+                "map": word("map="),
+                "observer": word("observer="),
+                "duty": s.duty,
+                "max": s.max,
+            })
+        }
+        Reply::Mix(m) => json!({
+            "reply": "mix",
+            "xy": m.xy,
+            "lum": m.lum,
+            "light": m.light(),
+            "duty": m.duty(),
+            "max": m.max,
+            "steps": m.steps,
+        }),
+        Reply::Error(f) => json!({"reply": "err", "code": f.code.name(), "at": f.at}),
+    };
+    v["line"] = json!(line);
+    v
 }
 
 #[cfg(test)]

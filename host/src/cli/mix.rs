@@ -79,10 +79,10 @@ pub fn run(a: &MixArgs) -> Result<()> {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "# target {} at {} of the most the channels give there; optimize {:?}; {}",
+        "# target {} at {} of the most the channels give there; optimize {}; {}",
         describe(&a.target),
         a.luminance,
-        a.optimize,
+        crate::cli::args::name(&a.optimize),
         a.bits.map_or("unquantised duties".to_string(), |b| format!(
             "{b}-bit duties"
         ))

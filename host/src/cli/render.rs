@@ -213,11 +213,11 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
             m.seconds
         );
     }
-    let _ = writeln!(
-        o,
+    print(&o)?;
+    eprintln!(
         "wrote {} (rgb | poly | reference | ΔE00 rgb | ΔE00 poly; heat map 0 → {} ΔE00: black, blue, red, yellow, white)",
-        a.output.display(),
+        crate::io::escape::one_line(&a.output.display().to_string()),
         render::HEAT_MAX
     );
-    print(&o)
+    Ok(())
 }

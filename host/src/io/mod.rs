@@ -10,3 +10,4 @@ pub mod progress;
 pub mod read;
 pub mod stdout;
 pub mod ti1;
+pub mod toml_error;

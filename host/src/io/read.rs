@@ -11,8 +11,13 @@ use std::path::Path;
 pub const MAX_INPUT_BYTES: u64 = 64 << 20;
 
 /// The bytes of the regular file `path`, at most [`MAX_INPUT_BYTES`].
+/// A file that does not exist is a usage error (exit 2, [`CliError::missing`]), as in every
+/// command.
 pub fn bytes(path: &Path) -> Result<Vec<u8>> {
-    let meta = std::fs::metadata(path).map_err(|e| CliError::io(path, e))?;
+    let meta = std::fs::metadata(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => CliError::missing(path),
+        _ => CliError::io(path, e),
+    })?;
     if !meta.is_file() {
         return Err(CliError::data(format!(
             "{}: not a regular file (give a file, not a device, pipe or folder)",

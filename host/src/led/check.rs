@@ -368,8 +368,16 @@ impl Oracle {
             return Err(no(
                 "gamut",
                 None,
-                format!("{:?}", dev.gamut),
-                format!("out with {:?}", self.map),
+                match dev.gamut {
+                    Gamut::In => "in".to_string(),
+                    Gamut::Out(m) => {
+                        format!("out with {}", specpoly_protocol::command::map_name(m))
+                    }
+                },
+                format!(
+                    "out with {}",
+                    specpoly_protocol::command::map_name(self.map)
+                ),
             ));
         }
         for i in 0..3 {

@@ -38,7 +38,10 @@ pub enum LedError {
         port: String,
     },
     /// A reply that is not the protocol's.
-    #[error("{port}: unreadable reply to `{command}`: {reply:?}")]
+    #[error(
+        "{port}: unreadable reply to `{command}`: `{}`",
+        crate::io::escape::one_line(reply)
+    )]
     BadReply {
         /// The port.
         port: String,

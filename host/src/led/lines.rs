@@ -53,8 +53,10 @@ pub fn primaries(s: &str) -> Result<Command> {
         luminance: [v[2], v[5], v[8]],
     };
     // the controller's own checks, before anything is sent
-    Command::parse(&line(&c))
-        .map_err(|f| CliError::usage(format!("--primaries: {f} (number {:?})", f.at)))
+    Command::parse(&line(&c)).map_err(|f| match f.at {
+        Some(n) => CliError::usage(format!("--primaries: {} (number {n})", f.code.name())),
+        None => CliError::usage(format!("--primaries: {f}")),
+    })
 }
 
 /// The `cal` and three `trc` lines of a calibration file.

@@ -85,7 +85,7 @@ impl<P: Read + Write> Link<P> {
             other => Err(LedError::BadReply {
                 port: self.name.clone(),
                 command: "hello".into(),
-                reply: clip(&format!("{other:?}"), 80),
+                reply: clip(&crate::led::lines::reply_line(&other), 80),
             }),
         }
     }

@@ -218,7 +218,7 @@ pub fn colour_tag(display_spec: &str) -> Result<ColourTag> {
         return Ok(ColourTag::Srgb);
     }
     let path = Path::new(display_spec);
-    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let text = crate::io::read::text(path)?;
     let is_calibration = text
         .parse::<toml::Table>()
         .map(|t| t.contains_key("format"))

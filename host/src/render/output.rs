@@ -112,7 +112,7 @@ pub fn load(spec: &str) -> Result<Display> {
 /// Parses a display TOML; `source` names it in errors.
 pub fn parse(text: &str, source: &str) -> Result<Display> {
     let f: DisplayFile = toml::from_str(text)
-        .map_err(|e| CliError::data(format!("{source}: {}", e.message().trim())))?;
+        .map_err(|e| CliError::data(crate::io::toml_error::one_line(&e, text, source)))?;
     let curve = match (f.gamma, f.transfer) {
         (Some(_), Some(_)) => {
             return Err(CliError::data(format!(

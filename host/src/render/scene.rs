@@ -540,17 +540,8 @@ pub(super) fn v3(a: [f32; 3], what: &str) -> Result<V3> {
 impl SceneFile {
     /// Parses TOML text; `source` names the file in errors.
     pub fn parse(text: &str, source: &str) -> Result<Self> {
-        toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
-            let at = e
-                .span()
-                .map(|s| {
-                    let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
-                    format!(":{line}")
-                })
-                .unwrap_or_default();
-            CliError::data(format!("{source}{at}: {msg}"))
-        })
+        toml::from_str(text)
+            .map_err(|e| CliError::data(crate::io::toml_error::one_line(&e, text, source)))
     }
 
     /// Resolves names, checks values and builds the scene. `source` names the file in errors.

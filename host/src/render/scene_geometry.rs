@@ -118,7 +118,8 @@ pub fn triangles(
             _ => Path::new(&m.file).to_path_buf(),
         };
         if !path.is_file() {
-            return Err(CliError::data(format!(
+            // a file that does not exist is exit 2 wherever it is named (src/error.rs)
+            return Err(CliError::usage(format!(
                 "{source}: {what}: no such file {}",
                 path.display()
             )));

@@ -94,8 +94,9 @@ impl PatchDisplay for LedControllerDisplay {
         let reply = self.link.send(&line(&Command::Xyz(xyz))).map_err(dev)?;
         let Reply::Colour(c) = reply else {
             return Err(CliError::data(format!(
-                "LED display: {}: unexpected reply to `xyz`: {reply:?}",
-                self.name
+                "LED display: {}: unexpected reply to `xyz`: `{}`",
+                self.name,
+                crate::led::lines::reply_line(&reply)
             )));
         };
         let want = rgb.map(|v| (v * self.max as f64).round() as i64);

@@ -1,0 +1,304 @@
+//! `specpoly calibrate verify` and `calibrate predict`: a calibration against measurements, and
+//! its predictions streamed line by line.
+//!
+//! ```text
+//! specpoly calibrate verify --calibration CAL.toml --ti3 MEAS.ti3 [--require nominal|recommended]
+//!                           [--report REPORT.html] [--tone-target gamma:2.2|srgb|linear] [--json]
+//! specpoly calibrate predict --calibration CAL.toml [--json] < RGB lines
+//! ```
+//!
+//! `verify` prints DisplayCAL's and ISO 14861's criteria side by side ([`crate::calibrate::criteria`])
+//! and exits 1 when one fails at the required level. `predict` answers each input line as soon
+//! as it is read (stdout is flushed per line, so a program can hold a conversation through a
+//! pipe); a bad line stops it with an error naming the line, after the answers to the lines
+//! before it. JSON keys: docs/calibration.md.
+
+use crate::calibrate::criteria::{self, Level, Outcome};
+use crate::calibrate::file::{self, Calibration};
+use crate::calibrate::report_html::{self, ReportInfo};
+use crate::calibrate::verify::{self, Verification};
+use crate::cli::args::{self, Curve};
+use crate::error::{CliError, Result};
+use crate::io::cgats;
+use crate::io::stdout::{print, print_json};
+use crate::stats::{percentile, Stats};
+use serde_json::json;
+use std::fmt::Write as _;
+use std::io::{BufRead, Read};
+use std::path::PathBuf;
+
+/// `calibrate predict`.
+#[derive(Debug, clap::Args)]
+pub struct PredictArgs {
+    /// The calibration file.
+    #[arg(long)]
+    pub calibration: PathBuf,
+    /// One JSON object per input line (JSON Lines: `line`, `device`, `X`, `Y`, `Z`).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `calibrate verify`.
+#[derive(Debug, clap::Args)]
+pub struct VerifyArgs {
+    /// The calibration file.
+    #[arg(long)]
+    pub calibration: PathBuf,
+    /// The measured patches.
+    #[arg(long)]
+    pub ti3: PathBuf,
+    /// The level every criterion must meet for exit code 0: DisplayCAL's `nominal` or
+    /// `recommended` tolerances (ISO 14861's one level counts at both).
+    #[arg(long, value_enum, default_value_t = Level::Nominal)]
+    pub require: Level,
+    /// Also write the report as one self-contained HTML page (gamut, ΔE00 per patch, tone
+    /// curves, the criteria).
+    #[arg(long, value_name = "REPORT.html")]
+    pub report: Option<PathBuf>,
+    /// The tone curve the report draws the measured ramps against: `gamma:G`, `srgb` or `linear`.
+    #[arg(long, default_value = "gamma:2.2", value_parser = args::transfer, value_name = "CURVE")]
+    pub tone_target: Curve,
+    /// JSON instead of text (keys in docs/calibration.md).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Parses one line of `predict` input: three numbers in `[0, 1]`.
+pub fn parse_rgb(line: &str, n: usize) -> Result<[f64; 3]> {
+    let parts: Vec<&str> = line
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .filter(|s| !s.is_empty())
+        .collect();
+    if parts.len() != 3 {
+        return Err(CliError::data(format!(
+            "stdin:{n}: expected three device values R G B in 0–1, found {} values",
+            parts.len()
+        )));
+    }
+    let mut v = [0.0; 3];
+    for (k, p) in parts.iter().enumerate() {
+        v[k] = match p.parse::<f64>() {
+            Ok(x) if (0.0..=1.0).contains(&x) => x,
+            Ok(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is outside 0–1"))),
+            Err(_) => return Err(CliError::data(format!("stdin:{n}: `{p}` is not a number"))),
+        };
+    }
+    Ok(v)
+}
+
+/// Runs `calibrate predict`: one answer per line, written and flushed as each line arrives.
+pub fn predict(a: &PredictArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let stdin = std::io::stdin();
+    let mut input = stdin.lock();
+    let mut buf = String::new();
+    let mut n = 0;
+    // a line longer than this is not three numbers: refuse it instead of growing the buffer
+    const MAX_LINE: u64 = 4096;
+    loop {
+        buf.clear();
+        let read = input
+            .by_ref()
+            .take(MAX_LINE)
+            .read_line(&mut buf)
+            .map_err(|e| CliError::io("stdin", e))?;
+        if read == 0 {
+            return Ok(());
+        }
+        n += 1;
+        if read as u64 == MAX_LINE && !buf.ends_with('\n') {
+            return Err(CliError::data(format!(
+                "stdin:{n}: line longer than {MAX_LINE} bytes"
+            )));
+        }
+        let t = buf.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let rgb = parse_rgb(t, n)?;
+        let x = cal.predict(rgb);
+        if a.json {
+            let v = json!({"line": n, "device": rgb, "X": x[0], "Y": x[1], "Z": x[2]});
+            print(&format!("{v}\n"))?;
+        } else {
+            print(&format!("{:.6} {:.6} {:.6}\n", x[0], x[1], x[2]))?;
+        }
+    }
+}
+
+/// Runs `calibrate verify`.
+pub fn verify(a: &VerifyArgs) -> Result<()> {
+    let cal = file::load(&a.calibration)?;
+    let ti3 = cgats::read_ti3_file(&a.ti3)?;
+    let m = verify::measurements_for(&cal, &ti3)?;
+    let v = Verification::new(&cal, &m, &ti3.lines);
+    if let Some(path) = &a.report {
+        let curve = a.tone_target;
+        let name = match curve {
+            Curve::Linear => "linear".to_string(),
+            Curve::Srgb => "the sRGB curve".to_string(),
+            Curve::Gamma(g) => format!("gamma {g}"),
+        };
+        let info = ReportInfo {
+            calibration: &a.calibration.display().to_string(),
+            measurements: &a.ti3.display().to_string(),
+            tone_target: (curve.into(), name),
+            level: a.require,
+        };
+        let html = report_html::page(&v, &cal, &info);
+        crate::io::atomic::write(path, html.as_bytes())?;
+        eprintln!(
+            "wrote {}",
+            crate::io::escape::one_line(&path.display().to_string())
+        );
+    }
+    if a.json {
+        print_json(&verification_json(&v, a))?;
+    } else {
+        print(&verification_text(&v, &cal, a))?;
+    }
+    match criteria::failures(&v.outcomes, a.require) {
+        None => Ok(()),
+        Some(f) => Err(CliError::data(format!(
+            "{}: verification failed: {f}",
+            a.calibration.display()
+        ))),
+    }
+}
+
+/// The 99th percentile ΔE00 (nearest rank).
+fn p99(v: &Verification) -> f64 {
+    let mut d: Vec<f64> = v.patches.iter().map(|p| p.delta_e00).collect();
+    d.sort_by(f64::total_cmp);
+    percentile(&d, 0.99)
+}
+
+/// Finite numbers as JSON numbers, anything else as `null` (JSON has no NaN).
+fn number(x: f64) -> serde_json::Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        serde_json::Value::Null
+    }
+}
+
+/// The criteria as JSON objects.
+pub fn outcomes_json(outcomes: &[Outcome], level: Level) -> serde_json::Value {
+    outcomes
+        .iter()
+        .map(|o| {
+            json!({
+                "id": o.criterion.id,
+                "standard": o.criterion.standard,
+                "description": o.criterion.description,
+                "nominal": o.criterion.nominal,
+                "recommended": o.criterion.recommended,
+                "value": o.value.map(number),
+                "patches": o.patches,
+                "nominal_pass": o.nominal_pass,
+                "recommended_pass": o.recommended_pass,
+                "pass": o.value.map(|_| !o.fails(level)),
+            })
+        })
+        .collect()
+}
+
+/// The JSON `calibrate verify --json` prints.
+pub fn verification_json(v: &Verification, a: &VerifyArgs) -> serde_json::Value {
+    let s: &Stats = &v.stats;
+    let worst = v
+        .worst()
+        .map(|w| json!({"line": w.line, "device": w.device, "delta_e00": number(w.delta_e00)}));
+    let patches: Vec<serde_json::Value> = v
+        .patches
+        .iter()
+        .map(|p| {
+            let lab = |l: &specpoly_core::Lab| [l.l, l.a, l.b].map(number);
+            json!({
+                "line": p.line,
+                "device": p.device,
+                "reference_xyz": p.reference.map(number),
+                "measured_xyz": p.measured.map(number),
+                "reference_lab": lab(&p.reference_lab),
+                "measured_lab": lab(&p.measured_lab),
+                "delta_e00": number(p.delta_e00),
+                "delta_c00": number(p.delta_c00),
+            })
+        })
+        .collect();
+    json!({
+        "calibration": a.calibration.display().to_string(),
+        "measurements": a.ti3.display().to_string(),
+        "white": v.white,
+        "delta_e00": {
+            "patches": s.n,
+            "mean": number(s.mean),
+            "p95": number(s.p95),
+            "p99": number(p99(v)),
+            "max": number(s.max),
+        },
+        "worst": worst,
+        "level": a.require,
+        "pass": criteria::failures(&v.outcomes, a.require).is_none(),
+        "criteria": outcomes_json(&v.outcomes, a.require),
+        "report": a.report.as_ref().map(|p| p.display().to_string()),
+        "patch_results": patches,
+    })
+}
+
+fn verification_text(v: &Verification, cal: &Calibration, a: &VerifyArgs) -> String {
+    let s = &v.stats;
+    let mut t = format!(
+        "{} patches of {} against {} ({})\n",
+        s.n,
+        a.ti3.display(),
+        a.calibration.display(),
+        if cal.absolute() {
+            "cd/m²"
+        } else {
+            "relative units"
+        }
+    );
+    let _ = write!(
+        t,
+        "ΔE00 mean {:.3}  p95 {:.3}  p99 {:.3}  max {:.3}",
+        s.mean,
+        s.p95,
+        p99(v),
+        s.max
+    );
+    if let Some(w) = v.worst() {
+        let _ = write!(
+            t,
+            " (line {}: RGB {:.4} {:.4} {:.4})",
+            w.line, w.device[0], w.device[1], w.device[2]
+        );
+    }
+    t.push('\n');
+    let _ = writeln!(
+        t,
+        "{:<11} {:<46} {:>8} {:>8} {:>11} {:>7}  result",
+        "standard", "criterion", "value", "nominal", "recommended", "patches"
+    );
+    for o in &v.outcomes {
+        let c = &o.criterion;
+        let result = match (o.value, o.fails(a.require)) {
+            (None, _) => "n/a (no such patch)".to_string(),
+            (Some(_), true) => "FAIL".to_string(),
+            (Some(_), false) if c.recommended.is_none() => "pass".into(),
+            (Some(_), false) if o.recommended_pass == Some(true) => "pass (recommended)".into(),
+            (Some(_), false) => "pass (nominal)".into(),
+        };
+        let _ = writeln!(
+            t,
+            "{:<11} {:<46} {:>8} {:>8} {:>11} {:>7}  {result}",
+            c.standard,
+            c.description,
+            o.value.map_or("n/a".into(), |x| format!("{x:.3}")),
+            format!("≤ {}", c.nominal),
+            c.recommended.map_or(String::new(), |r| format!("≤ {r}")),
+            o.patches
+        );
+    }
+    t
+}
