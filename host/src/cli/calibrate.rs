@@ -261,6 +261,8 @@ pub fn fit_facts(f: &file::FitReport) -> String {
         s.push_str(&format!("constrained: {c}\n"));
     }
     s
+}
+
 /// The JSON `calibrate fit --json` (and `run --json`) prints about a fitted calibration
 /// written to `output` from `fitted` patches (keys documented in docs/calibration.md).
 pub fn fit_json(cal: &Calibration, output: &std::path::Path, fitted: usize) -> serde_json::Value {
