@@ -38,10 +38,14 @@
 
 use super::geometry::Ray;
 use super::lights::cosine_direction;
-use super::tracer::{Compiled, Frame, Surf};
+use super::tracer::{Compiled, Frame, Mat, Surf};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 use specpoly_core::{Shade, Xyz};
+
+/// Mixed into the seed of the stream that draws a path's wavelengths (hero sampling), so the
+/// path's own stream, and hence its rays, are those of every other mode.
+const WAVELENGTH_STREAM: u64 = 0x6865_726F_5F6C_616D;
 
 /// A deterministic uniform sampler on `[0, 1)`.
 pub struct Sampler(Pcg32);
@@ -77,8 +81,9 @@ enum Bounce {
 
 impl<T: Shade> Compiled<T> {
     /// XYZ of pixel `(x, y)` by path tracing: the mean of `spp` paths through uniformly
-    /// jittered points of the pixel.
-    pub fn path_pixel(&self, x: u32, y: u32) -> Xyz {
+    /// jittered points of the pixel. `scratch` holds the materials bound to a path's
+    /// wavelengths under hero-wavelength sampling (unused otherwise).
+    pub(super) fn path_pixel(&self, x: u32, y: u32, scratch: &mut [Mat<T>]) -> Xyz {
         let (w, h) = (self.width(), self.height());
         let aspect = w as f32 / h as f32;
         let mut sum = Xyz::default();
@@ -87,15 +92,26 @@ impl<T: Shade> Compiled<T> {
             let u = (x as f32 + rng.uniform()) / w as f32;
             let v = (y as f32 + rng.uniform()) / h as f32;
             let ray = self.camera.ray(u, v, aspect);
-            sum = sum + self.path(ray, &mut rng);
+            let radiance = match &self.per_path {
+                None => self.path(ray, &mut rng, &self.mats, None),
+                Some(pp) => {
+                    // the wavelengths from their own stream: the paths stay those of every mode
+                    let lambda_u = Sampler::new(self.seed ^ WAVELENGTH_STREAM, x, y, s).uniform();
+                    let start = (pp.bind)(&pp.tables, lambda_u, scratch);
+                    self.path(ray, &mut rng, scratch, Some(start))
+                }
+            };
+            sum = sum + radiance;
         }
         sum.scale(1.0 / self.spp as f32)
     }
 
     /// The radiance (XYZ) arriving along `ray`.
-    fn path(&self, mut ray: Ray, rng: &mut Sampler) -> Xyz {
+    /// `mats` are the materials (bound to the path's wavelengths under hero sampling) and
+    /// `start` the starting throughput (`None` = 1).
+    fn path(&self, mut ray: Ray, rng: &mut Sampler, mats: &[Mat<T>], start: Option<T>) -> Xyz {
         let mut out = Xyz::default();
-        let mut tp: Option<T> = None;
+        let mut tp: Option<T> = start;
         let mut weight = 1.0f32;
         let mut count_emission = true;
         let mut depth = 0u32;
@@ -116,12 +132,12 @@ impl<T: Shade> Compiled<T> {
                     break;
                 }
             };
-            let m = &self.mats[mi];
+            let m = &mats[mi];
             let hit = Frame::at(&ray, t, normal);
             let Frame { n, lift, .. } = hit;
 
             if m.diffuse.is_some() || m.specular.is_some() {
-                out = out + self.direct(mi, tp.as_ref(), &hit, rng);
+                out = out + self.direct(mats, mi, tp.as_ref(), &hit, rng);
             }
             if depth >= self.max_depth {
                 break;
@@ -180,13 +196,20 @@ impl<T: Shade> Compiled<T> {
     }
 
     /// Direct light at a hit on material `mi` (next-event estimation; see the module docs).
-    fn direct(&self, mi: usize, tp: Option<&T>, hit: &Frame, rng: &mut Sampler) -> Xyz {
+    fn direct(
+        &self,
+        mats: &[Mat<T>],
+        mi: usize,
+        tp: Option<&T>,
+        hit: &Frame,
+        rng: &mut Sampler,
+    ) -> Xyz {
         let Frame { lift, n, .. } = *hit;
-        let m = &self.mats[mi];
+        let m = &mats[mi];
         let (td, ts) = m.times(tp);
         let mut acc = Xyz::default();
         for (li, l) in self.lights.iter().enumerate() {
-            let Some((filter, a, b)) = self.point_weights(l, m, hit, lift, true) else {
+            let Some((filter, a, b)) = self.point_weights(mats, l, m, hit, lift, true) else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
@@ -195,7 +218,8 @@ impl<T: Shade> Compiled<T> {
         for (k, l) in self.area.iter().enumerate() {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             // share 1.0: `x * 1.0` is exactly `x`
-            let Some((filter, a, b)) = self.area_weights(l, m, hit, (u1, u2), 1.0, true) else {
+            let Some((filter, a, b)) = self.area_weights(mats, l, m, hit, (u1, u2), 1.0, true)
+            else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first_area[mi][k]);
@@ -204,7 +228,7 @@ impl<T: Shade> Compiled<T> {
         if let (Some(e), Some(_)) = (&self.env, &m.diffuse) {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             let dir = cosine_direction(n, u1, u2);
-            if let Some(filter) = self.shadow(lift, dir, f32::INFINITY, true) {
+            if let Some(filter) = self.shadow(mats, lift, dir, f32::INFINITY, true) {
                 // (D/π) · L · cos θ / (cos θ / π) = D · L
                 acc = acc
                     + self.light_term(m, tp, &td, &None, filter, e.radiance, 0.0, &e.light, None);
@@ -215,8 +239,12 @@ impl<T: Shade> Compiled<T> {
 
     /// One row of path-traced pixels into `row` (length `width`).
     pub fn path_row(&self, y: u32, row: &mut [Xyz]) {
+        let mut scratch = match self.per_path {
+            Some(_) => self.mats.clone(),
+            None => Vec::new(),
+        };
         for (x, px) in row.iter_mut().enumerate() {
-            *px = self.path_pixel(x as u32, y);
+            *px = self.path_pixel(x as u32, y, &mut scratch);
         }
     }
 }
