@@ -1,10 +1,11 @@
 //! Equal-time comparison of the path tracer's colour representations against a high-sample
 //! 1 nm reference (`specpoly render SCENE --compare --equal-time`).
 //!
-//! The time budget is the time of one render in the budget mode (default `poly`) at the
-//! scene's `spp`. Each other mode is first rendered at that `spp` to measure its time per path,
-//! then rendered again at `spp · budget / time` paths per pixel (rounded, at least 1), so every
-//! mode gets about the same time. The reference is the 1 nm mode (401 samples) at
+//! Each mode's time per path is the fastest of [`CALIBRATION_RUNS`] renders at a quarter of the
+//! scene's `spp` (the fastest, so that other work on a shared machine disturbs it least). The time
+//! budget is the budget mode's (default `poly`) time per path times the scene's `spp`; every mode
+//! is then rendered at `budget / its time per path` paths per pixel (rounded, at least 1), so
+//! every mode gets about the same time, and the time of that final render is reported. The reference is the 1 nm mode (401 samples) at
 //! `reference_spp` paths per pixel with **another seed**, so its paths are independent of the
 //! compared renders' and its own path noise is not shared with them. The ΔE00 of a mode against
 //! the reference therefore holds both path noise (less with more paths) and colour error (RGB's
@@ -15,6 +16,9 @@ use crate::error::Result;
 use crate::repr::Repr;
 use crate::stats::Stats;
 use std::time::Instant;
+
+/// Renders per mode that measure its time per path.
+pub const CALIBRATION_RUNS: usize = 3;
 
 /// Mixed into the seed of the reference render, so its paths are independent of the others'.
 const REFERENCE_SEED: u64 = 0x7265_6665_7265_6E63;
@@ -37,7 +41,7 @@ pub struct TimedMode {
 
 /// The result of [`equal_time`].
 pub struct EqualTime {
-    /// The time budget (seconds): the budget mode at the scene's `spp`.
+    /// The time budget (seconds): the budget mode's time per path times the scene's `spp`.
     pub budget_seconds: f64,
     /// The modes, in the order asked.
     pub modes: Vec<TimedMode>,
@@ -71,28 +75,30 @@ pub fn equal_time(
     let (reference, reference_seconds) = timed(&rs, Repr::Exact, reference_spp)?;
     step();
     let spp = scene.render.spp;
-    let (budget_img, budget_seconds) = timed(scene, budget, spp)?;
+    let probe = (spp / 4).max(1);
+    let per_path = |repr: Repr| -> Result<f64> {
+        let mut best = f64::INFINITY;
+        for _ in 0..CALIBRATION_RUNS {
+            best = best.min(timed(scene, repr, probe)?.1 / probe as f64);
+        }
+        Ok(best)
+    };
+    let budget_seconds = per_path(budget)? * spp as f64;
     step();
     let white = scene_white(scene);
     let mut out = Vec::new();
     for &repr in modes {
-        let (image, spp, seconds) = if repr == budget {
-            (budget_img.clone(), spp, budget_seconds)
+        let n = if repr == budget {
+            spp
         } else {
-            let (img, t) = timed(scene, repr, spp)?;
-            let n = ((spp as f64 * budget_seconds / t.max(1e-9)).round() as u32).clamp(1, 1 << 20);
-            if n == spp {
-                (img, spp, t)
-            } else {
-                let (img, t) = timed(scene, repr, n)?;
-                (img, n, t)
-            }
+            ((budget_seconds / per_path(repr)?).round() as u32).clamp(1, 1 << 20)
         };
+        let (image, seconds) = timed(scene, repr, n)?;
         step();
         let de = delta_e(&image, &reference, white, scene.render.exposure);
         out.push(TimedMode {
             repr,
-            spp,
+            spp: n,
             seconds,
             stats: Stats::of(&de),
             delta_e: de,

@@ -34,6 +34,12 @@
 //!
 //! Sampling is deterministic: pixel `(x, y)`, path `s` uses a PCG32 stream (O'Neill 2014,
 //! `rand_pcg`) seeded from `(seed, x, y, s)`, so images do not depend on threads.
+//!
+//! **Hero-wavelength sampling** (`hero:N`, [`super::hero`]) is the one mode whose values
+//! depend on the path: before each path the materials are bound to wavelengths drawn from a
+//! second stream (so the path's own stream, hence its rays, stay those of every other mode),
+//! into a per-row scratch copy of the materials, and the path starts with throughput one at
+//! those wavelengths. Every other mode uses the frame's materials and is unchanged.
 //! The ambient term and the background reflectance are Whitted-only.
 
 use super::geometry::Ray;
@@ -136,8 +142,12 @@ impl<T: Shade> Compiled<T> {
             let hit = Frame::at(&ray, t, normal);
             let Frame { n, lift, .. } = hit;
 
+            // `T·D`, formed for direct light, is also the diffuse continuation's throughput
+            let mut td = None;
             if m.diffuse.is_some() || m.specular.is_some() {
-                out = out + self.direct(mats, mi, tp.as_ref(), &hit, rng);
+                let (x, d) = self.direct(mats, mi, tp.as_ref(), &hit, rng);
+                out = out + x;
+                td = d;
             }
             if depth >= self.max_depth {
                 break;
@@ -165,7 +175,10 @@ impl<T: Shade> Compiled<T> {
                 break;
             }
             let k = total / coef.max / survive;
-            let next = coef.after(tp.as_ref());
+            let next = match (bounce, td) {
+                (Bounce::Diffuse, Some(td)) => td,
+                _ => coef.after(tp.as_ref()),
+            };
             tp = Some(if k == 1.0 { next } else { next.scale(k) });
             weight = bound / survive;
             ray = match bounce {
@@ -195,7 +208,8 @@ impl<T: Shade> Compiled<T> {
         out
     }
 
-    /// Direct light at a hit on material `mi` (next-event estimation; see the module docs).
+    /// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
+    /// and `T·D` if it was formed (a spectral diffuse coefficient after the first hit).
     fn direct(
         &self,
         mats: &[Mat<T>],
@@ -203,7 +217,7 @@ impl<T: Shade> Compiled<T> {
         tp: Option<&T>,
         hit: &Frame,
         rng: &mut Sampler,
-    ) -> Xyz {
+    ) -> (Xyz, Option<T>) {
         let Frame { lift, n, .. } = *hit;
         let m = &mats[mi];
         let (td, ts) = m.times(tp);
@@ -234,7 +248,7 @@ impl<T: Shade> Compiled<T> {
                     + self.light_term(m, tp, &td, &None, filter, e.radiance, 0.0, &e.light, None);
             }
         }
-        acc
+        (acc, td)
     }
 
     /// One row of path-traced pixels into `row` (length `width`).
