@@ -55,7 +55,12 @@ pub fn pdf(nm: f64) -> f64 {
 /// The wavelength whose cumulative probability is `u ∈ [0, 1)` (the inverse of the density's
 /// cumulative distribution, closed form).
 pub fn sample(u: f64) -> f64 {
-    let (t0, t1) = cdf_ends();
+    sample_in(u, cdf_ends())
+}
+
+/// [`sample`] with the ends `(t0, t1)` of [`cdf_ends`] computed once.
+#[inline]
+fn sample_in(u: f64, (t0, t1): (f64, f64)) -> f64 {
     (MID + (t0 + u * (t1 - t0)).atanh() / A).clamp(LAMBDA_MIN as f64, LAMBDA_MAX as f64)
 }
 
@@ -83,9 +88,10 @@ impl<const N: usize> Hero<N> {
     /// The hero wavelength of `u ∈ [0, 1)` and its `N − 1` companions, stratified in the
     /// density's cumulative distribution.
     pub fn wavelengths(u: f32) -> [f32; N] {
+        let ends = cdf_ends();
         core::array::from_fn(|j| {
             let uj = (u as f64 + j as f64 / N as f64).fract();
-            sample(uj) as f32
+            sample_in(uj, ends) as f32
         })
     }
 
