@@ -115,6 +115,11 @@ impl<const N: usize> SampledLight<N> {
             w: w.map(|row| row.map(|v| (v * norm) as f32)),
         }
     }
+
+    /// The weights `w[axis][i]` (axis 0..3 = X, Y, Z): XYZ is `Σᵢ w[axis][i]·vᵢ`.
+    pub const fn weights(&self) -> &[[f32; N]; 3] {
+        &self.w
+    }
 }
 
 impl<const N: usize> Shade for Sampled<N> {
