@@ -9,9 +9,8 @@
 use crate::Kernels;
 use core::arch::x86_64::{
     __m128, __m256, _mm256_add_ps, _mm256_castps256_ps128, _mm256_extractf128_ps, _mm256_fmadd_ps,
-    _mm256_hadd_ps, _mm256_loadu_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_setzero_ps,
-    _mm256_storeu_ps, _mm_add_ps, _mm_fmadd_ps, _mm_loadu_ps, _mm_mul_ps, _mm_set1_ps,
-    _mm_storeu_ps,
+    _mm256_hadd_ps, _mm256_loadu_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_setzero_ps, _mm_add_ps,
+    _mm_fmadd_ps, _mm_loadu_ps, _mm_mul_ps, _mm_set1_ps, _mm_storeu_ps,
 };
 use specpoly_core::{
     DefaultSpectrum, Moments, Paper, PaperSpectrum, Sampled, SampledLight, Shade, Uniform, Xyz,
@@ -65,12 +64,19 @@ fn load8(p: &[f32; 8]) -> __m256 {
     unsafe { _mm256_loadu_ps(p.as_ptr()) }
 }
 
+/// `v` as an array, written as two 128-bit halves: the portable (SSE2) code that receives a
+/// kernel's result copies it 16 bytes at a time, and a 16-byte load forwards from a 16-byte
+/// store but stalls on half of a 32-byte one (measured: the run-time path's product went from
+/// 10.9 to … ns, docs/performance.md).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn store8(v: __m256) -> [f32; 8] {
     let mut o = [0.0f32; 8];
-    // SAFETY: writes exactly the 8 f32 of `o` (unaligned store).
-    unsafe { _mm256_storeu_ps(o.as_mut_ptr(), v) };
+    // SAFETY: writes exactly the 8 f32 of `o`, 4 at a time (unaligned stores).
+    unsafe {
+        _mm_storeu_ps(o.as_mut_ptr(), _mm256_castps256_ps128(v));
+        _mm_storeu_ps(o.as_mut_ptr().add(4), _mm256_extractf128_ps::<1>(v));
+    }
     o
 }
 
@@ -162,13 +168,10 @@ fn xyz_default(r: &DefaultSpectrum, light: &Moments<8, 4, Uniform>) -> Xyz {
 
 // ---- the paper's preset: 2 cubic spans, 8 coefficients in all ----
 
-/// `[[f32; 2]; 4]` (coefficient-major) as one `[f32; 8]`.
-fn flat8(c: &[[f32; 2]; 4]) -> [f32; 8] {
-    let mut f = [0.0f32; 8];
-    for (k, row) in c.iter().enumerate() {
-        f[2 * k..2 * k + 2].copy_from_slice(row);
-    }
-    f
+/// `[[f32; 2]; 4]` (coefficient-major) as the one `[f32; 8]` it is in memory.
+#[inline(always)]
+fn flat8(c: &[[f32; 2]; 4]) -> &[f32; 8] {
+    c.as_flattened().try_into().unwrap_or(&[0.0; 8])
 }
 
 #[inline]
@@ -192,15 +195,16 @@ fn mul_paper(a: &PaperSpectrum, b: &PaperSpectrum) -> PaperSpectrum {
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn xyz_paper(r: &PaperSpectrum, light: &Moments<2, 4, Paper>) -> Xyz {
-    let c = load8(&flat8(r.coefficients()));
+    let c = load8(flat8(r.coefficients()));
     let m = light.moments();
-    let dot = |axis: usize| _mm256_mul_ps(load8(&flat8(&m[axis])), c);
+    let dot = |axis: usize| _mm256_mul_ps(load8(flat8(&m[axis])), c);
     Xyz::from_array(sum_lanes3(dot(0), dot(1), dot(2)))
 }
 
 // ---- sampled, 81 wavelengths: ten registers and one sample ----
 
 /// `v` as ten `[f32; 8]` and the last sample.
+#[inline(always)]
 fn chunks81(v: &[f32; 81]) -> ([&[f32; 8]; 10], f32) {
     (
         core::array::from_fn(|i| v[8 * i..8 * i + 8].try_into().unwrap_or(&[0.0; 8])),
