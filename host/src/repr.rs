@@ -14,8 +14,10 @@
 
 use crate::error::{CliError, Result};
 use specpoly_core::{
-    Layout, Paper, Rgb, Sampled, Shade, Spectrum, Uniform, DEFAULT_COEFFS, DEFAULT_SPANS,
+    DefaultSpectrum, Layout, Paper, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, Uniform,
+    DEFAULT_COEFFS, DEFAULT_SPANS,
 };
+use specpoly_simd::Wide;
 use std::fmt;
 use std::str::FromStr;
 
@@ -250,10 +252,15 @@ pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
     let out = match repr {
         Repr::Rgb => Some(v.visit::<Rgb>()),
         Repr::Exact => Some(v.visit::<Sampled<401>>()),
+        // The presets' product and →XYZ through AVX2 + FMA kernels where the CPU has them
+        // (specpoly-simd, chosen at run time; within its ULP_BOUND of the portable code).
+        r if r == Repr::DEFAULT => Some(v.visit::<Wide<DefaultSpectrum>>()),
+        Repr::Paper => Some(v.visit::<Wide<PaperSpectrum>>()),
+        Repr::Sampled(81) => Some(v.visit::<Wide<Sampled<81>>>()),
         Repr::Sampled(n) => sampled(n, v),
         Repr::Hero(4) => Some(v.visit::<crate::render::hero::Hero<4>>()),
         Repr::Hero(_) => None,
-        Repr::Poly { .. } | Repr::Paper => poly(repr, AsShade(v)),
+        Repr::Poly { .. } => poly(repr, AsShade(v)),
     };
     match out {
         Some(o) => o,
