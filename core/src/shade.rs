@@ -115,6 +115,11 @@ impl<const N: usize> SampledLight<N> {
             w: w.map(|row| row.map(|v| (v * norm) as f32)),
         }
     }
+
+    /// The weights `w[axis][i]` (axis 0..3 = X, Y, Z): XYZ is `Σᵢ w[axis][i]·vᵢ`.
+    pub const fn weights(&self) -> &[[f32; N]; 3] {
+        &self.w
+    }
 }
 
 impl<const N: usize> Shade for Sampled<N> {
@@ -150,8 +155,10 @@ impl<const N: usize> Shade for Sampled<N> {
     fn xyz(&self, light: &Self::Light) -> Xyz {
         // Eight lane accumulators so the dot products vectorise (a plain iterator sum is
         // sequential in f32): the sampled mode gets the same care as the polynomial one.
-        let mut out = [0.0f32; 3];
-        for (o, w) in out.iter_mut().zip(light.w.iter()) {
+        // The lanes are folded to 4 per axis, then the three axes finished together, as in
+        // `Moments::xyz`.
+        let mut part = [([0.0f32; 4], 0.0f32); 3];
+        for (p, w) in part.iter_mut().zip(light.w.iter()) {
             let mut lanes = [0.0f32; 8];
             let mut wc = w.chunks_exact(8);
             let mut vc = self.0.chunks_exact(8);
@@ -166,9 +173,9 @@ impl<const N: usize> Shade for Sampled<N> {
                 .zip(vc.remainder())
                 .map(|(a, b)| a * b)
                 .sum();
-            *o = lanes.iter().sum::<f32>() + tail;
+            *p = (core::array::from_fn(|l| lanes[l] + lanes[l + 4]), tail);
         }
-        Xyz::from_array(out)
+        Xyz::from_array(part.map(|(q, tail)| ((q[0] + q[2]) + (q[1] + q[3])) + tail))
     }
     fn from_reflectance(r: &Tabulated<'_>, _: &Self::Light) -> Result<Self, Error> {
         let mut s = [0.0f32; N];

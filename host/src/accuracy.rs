@@ -679,7 +679,7 @@ fn product_cost(m: &Method) -> usize {
     match m {
         Method::Repr(Repr::Poly { spans, coeffs }) => spans * coeffs * coeffs,
         Method::Repr(Repr::Paper) | Method::PaperPath => 2 * 16,
-        Method::Repr(Repr::Sampled(n)) => *n,
+        Method::Repr(Repr::Sampled(n) | Repr::Hero(n)) => *n,
         Method::Repr(Repr::Rgb) => 3,
         Method::Repr(Repr::Exact) => 401,
     }

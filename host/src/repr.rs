@@ -7,13 +7,17 @@
 //! - `poly:SxD` — `S` uniform spans of degree `D`;
 //! - `sampled:N` — `N` point samples over 380–780 nm, the light and the colour matching
 //!   functions point-sampled at the same wavelengths;
+//! - `hero:N` — hero-wavelength sampling (`N` wavelengths drawn per path by the path tracer,
+//!   as pbrt-v4 and Mitsuba 3; elsewhere `N` fixed wavelengths), [`crate::render::hero`];
 //! - `rgb` — linear sRGB triples (the paper's "RGB problem");
 //! - `exact` — the 1 nm reference: 401 samples at 1 nm, identical to the 1 nm sum.
 
 use crate::error::{CliError, Result};
 use specpoly_core::{
-    Layout, Paper, Rgb, Sampled, Shade, Spectrum, Uniform, DEFAULT_COEFFS, DEFAULT_SPANS,
+    DefaultSpectrum, Layout, Paper, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, Uniform,
+    DEFAULT_COEFFS, DEFAULT_SPANS,
 };
+use specpoly_simd::Wide;
 use std::fmt;
 use std::str::FromStr;
 
@@ -31,6 +35,8 @@ pub enum Repr {
     Paper,
     /// Point samples.
     Sampled(usize),
+    /// Hero-wavelength sampling with `N` wavelengths per path.
+    Hero(usize),
     /// Linear sRGB.
     Rgb,
     /// The 1 nm reference.
@@ -65,7 +71,7 @@ impl Repr {
         match *self {
             Repr::Poly { spans, coeffs } => spans * coeffs,
             Repr::Paper => 8,
-            Repr::Sampled(n) => n,
+            Repr::Sampled(n) | Repr::Hero(n) => n,
             Repr::Rgb => 3,
             Repr::Exact => 401,
         }
@@ -79,6 +85,7 @@ impl fmt::Display for Repr {
             Repr::Poly { spans, coeffs } => write!(f, "poly:{spans}x{}", coeffs - 1),
             Repr::Paper => write!(f, "paper"),
             Repr::Sampled(n) => write!(f, "sampled:{n}"),
+            Repr::Hero(n) => write!(f, "hero:{n}"),
             Repr::Rgb => write!(f, "rgb"),
             Repr::Exact => write!(f, "exact"),
         }
@@ -97,7 +104,7 @@ impl FromStr for Repr {
     fn from_str(s: &str) -> Result<Self> {
         let bad = || {
             CliError::usage(format!(
-                "unknown representation `{s}` (poly, paper, poly:SxD, sampled:N, rgb, exact)"
+                "unknown representation `{s}` (poly, paper, poly:SxD, sampled:N, hero:N, rgb, exact)"
             ))
         };
         match s {
@@ -105,6 +112,7 @@ impl FromStr for Repr {
             "paper" => return Ok(Repr::Paper),
             "rgb" => return Ok(Repr::Rgb),
             "exact" | "reference" => return Ok(Repr::Exact),
+            "hero" => return Ok(Repr::Hero(4)),
             _ => {}
         }
         if let Some(rest) = s.strip_prefix("poly:") {
@@ -132,6 +140,16 @@ impl FromStr for Repr {
                 )));
             }
             return Ok(Repr::Sampled(n));
+        }
+        if let Some(rest) = s.strip_prefix("hero:") {
+            let n: usize = rest.parse().map_err(|_| bad())?;
+            if !HERO_N.contains(&n) {
+                return Err(CliError::usage(format!(
+                    "`{s}`: supported wavelengths per path N are {}",
+                    list(HERO_N)
+                )));
+            }
+            return Ok(Repr::Hero(n));
         }
         Err(bad())
     }
@@ -205,6 +223,9 @@ representations! {
     sampled: [3, 4, 5, 8, 9, 11, 16, 21, 24, 32, 41, 48, 64, 81, 101, 201, 401];
 }
 
+/// Wavelengths per path supported by `hero:N` (pbrt-v4 and Mitsuba 3 use 4).
+pub const HERO_N: &[usize] = &[4];
+
 /// Runs `v` with the `Spectrum` type of a polynomial `repr`; a usage error naming `command`
 /// for the others (sampled, RGB, exact).
 pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, command: &str, v: V) -> Result<V::Output> {
@@ -218,7 +239,7 @@ fn poly<V: PolyVisitor>(repr: Repr, v: V) -> Option<V::Output> {
     match repr {
         Repr::Paper => Some(v.visit::<2, 4, Paper>()),
         Repr::Poly { spans, coeffs } => uniform_poly(spans, coeffs, v),
-        Repr::Sampled(_) | Repr::Rgb | Repr::Exact => None,
+        Repr::Sampled(_) | Repr::Hero(_) | Repr::Rgb | Repr::Exact => None,
     }
 }
 
@@ -231,8 +252,15 @@ pub fn dispatch<V: Visitor>(repr: Repr, v: V) -> V::Output {
     let out = match repr {
         Repr::Rgb => Some(v.visit::<Rgb>()),
         Repr::Exact => Some(v.visit::<Sampled<401>>()),
+        // The presets' product and →XYZ through AVX2 + FMA kernels where the CPU has them
+        // (specpoly-simd, chosen at run time; within its ULP_BOUND of the portable code).
+        r if r == Repr::DEFAULT => Some(v.visit::<Wide<DefaultSpectrum>>()),
+        Repr::Paper => Some(v.visit::<Wide<PaperSpectrum>>()),
+        Repr::Sampled(81) => Some(v.visit::<Wide<Sampled<81>>>()),
         Repr::Sampled(n) => sampled(n, v),
-        Repr::Poly { .. } | Repr::Paper => poly(repr, AsShade(v)),
+        Repr::Hero(4) => Some(v.visit::<crate::render::hero::Hero<4>>()),
+        Repr::Hero(_) => None,
+        Repr::Poly { .. } => poly(repr, AsShade(v)),
     };
     match out {
         Some(o) => o,
@@ -245,12 +273,21 @@ mod tests {
     use super::*;
     #[test]
     fn parse_and_print() {
-        for s in ["poly", "paper", "poly:4x5", "sampled:41", "rgb", "exact"] {
+        for s in [
+            "poly",
+            "paper",
+            "poly:4x5",
+            "sampled:41",
+            "hero:4",
+            "rgb",
+            "exact",
+        ] {
             assert_eq!(s.parse::<Repr>().unwrap().to_string(), s);
         }
         assert_eq!("poly:8x3".parse::<Repr>().unwrap(), Repr::DEFAULT);
         assert!("poly:7x3".parse::<Repr>().is_err());
         assert!("sampled:7".parse::<Repr>().is_err());
+        assert!("hero:3".parse::<Repr>().is_err());
         assert!("bogus".parse::<Repr>().is_err());
     }
 }

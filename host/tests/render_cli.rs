@@ -274,3 +274,63 @@ fn calibration_file_from_the_calibration_workflow() {
         std::fs::read(dir.path().join("s.png")).unwrap()
     );
 }
+
+/// `--compare --equal-time`: every path-tracer mode at poly's time against a 1 nm reference;
+/// JSON lists each mode's paths per pixel and ΔE00, and the image is two rows of panels.
+#[test]
+fn equal_time_compare() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = specpoly(
+        &[
+            "render",
+            "cornell",
+            "--compare",
+            "--equal-time",
+            "--size",
+            "8x6",
+            "--spp",
+            "2",
+            "--reference-spp",
+            "8",
+            "--json",
+            "-o",
+            "eq.png",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let modes = j["modes"].as_array().unwrap();
+    let names: Vec<&str> = modes.iter().map(|m| m["mode"].as_str().unwrap()).collect();
+    assert_eq!(names, ["rgb", "poly", "sampled:16", "sampled:81", "hero:4"]);
+    for m in modes {
+        assert!(m["paths_per_pixel"].as_u64().unwrap() >= 1);
+        assert!(m["delta_e00"]["mean"].as_f64().unwrap() >= 0.0);
+    }
+    assert_eq!(j["reference_paths_per_pixel"], 8);
+    // top row: 5 modes and the reference; bottom row: 5 heat maps; 4-pixel gaps
+    assert_eq!(
+        png_size(&dir.path().join("eq.png")),
+        (6 * 8 + 5 * 4, 2 * 6 + 4)
+    );
+
+    // the Whitted tracer has no equal-time comparison; --equal-time needs --compare
+    let o = specpoly(
+        &[
+            "render",
+            "example1",
+            "--compare",
+            "--equal-time",
+            "-o",
+            "x.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!dir.path().join("x.png").exists());
+    let o = specpoly(
+        &["render", "cornell", "--equal-time", "-o", "x.png"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

@@ -204,11 +204,11 @@ materials = { right = "green_paint" }
     // `usemtl left` takes the scene material of the same name, `right` the mapped one
     assert_eq!(
         s.triangles.intersect(&ray(-0.5), 1e9).unwrap().2,
-        idx("left")
+        render::mesh::Owner::Material(idx("left"))
     );
     assert_eq!(
         s.triangles.intersect(&ray(0.5), 1e9).unwrap().2,
-        idx("green_paint")
+        render::mesh::Owner::Material(idx("green_paint"))
     );
     let paint = s.materials[idx("paint")].diffuse.as_ref().unwrap();
     assert!((paint.tabulated().at(580.0) - 0.4).abs() < 1e-6);

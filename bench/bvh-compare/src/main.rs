@@ -1,10 +1,15 @@
 //! Build and trace speed of `obvhs` (PLOC BVH2 → compressed wide BVH8, and the BVH2 itself)
 //! against `bvh` (SAH binned BVH, nearest-first traversal) on the same triangles, the same rays
-//! and the same triangle test, one thread.
+//! and the same triangle test, on 1 and 2 threads (docs/performance.md, "BVH").
 //!
-//! Mesh: a height-field terrain of 200 × 200 quads and a latitude–longitude sphere of
-//! 120 × 240 quads above it (≈ 137 000 triangles). Rays: 512 × 512 primary rays from a pinhole
-//! camera, then one cosine-distributed secondary ray from every hit (incoherent).
+//! Scenes:
+//! - `cornell`: the built-in Cornell box's quads (read from `scenes/cornell.toml`), 30 triangles;
+//! - `mesh137k`: a height-field terrain of 200 × 200 quads and a latitude–longitude sphere of
+//!   120 × 240 quads above it (≈ 137 000 triangles), generated here.
+//!
+//! Rays: 512 × 512 primary rays from a pinhole camera, then one secondary ray from every hit in
+//! a direction from a fixed hash (incoherent). Each figure is the median of 5 runs.
+//! `cd bench/bvh-compare && cargo run --release`
 
 use glam::Vec3A;
 use std::time::{Duration, Instant};
@@ -44,12 +49,13 @@ fn hit(t: &[Vec3A; 3], o: Vec3A, d: Vec3A, tmin: f32, tmax: f32) -> f32 {
     }
 }
 
+fn quad(out: &mut Vec<Tri>, a: Vec3A, b: Vec3A, c: Vec3A, d: Vec3A) {
+    out.push(Tri { v: [a, b, c], node: 0 });
+    out.push(Tri { v: [a, c, d], node: 0 });
+}
+
 fn mesh() -> Vec<Tri> {
     let mut out = Vec::new();
-    let mut quad = |a: Vec3A, b: Vec3A, c: Vec3A, d: Vec3A| {
-        out.push(Tri { v: [a, b, c], node: 0 });
-        out.push(Tri { v: [a, c, d], node: 0 });
-    };
     let n = 200;
     let h = |i: usize, j: usize| {
         let (x, z) = (i as f32 / n as f32 * 20.0 - 10.0, j as f32 / n as f32 * 20.0 - 10.0);
@@ -57,7 +63,7 @@ fn mesh() -> Vec<Tri> {
     };
     for i in 0..n {
         for j in 0..n {
-            quad(h(i, j), h(i + 1, j), h(i + 1, j + 1), h(i, j + 1));
+            quad(&mut out, h(i, j), h(i + 1, j), h(i + 1, j + 1), h(i, j + 1));
         }
     }
     let m = 120;
@@ -68,25 +74,43 @@ fn mesh() -> Vec<Tri> {
     };
     for i in 0..m {
         for j in 0..2 * m {
-            quad(s(i, j), s(i + 1, j), s(i + 1, j + 1), s(i, j + 1));
+            quad(&mut out, s(i, j), s(i + 1, j), s(i + 1, j + 1), s(i, j + 1));
         }
     }
     out.retain(|t| (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]).length() > 0.0);
     out
 }
 
-fn rays() -> Vec<(Vec3A, Vec3A)> {
+/// The quads of the built-in Cornell box (`vertices = [[x, y, z], …]` lines of its scene file).
+fn cornell() -> Vec<Tri> {
+    let text = include_str!("../../../scenes/cornell.toml");
+    let mut out = Vec::new();
+    for line in text.lines().filter_map(|l| l.strip_prefix("vertices = ")) {
+        let nums: Vec<f32> = line
+            .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+            .filter(|s| !s.is_empty())
+            .map(|s| s.parse().expect("a number"))
+            .collect();
+        assert_eq!(nums.len(), 12, "{line}");
+        let p = |k: usize| Vec3A::new(nums[3 * k], nums[3 * k + 1], nums[3 * k + 2]);
+        quad(&mut out, p(0), p(1), p(2), p(3));
+    }
+    out
+}
+
+/// `w × h` pinhole rays from `eye` toward `at`, vertical field of view `fov` degrees.
+fn rays(eye: Vec3A, at: Vec3A, fov: f32) -> Vec<(Vec3A, Vec3A)> {
     let (w, h) = (512, 512);
-    let eye = Vec3A::new(0.0, 6.0, -14.0);
-    let fwd = (Vec3A::new(0.0, 1.0, 0.0) - eye).normalize();
+    let fwd = (at - eye).normalize();
     let right = Vec3A::Y.cross(fwd).normalize();
     let up = fwd.cross(right);
+    let k = (fov.to_radians() * 0.5).tan();
     let mut v = Vec::with_capacity(w * h);
     for y in 0..h {
         for x in 0..w {
             let u = (x as f32 + 0.5) / w as f32 * 2.0 - 1.0;
             let t = 1.0 - (y as f32 + 0.5) / h as f32 * 2.0;
-            v.push((eye, (fwd + right * (u * 0.5) + up * (t * 0.5)).normalize()));
+            v.push((eye, (fwd + right * (u * k) + up * (t * k)).normalize()));
         }
     }
     v
@@ -100,24 +124,43 @@ fn secondary(primary: &[(Vec3A, Vec3A)], t: &[f32]) -> Vec<(Vec3A, Vec3A)> {
             let mut z = (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
             z ^= z >> 29;
             let a = (z & 0xffff) as f32 / 65536.0 * std::f32::consts::TAU;
-            let b = ((z >> 16) & 0xffff) as f32 / 65536.0;
-            let dir = Vec3A::new(a.cos() * (1.0 - b * b).sqrt(), b, a.sin() * (1.0 - b * b).sqrt());
-            out.push((*o + *d * (t - 1e-3), dir));
+            let b = ((z >> 16) & 0xffff) as f32 / 65536.0 * 2.0 - 1.0;
+            let r = (1.0 - b * b).max(0.0).sqrt();
+            let dir = Vec3A::new(a.cos() * r, b, a.sin() * r);
+            out.push((*o + *d * (t * (1.0 - 1e-4)), dir));
         }
     }
     out
 }
 
-fn best<T>(f: impl Fn() -> T) -> (T, Duration) {
-    let mut best = Duration::MAX;
+/// The median time of 5 runs of `f`, and its last result.
+fn median<T>(f: impl Fn() -> T) -> (T, Duration) {
+    let mut times = Vec::new();
     let mut out = None;
-    for _ in 0..3 {
+    for _ in 0..5 {
         let t0 = Instant::now();
         let r = f();
-        best = best.min(t0.elapsed());
+        times.push(t0.elapsed());
         out = Some(r);
     }
-    (out.unwrap(), best)
+    times.sort();
+    (out.unwrap(), times[2])
+}
+
+/// `trace` over `rays` split among `threads` scoped threads.
+fn parallel(
+    threads: usize,
+    rays: &[(Vec3A, Vec3A)],
+    trace: &(dyn Fn(&[(Vec3A, Vec3A)]) -> Vec<f32> + Sync),
+) -> Vec<f32> {
+    if threads == 1 {
+        return trace(rays);
+    }
+    let chunk = rays.len().div_ceil(threads);
+    std::thread::scope(|s| {
+        let parts: Vec<_> = rays.chunks(chunk).map(|c| s.spawn(move || trace(c))).collect();
+        parts.into_iter().flat_map(|p| p.join().unwrap()).collect()
+    })
 }
 
 mod bvh_crate {
@@ -183,8 +226,7 @@ mod obvhs_crate {
         obvhs::bvh2::builder::build_bvh2_from_tris(t, obvhs::BvhBuildParams::medium_build(), &mut Duration::default())
     }
 
-    pub fn trace_cw(b: &obvhs::cwbvh::CwBvh, tris: &[Tri], rays: &[(Vec3A, Vec3A)]) -> Vec<f32> {
-        let ordered: Vec<[Vec3A; 3]> = b.primitive_indices.iter().map(|&i| tris[i as usize].v).collect();
+    pub fn trace_cw(b: &obvhs::cwbvh::CwBvh, ordered: &[[Vec3A; 3]], rays: &[(Vec3A, Vec3A)]) -> Vec<f32> {
         rays.iter()
             .map(|(o, d)| {
                 let mut h = RayHit::none();
@@ -196,8 +238,7 @@ mod obvhs_crate {
             .collect()
     }
 
-    pub fn trace_2(b: &obvhs::bvh2::Bvh2, tris: &[Tri], rays: &[(Vec3A, Vec3A)]) -> Vec<f32> {
-        let ordered: Vec<[Vec3A; 3]> = b.primitive_indices.iter().map(|&i| tris[i as usize].v).collect();
+    pub fn trace_2(b: &obvhs::bvh2::Bvh2, ordered: &[[Vec3A; 3]], rays: &[(Vec3A, Vec3A)]) -> Vec<f32> {
         rays.iter()
             .map(|(o, d)| {
                 let mut h = RayHit::none();
@@ -210,44 +251,59 @@ mod obvhs_crate {
     }
 }
 
-fn main() {
-    let tris = mesh();
-    let primary = rays();
-    println!("{} triangles, {} primary rays, one thread", tris.len(), primary.len());
-
+fn run(name: &str, tris: Vec<Tri>, primary: Vec<(Vec3A, Vec3A)>) {
+    println!("\n{name}: {} triangles, {} primary rays", tris.len(), primary.len());
     let input = obvhs_crate::input(&tris);
-    let (cw, t_cw) = best(|| obvhs_crate::build_cw(&input));
-    let (b2, t_b2) = best(|| obvhs_crate::build_2(&input));
-    let (bv, t_bv) = best(|| {
+    let (cw, t_cw) = median(|| obvhs_crate::build_cw(&input));
+    let (b2, t_b2) = median(|| obvhs_crate::build_2(&input));
+    let ((bv, bv_tris), t_bv) = median(|| {
         let mut t = tris.clone();
         let b = bvh_crate::build(&mut t);
         (b, t)
     });
-    let (bv, bv_tris) = bv;
-
-    let (hits_cw, p_cw) = best(|| obvhs_crate::trace_cw(&cw, &tris, &primary));
-    let (hits_b2, p_b2) = best(|| obvhs_crate::trace_2(&b2, &tris, &primary));
-    let (hits_bv, p_bv) = best(|| bvh_crate::trace(&bv, &bv_tris, &primary));
-    let agree = |a: &[f32], b: &[f32]| a.iter().zip(b).filter(|(x, y)| (*x - *y).abs() > 1e-3 * x.abs().max(1.0) && !(x.is_infinite() && y.is_infinite())).count();
-    println!("disagreeing primary hits: bvh2 {}, bvh {}", agree(&hits_cw, &hits_b2), agree(&hits_cw, &hits_bv));
+    let ord_cw: Vec<[Vec3A; 3]> = cw.primitive_indices.iter().map(|&i| tris[i as usize].v).collect();
+    let ord_b2: Vec<[Vec3A; 3]> = b2.primitive_indices.iter().map(|&i| tris[i as usize].v).collect();
+    let hits_cw = obvhs_crate::trace_cw(&cw, &ord_cw, &primary);
     let second = secondary(&primary, &hits_cw);
-    let (s_cw_h, s_cw) = best(|| obvhs_crate::trace_cw(&cw, &tris, &second));
-    let (s_b2_h, s_b2) = best(|| obvhs_crate::trace_2(&b2, &tris, &second));
-    let (s_bv_h, s_bv) = best(|| bvh_crate::trace(&bv, &bv_tris, &second));
-    println!("disagreeing secondary hits: bvh2 {}, bvh {}", agree(&s_cw_h, &s_b2_h), agree(&s_cw_h, &s_bv_h));
+    let agree = |a: &[f32], b: &[f32]| {
+        a.iter()
+            .zip(b)
+            .filter(|(x, y)| !(x.is_infinite() && y.is_infinite()) && (*x - *y).abs() > 1e-3 * x.abs().max(1.0))
+            .count()
+    };
+    println!("| BVH | threads | build | primary Mrays/s | secondary Mrays/s |");
+    println!("|---|---:|---:|---:|---:|");
     let mrays = |n: usize, t: Duration| n as f64 / t.as_secs_f64() / 1e6;
-    println!("| BVH | build | primary Mrays/s | secondary Mrays/s |");
-    println!("|---|---:|---:|---:|");
-    for (name, b, p, s) in [
-        ("obvhs 0.4 CWBVH (BVH8), medium_build", t_cw, p_cw, s_cw),
-        ("obvhs 0.4 BVH2, medium_build", t_b2, p_b2, s_b2),
-        ("bvh 0.13 (SAH), nearest-first iterator", t_bv, p_bv, s_bv),
-    ] {
-        println!(
-            "| {name} | {:.0} ms | {:.2} | {:.2} |",
-            b.as_secs_f64() * 1e3,
-            mrays(primary.len(), p),
-            mrays(second.len(), s)
-        );
+    type Tracer<'a> = Box<dyn Fn(&[(Vec3A, Vec3A)]) -> Vec<f32> + Sync + 'a>;
+    let tracers: [(&str, Duration, Tracer); 3] = [
+        ("obvhs 0.4 CWBVH (BVH8), medium_build", t_cw, Box::new(|r: &[(Vec3A, Vec3A)]| obvhs_crate::trace_cw(&cw, &ord_cw, r))),
+        ("obvhs 0.4 BVH2, medium_build", t_b2, Box::new(|r: &[(Vec3A, Vec3A)]| obvhs_crate::trace_2(&b2, &ord_b2, r))),
+        ("bvh 0.13 (SAH), nearest-first iterator", t_bv, Box::new(|r: &[(Vec3A, Vec3A)]| bvh_crate::trace(&bv, &bv_tris, r))),
+    ];
+    for (label, build, trace) in &tracers {
+        let p_hits = trace(&primary);
+        let s_hits = trace(&second);
+        let bad = agree(&hits_cw, &p_hits) + agree(&obvhs_crate::trace_cw(&cw, &ord_cw, &second), &s_hits);
+        for threads in [1, 2] {
+            let (_, p) = median(|| parallel(threads, &primary, trace.as_ref()));
+            let (_, s) = median(|| parallel(threads, &second, trace.as_ref()));
+            println!(
+                "| {label} | {threads} | {:.2} ms | {:.2} | {:.2} |{}",
+                build.as_secs_f64() * 1e3,
+                mrays(primary.len(), p),
+                mrays(second.len(), s),
+                if bad > 0 { format!(" ({bad} hits differ from CWBVH)") } else { String::new() }
+            );
+        }
     }
+}
+
+fn main() {
+    let eye = Vec3A::new(-278.0, 273.0, -800.0);
+    run("cornell", cornell(), rays(eye, Vec3A::new(-278.0, 273.0, 0.0), 39.3));
+    run(
+        "mesh137k",
+        mesh(),
+        rays(Vec3A::new(0.0, 6.0, -14.0), Vec3A::new(0.0, 1.0, 0.0), 53.0),
+    );
 }

@@ -15,6 +15,7 @@ pub mod light;
 pub mod mix;
 pub mod plot;
 pub mod render;
+pub mod render_equal_time;
 pub mod table1;
 pub mod xyz;
 

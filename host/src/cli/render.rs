@@ -26,7 +26,7 @@ pub struct RenderArgs {
     /// A built-in scene (example1, example2, interreflection) or a scene file (.toml).
     #[arg(value_name = "SCENE|FILE.toml")]
     pub scene: String,
-    /// Colour representation: rgb, paper, poly, poly:SxD, sampled:N, reference (= exact).
+    /// Colour representation: rgb, paper, poly, poly:SxD, sampled:N, hero:N, reference (= exact).
     #[arg(long, default_value = "poly")]
     pub mode: Repr,
     /// The display: sRGB, or a display TOML (primaries, luminances, gamma; see docs/scenes.md).
@@ -44,6 +44,12 @@ pub struct RenderArgs {
     /// Render rgb, paper, poly, sampled:81 and the reference; write rgb, poly, reference and ΔE00 heat maps side by side.
     #[arg(long)]
     pub compare: bool,
+    /// With --compare and the path tracer: every mode at the time poly takes at --spp, against a --reference-spp 1 nm render.
+    #[arg(long, requires = "compare")]
+    pub equal_time: bool,
+    /// Paths per pixel of the --equal-time reference (1 nm, another seed).
+    #[arg(long, value_name = "N", default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
+    pub reference_spp: u32,
     /// Light transport: whitted (the paper's model; default) or path (path tracing), overriding the scene's.
     #[arg(long, value_parser = clap::value_parser!(Integrator))]
     pub integrator: Option<Integrator>,
@@ -97,6 +103,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let out = Output::new(&scene, display, a.gamut.into());
     let (w, h) = (scene.render.width, scene.render.height);
 
+    if a.equal_time {
+        return super::render_equal_time::run(a, &scene, &out);
+    }
     if a.compare {
         return run_compare(a, &scene, &out);
     }

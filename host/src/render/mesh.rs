@@ -27,6 +27,15 @@ fn v3(v: Vec3A) -> V3 {
     V3::new(v.x, v.y, v.z)
 }
 
+/// What a triangle belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Owner {
+    /// A surface of scene material `usize`.
+    Material(usize),
+    /// Emissive mesh `usize` (an index into the scene's area lights).
+    Light(usize),
+}
+
 /// Every triangle of a scene with its material, and the BVH over them.
 #[derive(Clone, Debug, Default)]
 pub struct Triangles {
@@ -34,8 +43,8 @@ pub struct Triangles {
     tris: Vec<Triangle>,
     /// Unit geometric normals, in BVH order.
     normals: Vec<V3>,
-    /// Material index of each triangle, in BVH order.
-    materials: Vec<usize>,
+    /// Owner of each triangle, in BVH order.
+    owners: Vec<Owner>,
     /// `None` when there are no triangles.
     bvh: Option<CwBvh>,
 }
@@ -45,16 +54,22 @@ pub struct Triangles {
 pub struct TriangleSoup {
     /// Vertices.
     pub tris: Vec<[V3; 3]>,
-    /// Material index of each.
-    pub materials: Vec<usize>,
+    /// Owner of each.
+    pub owners: Vec<Owner>,
 }
 
 impl TriangleSoup {
-    /// Adds one triangle (degenerate ones, of zero area, are dropped: they cannot be hit).
+    /// Adds one triangle of material `material` (degenerate ones, of zero area, are dropped:
+    /// they cannot be hit).
     pub fn push(&mut self, t: [V3; 3], material: usize) {
+        self.push_owned(t, Owner::Material(material));
+    }
+
+    /// Adds one triangle belonging to `owner` (degenerate ones are dropped).
+    pub fn push_owned(&mut self, t: [V3; 3], owner: Owner) {
         if (t[1] - t[0]).cross(t[2] - t[0]).length() > 0.0 {
             self.tris.push(t);
-            self.materials.push(material);
+            self.owners.push(owner);
         }
     }
 
@@ -90,11 +105,11 @@ impl TriangleSoup {
             .iter()
             .map(|t| v3((t.v1 - t.v0).cross(t.v2 - t.v0).normalize_or_zero()))
             .collect();
-        let materials = order.iter().map(|&i| self.materials[i]).collect();
+        let owners = order.iter().map(|&i| self.owners[i]).collect();
         Triangles {
             tris,
             normals,
-            materials,
+            owners,
             bvh: Some(bvh),
         }
     }
@@ -111,24 +126,24 @@ impl Triangles {
         self.tris.is_empty()
     }
 
-    /// The nearest hit with `EPS < t < t_max`: `(t, unit normal, material)`.
+    /// The nearest hit with `EPS < t < t_max`: `(t, unit normal, owner)`.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, V3, usize)> {
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, V3, Owner)> {
         let bvh = self.bvh.as_ref()?;
         let r = BvhRay::new(a3(ray.origin), a3(ray.dir), EPS, t_max);
         let mut hit = RayHit::none();
         if bvh.ray_traverse(r, &mut hit, |r, id| self.tris[id].intersect(r)) {
             let i = hit.primitive_id as usize;
-            Some((hit.t, self.normals[i], self.materials[i]))
+            Some((hit.t, self.normals[i], self.owners[i]))
         } else {
             None
         }
     }
 
-    /// Calls `f(material)` for every crossing of the segment `EPS < t < t_max`, in no
+    /// Calls `f(owner)` for every crossing of the segment `EPS < t < t_max`, in no
     /// particular order; stops early when `f` returns `false`.
     #[inline]
-    pub fn crossings(&self, ray: &Ray, t_max: f32, mut f: impl FnMut(usize) -> bool) {
+    pub fn crossings(&self, ray: &Ray, t_max: f32, mut f: impl FnMut(Owner) -> bool) {
         let Some(bvh) = self.bvh.as_ref() else {
             return;
         };
@@ -137,7 +152,7 @@ impl Triangles {
         // any-hit traversal visits every candidate; a shadow ray stops at the first opaque one
         bvh.ray_traverse_miss(r, |r, id| {
             if go && self.tris[id].intersect(r) < t_max {
-                go = f(self.materials[id]);
+                go = f(self.owners[id]);
             }
             // a `t` below `tmax` ends the traversal
             if go {
@@ -159,6 +174,18 @@ pub struct ObjPlacement<'a> {
     pub default: usize,
     /// OBJ material name → scene material index.
     pub map: &'a BTreeMap<String, usize>,
+}
+
+/// Reads a mesh file into `soup`: PLY for a `.ply` name ([`super::mesh_ply`]), else OBJ.
+pub fn load(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
+    {
+        super::mesh_ply::load_ply(path, place, soup)
+    } else {
+        load_obj(path, place, soup)
+    }
 }
 
 /// Reads an OBJ file (faces triangulated as fans) into `soup`; returns how many triangles it
@@ -268,7 +295,7 @@ mod tests {
             .intersect(&r, 1e9)
             .unwrap();
             let (tt, n, m) = t.intersect(&r, 1e9).unwrap();
-            assert_eq!(m, 3);
+            assert_eq!(m, Owner::Material(3));
             assert!((tt - exact.t).abs() <= 2.0 * sagitta, "{tt} vs {}", exact.t);
             assert!(n.dot(exact.normal).abs() > 0.99);
         }

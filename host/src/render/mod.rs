@@ -8,10 +8,13 @@
 
 pub mod budget;
 pub mod builtin;
+pub mod equal_time;
 pub mod geometry;
+pub mod hero;
 pub mod image_file;
 pub mod lights;
 pub mod mesh;
+pub mod mesh_ply;
 pub mod output;
 pub mod path;
 pub mod scene;
@@ -117,6 +120,9 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
 
 /// Renders `scene` in representation `repr` (`rgb`, `paper`, `poly`, `sampled:N`, `exact`).
 pub fn render(scene: &Scene, repr: Repr, progress: Option<Progress<'_>>) -> Result<Image> {
+    if let Repr::Hero(4) = repr {
+        return Ok(render_compiled(&hero::compile::<4>(scene)?, progress));
+    }
     repr::dispatch(repr, RenderVisit { scene, progress })
 }
 

@@ -34,14 +34,24 @@
 //!
 //! Sampling is deterministic: pixel `(x, y)`, path `s` uses a PCG32 stream (O'Neill 2014,
 //! `rand_pcg`) seeded from `(seed, x, y, s)`, so images do not depend on threads.
+//!
+//! **Hero-wavelength sampling** (`hero:N`, [`super::hero`]) is the one mode whose values
+//! depend on the path: before each path the materials are bound to wavelengths drawn from a
+//! second stream (so the path's own stream, hence its rays, stay those of every other mode),
+//! into a per-row scratch copy of the materials, and the path starts with throughput one at
+//! those wavelengths. Every other mode uses the frame's materials and is unchanged.
 //! The ambient term and the background reflectance are Whitted-only.
 
 use super::geometry::Ray;
 use super::lights::cosine_direction;
-use super::tracer::{Compiled, Frame, Surf};
+use super::tracer::{Compiled, Frame, Mat, Surf};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 use specpoly_core::{Shade, Xyz};
+
+/// Mixed into the seed of the stream that draws a path's wavelengths (hero sampling), so the
+/// path's own stream, and hence its rays, are those of every other mode.
+const WAVELENGTH_STREAM: u64 = 0x6865_726F_5F6C_616D;
 
 /// A deterministic uniform sampler on `[0, 1)`.
 pub struct Sampler(Pcg32);
@@ -77,8 +87,9 @@ enum Bounce {
 
 impl<T: Shade> Compiled<T> {
     /// XYZ of pixel `(x, y)` by path tracing: the mean of `spp` paths through uniformly
-    /// jittered points of the pixel.
-    pub fn path_pixel(&self, x: u32, y: u32) -> Xyz {
+    /// jittered points of the pixel. `scratch` holds the materials bound to a path's
+    /// wavelengths under hero-wavelength sampling (unused otherwise).
+    pub(super) fn path_pixel(&self, x: u32, y: u32, scratch: &mut [Mat<T>]) -> Xyz {
         let (w, h) = (self.width(), self.height());
         let aspect = w as f32 / h as f32;
         let mut sum = Xyz::default();
@@ -87,15 +98,26 @@ impl<T: Shade> Compiled<T> {
             let u = (x as f32 + rng.uniform()) / w as f32;
             let v = (y as f32 + rng.uniform()) / h as f32;
             let ray = self.camera.ray(u, v, aspect);
-            sum = sum + self.path(ray, &mut rng);
+            let radiance = match &self.per_path {
+                None => self.path(ray, &mut rng, &self.mats, None),
+                Some(pp) => {
+                    // the wavelengths from their own stream: the paths stay those of every mode
+                    let lambda_u = Sampler::new(self.seed ^ WAVELENGTH_STREAM, x, y, s).uniform();
+                    let start = (pp.bind)(&pp.tables, lambda_u, scratch);
+                    self.path(ray, &mut rng, scratch, Some(start))
+                }
+            };
+            sum = sum + radiance;
         }
         sum.scale(1.0 / self.spp as f32)
     }
 
     /// The radiance (XYZ) arriving along `ray`.
-    fn path(&self, mut ray: Ray, rng: &mut Sampler) -> Xyz {
+    /// `mats` are the materials (bound to the path's wavelengths under hero sampling) and
+    /// `start` the starting throughput (`None` = 1).
+    fn path(&self, mut ray: Ray, rng: &mut Sampler, mats: &[Mat<T>], start: Option<T>) -> Xyz {
         let mut out = Xyz::default();
-        let mut tp: Option<T> = None;
+        let mut tp: Option<T> = start;
         let mut weight = 1.0f32;
         let mut count_emission = true;
         let mut depth = 0u32;
@@ -116,12 +138,16 @@ impl<T: Shade> Compiled<T> {
                     break;
                 }
             };
-            let m = &self.mats[mi];
+            let m = &mats[mi];
             let hit = Frame::at(&ray, t, normal);
             let Frame { n, lift, .. } = hit;
 
+            // `T·D`, formed for direct light, is also the diffuse continuation's throughput
+            let mut td = None;
             if m.diffuse.is_some() || m.specular.is_some() {
-                out = out + self.direct(mi, tp.as_ref(), &hit, rng);
+                let (x, d) = self.direct(mats, mi, tp.as_ref(), &hit, rng);
+                out = out + x;
+                td = d;
             }
             if depth >= self.max_depth {
                 break;
@@ -149,7 +175,10 @@ impl<T: Shade> Compiled<T> {
                 break;
             }
             let k = total / coef.max / survive;
-            let next = coef.after(tp.as_ref());
+            let next = match (bounce, td) {
+                (Bounce::Diffuse, Some(td)) => td,
+                _ => coef.after(tp.as_ref()),
+            };
             tp = Some(if k == 1.0 { next } else { next.scale(k) });
             weight = bound / survive;
             ray = match bounce {
@@ -179,14 +208,22 @@ impl<T: Shade> Compiled<T> {
         out
     }
 
-    /// Direct light at a hit on material `mi` (next-event estimation; see the module docs).
-    fn direct(&self, mi: usize, tp: Option<&T>, hit: &Frame, rng: &mut Sampler) -> Xyz {
+    /// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
+    /// and `T·D` if it was formed (a spectral diffuse coefficient after the first hit).
+    fn direct(
+        &self,
+        mats: &[Mat<T>],
+        mi: usize,
+        tp: Option<&T>,
+        hit: &Frame,
+        rng: &mut Sampler,
+    ) -> (Xyz, Option<T>) {
         let Frame { lift, n, .. } = *hit;
-        let m = &self.mats[mi];
+        let m = &mats[mi];
         let (td, ts) = m.times(tp);
         let mut acc = Xyz::default();
         for (li, l) in self.lights.iter().enumerate() {
-            let Some((filter, a, b)) = self.point_weights(l, m, hit, lift, true) else {
+            let Some((filter, a, b)) = self.point_weights(mats, l, m, hit, lift, true) else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
@@ -195,7 +232,8 @@ impl<T: Shade> Compiled<T> {
         for (k, l) in self.area.iter().enumerate() {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             // share 1.0: `x * 1.0` is exactly `x`
-            let Some((filter, a, b)) = self.area_weights(l, m, hit, (u1, u2), 1.0, true) else {
+            let Some((filter, a, b)) = self.area_weights(mats, l, m, hit, (u1, u2), 1.0, true)
+            else {
                 continue;
             };
             let first = (tp.is_none() && filter.is_none()).then(|| self.first_area[mi][k]);
@@ -204,19 +242,23 @@ impl<T: Shade> Compiled<T> {
         if let (Some(e), Some(_)) = (&self.env, &m.diffuse) {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             let dir = cosine_direction(n, u1, u2);
-            if let Some(filter) = self.shadow(lift, dir, f32::INFINITY, true) {
+            if let Some(filter) = self.shadow(mats, lift, dir, f32::INFINITY, true) {
                 // (D/π) · L · cos θ / (cos θ / π) = D · L
                 acc = acc
                     + self.light_term(m, tp, &td, &None, filter, e.radiance, 0.0, &e.light, None);
             }
         }
-        acc
+        (acc, td)
     }
 
     /// One row of path-traced pixels into `row` (length `width`).
     pub fn path_row(&self, y: u32, row: &mut [Xyz]) {
+        let mut scratch = match self.per_path {
+            Some(_) => self.mats.clone(),
+            None => Vec::new(),
+        };
         for (x, px) in row.iter_mut().enumerate() {
-            *px = self.path_pixel(x as u32, y);
+            *px = self.path_pixel(x as u32, y, &mut scratch);
         }
     }
 }

@@ -553,13 +553,14 @@ impl SceneFile {
         super::budget::check(&self.render, &materials, source)?;
         let objects = self.objects(source)?;
         let base = self.base.as_deref();
+        let (area_lights, environment) = super::scene_geometry::lights(self, source, base)?;
         let triangles = std::sync::Arc::new(super::scene_geometry::triangles(
             self,
             source,
             base,
             &|name: &str, what: &str| self.material_index(source, name, what),
+            &area_lights,
         )?);
-        let (area_lights, environment) = super::scene_geometry::lights(self, source, base)?;
         let (lights, ambient, background) = self.lights(source, &area_lights, &environment)?;
         Ok(Scene {
             render: self.render.clone(),

@@ -2,13 +2,14 @@
 //! `[environment]`): their TOML sections and their resolution. File names resolve against the
 //! scene file's folder.
 
-use super::lights::{AreaLight, Emitter, Environment};
-use super::mesh::{self, ObjPlacement, TriangleSoup, Triangles};
+use super::lights::{AreaLight, Emitter, EmitterMesh, Environment};
+use super::mesh::{self, ObjPlacement, Owner, TriangleSoup, Triangles};
 use super::scene::{resolve_spectrum_in, v3, SceneFile, SpectrumSpec};
 use crate::error::{CliError, Result};
 use serde::Deserialize;
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 fn one() -> f32 {
     1.0
@@ -24,7 +25,7 @@ pub struct QuadSection {
     pub material: String,
 }
 
-/// `[[mesh]]`: an OBJ file.
+/// `[[mesh]]`: an OBJ or PLY file.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSection {
@@ -44,7 +45,8 @@ pub struct MeshSection {
     pub translate: [f32; 3],
 }
 
-/// `[[area_light]]`: a rectangle (`corner`, `u`, `v`) or a sphere (`center`, `radius`).
+/// `[[area_light]]`: a rectangle (`corner`, `u`, `v`), a sphere (`center`, `radius`) or an
+/// emissive mesh (`mesh`, with `scale` and `translate`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AreaLightSection {
@@ -63,6 +65,12 @@ pub struct AreaLightSection {
     pub center: Option<[f32; 3]>,
     /// Sphere: radius.
     pub radius: Option<f32>,
+    /// Emissive mesh: an OBJ or PLY file, relative to the scene file's folder.
+    pub mesh: Option<String>,
+    /// Emissive mesh: uniform scale (applied first).
+    pub scale: Option<f32>,
+    /// Emissive mesh: translation (applied after the scale).
+    pub translate: Option<[f32; 3]>,
 }
 
 /// `[environment]`: a constant radiance from every direction.
@@ -76,14 +84,29 @@ pub struct EnvironmentSection {
     pub radiance: f32,
 }
 
-/// Every quad and mesh triangle with its BVH. `material(name, what)` finds a scene material.
+/// Every quad, mesh and emissive-mesh triangle with its BVH. `material(name, what)` finds a
+/// scene material; `area_lights` are the scene's (emissive meshes among them).
 pub fn triangles(
     f: &SceneFile,
     source: &str,
     base: Option<&Path>,
     material: &dyn Fn(&str, &str) -> Result<usize>,
+    area_lights: &[AreaLight],
 ) -> Result<Triangles> {
     let mut soup = TriangleSoup::default();
+    for (k, l) in area_lights.iter().enumerate() {
+        if let Emitter::Mesh(m) = &l.shape {
+            for t in &m.tris {
+                soup.push_owned(*t, Owner::Light(k));
+            }
+        }
+    }
+    if soup.tris.len() > mesh::MAX_TRIANGLES {
+        return Err(CliError::data(format!(
+            "{source}: more than {} triangles in the scene",
+            mesh::MAX_TRIANGLES
+        )));
+    }
     for (i, q) in f.quad.iter().enumerate() {
         let what = format!("quad {}", i + 1);
         let mut vs = [super::geometry::V3::default(); 4];
@@ -113,26 +136,32 @@ pub fn triangles(
         for (obj, scene) in &m.materials {
             map.insert(obj.clone(), material(scene, &what)?);
         }
-        let path = match base {
-            Some(b) if Path::new(&m.file).is_relative() => b.join(&m.file),
-            _ => Path::new(&m.file).to_path_buf(),
-        };
-        if !path.is_file() {
-            // a file that does not exist is exit 2 wherever it is named (src/error.rs)
-            return Err(CliError::usage(format!(
-                "{source}: {what}: no such file {}",
-                path.display()
-            )));
-        }
+        let path = mesh_path(&m.file, base, source, &what)?;
         let place = ObjPlacement {
             scale: m.scale,
             translate: v3(m.translate, &format!("{source}: {what}: translate"))?,
             default,
             map: &map,
         };
-        mesh::load_obj(&path, &place, &mut soup)?;
+        mesh::load(&path, &place, &mut soup)?;
     }
     Ok(soup.build())
+}
+
+/// `file` relative to `base`; an error naming `what` if it is not a file.
+fn mesh_path(file: &str, base: Option<&Path>, source: &str, what: &str) -> Result<PathBuf> {
+    let path = match base {
+        Some(b) if Path::new(file).is_relative() => b.join(file),
+        _ => Path::new(file).to_path_buf(),
+    };
+    if !path.is_file() {
+        // a file that does not exist is exit 2 wherever it is named (src/error.rs)
+        return Err(CliError::usage(format!(
+            "{source}: {what}: no such file {}",
+            path.display()
+        )));
+    }
+    Ok(path)
 }
 
 /// The area lights and the environment.
@@ -147,8 +176,33 @@ pub fn lights(
         if !(l.radiance.is_finite() && l.radiance >= 0.0) {
             return Err(CliError::data(format!("{what}: radiance must be ≥ 0")));
         }
+        if l.mesh.is_none() && (l.scale.is_some() || l.translate.is_some()) {
+            return Err(CliError::data(format!(
+                "{what}: scale and translate apply to a mesh only"
+            )));
+        }
         let shape = match (l.corner, l.u, l.v, l.center, l.radius) {
-            (Some(c), Some(u), Some(v), None, None) => {
+            (None, None, None, None, None) if l.mesh.is_some() => {
+                let file = l.mesh.as_deref().unwrap_or_default();
+                let scale = l.scale.unwrap_or(1.0);
+                if !(scale.is_finite() && scale > 0.0) {
+                    return Err(CliError::data(format!("{what}: scale must be positive")));
+                }
+                let path = mesh_path(file, base, source, &format!("area_light {}", i + 1))?;
+                let place = ObjPlacement {
+                    scale,
+                    translate: v3(l.translate.unwrap_or_default(), &what)?,
+                    default: 0,
+                    map: &BTreeMap::new(),
+                };
+                let mut soup = TriangleSoup::default();
+                mesh::load(&path, &place, &mut soup)?;
+                let m = EmitterMesh::new(soup.tris).ok_or_else(|| {
+                    CliError::data(format!("{what}: the mesh {file} has no area"))
+                })?;
+                Emitter::Mesh(Arc::new(m))
+            }
+            (Some(c), Some(u), Some(v), None, None) if l.mesh.is_none() => {
                 let (c, u, v) = (v3(c, &what)?, v3(u, &what)?, v3(v, &what)?);
                 if u.cross(v).length() == 0.0 {
                     return Err(CliError::data(format!(
@@ -157,7 +211,7 @@ pub fn lights(
                 }
                 Emitter::Rect { corner: c, u, v }
             }
-            (None, None, None, Some(c), Some(r)) => {
+            (None, None, None, Some(c), Some(r)) if l.mesh.is_none() => {
                 if !(r.is_finite() && r > 0.0) {
                     return Err(CliError::data(format!("{what}: radius must be positive")));
                 }
@@ -168,7 +222,7 @@ pub fn lights(
             }
             _ => {
                 return Err(CliError::data(format!(
-                    "{what}: give a rectangle (corner, u, v) or a sphere (center, radius)"
+                    "{what}: give a rectangle (corner, u, v), a sphere (center, radius) or a mesh (mesh = FILE)"
                 )))
             }
         };

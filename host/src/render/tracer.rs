@@ -24,7 +24,7 @@
 
 use super::geometry::{Camera, Ray, Shape, EPS, V3};
 use super::lights::Emitter;
-use super::mesh::Triangles;
+use super::mesh::{Owner, Triangles};
 use super::scene::{Material, Object, Scene};
 use specpoly_core::{Shade, Xyz};
 use std::f32::consts::PI;
@@ -283,6 +283,9 @@ pub struct Compiled<T: Shade> {
     pub(super) spp: u32,
     pub(super) seed: u64,
     light_samples: u32,
+    /// Hero-wavelength sampling: materials bound to wavelengths drawn per path
+    /// ([`super::hero`]); `None` in every other mode.
+    pub(super) per_path: Option<super::hero::PerPath<T>>,
 }
 
 impl<T: Shade> Compiled<T> {
@@ -308,7 +311,7 @@ impl<T: Shade> Compiled<T> {
             .map(|l| {
                 let light = T::light(obs, &l.spd.tabulated());
                 AreaT {
-                    shape: l.shape,
+                    shape: l.shape.clone(),
                     radiance: l.radiance,
                     emit_xyz: white(&light, l.radiance),
                     light,
@@ -427,6 +430,7 @@ impl<T: Shade> Compiled<T> {
             spp: scene.render.spp,
             seed: scene.render.seed,
             light_samples: scene.render.light_samples,
+            per_path: None,
         })
     }
 
@@ -455,7 +459,14 @@ impl<T: Shade> Compiled<T> {
         let mut other: Option<(f32, V3, Surf)> = None;
         if let Some((t, n, m)) = self.triangles.intersect(ray, t_max) {
             t_max = t;
-            other = Some((t, n, Surf::Mat(m)));
+            other = Some((
+                t,
+                n,
+                match m {
+                    Owner::Material(m) => Surf::Mat(m),
+                    Owner::Light(k) => Surf::Light(k),
+                },
+            ));
         }
         for (k, l) in self.area.iter().enumerate() {
             if let Some((t, n)) = l.shape.intersect(ray, t_max) {
@@ -496,6 +507,7 @@ impl<T: Shade> Compiled<T> {
     #[inline]
     pub(super) fn shadow(
         &self,
+        mats: &[Mat<T>],
         p: V3,
         dir: V3,
         dist: f32,
@@ -513,7 +525,7 @@ impl<T: Shade> Compiled<T> {
             if k == 0 {
                 continue;
             }
-            let f = passes(&self.mats[o.material])?;
+            let f = passes(&mats[o.material])?;
             for _ in 0..k {
                 filter = Some(match filter {
                     Some(acc) => f.times(&acc),
@@ -522,8 +534,13 @@ impl<T: Shade> Compiled<T> {
             }
         }
         let mut blocked = false;
-        self.triangles
-            .crossings(&ray, dist, |m| match passes(&self.mats[m]) {
+        self.triangles.crossings(&ray, dist, |m| match m {
+            // emissive meshes are opaque
+            Owner::Light(_) => {
+                blocked = true;
+                false
+            }
+            Owner::Material(m) => match passes(&mats[m]) {
                 Some(f) => {
                     filter = Some(match filter {
                         Some(acc) => f.times(&acc),
@@ -535,7 +552,8 @@ impl<T: Shade> Compiled<T> {
                     blocked = true;
                     false
                 }
-            });
+            },
+        });
         if blocked {
             return None;
         }
@@ -582,7 +600,8 @@ impl<T: Shade> Compiled<T> {
                 _ => {}
             }
             for (li, l) in self.lights.iter().enumerate() {
-                let Some((filter, a, b)) = self.point_weights(l, m, &hit, p, false) else {
+                let Some((filter, a, b)) = self.point_weights(&self.mats, l, m, &hit, p, false)
+                else {
                     continue;
                 };
                 let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
@@ -597,7 +616,7 @@ impl<T: Shade> Compiled<T> {
                     for j in 0..ns {
                         let (u1, u2) = ((i as f32 + 0.5) / ns as f32, (j as f32 + 0.5) / ns as f32);
                         let Some((filter, a, b)) =
-                            self.area_weights(l, m, &hit, (u1, u2), inv_n, false)
+                            self.area_weights(&self.mats, l, m, &hit, (u1, u2), inv_n, false)
                         else {
                             continue;
                         };
@@ -667,6 +686,7 @@ impl<T: Shade> Compiled<T> {
     #[inline]
     pub(super) fn point_weights(
         &self,
+        mats: &[Mat<T>],
         l: &LightT<T>,
         m: &Mat<T>,
         hit: &Frame,
@@ -684,7 +704,7 @@ impl<T: Shade> Compiled<T> {
         if cos <= 0.0 {
             return None;
         }
-        let filter = self.shadow(lift, ldir, dist, refraction_blocks)?;
+        let filter = self.shadow(mats, lift, ldir, dist, refraction_blocks)?;
         let a = l.intensity * cos;
         let b = match &m.specular {
             Some(_) => {
@@ -705,9 +725,11 @@ impl<T: Shade> Compiled<T> {
     /// One sample `u` of area light `l` from the hit `hit` on material `m`, weighted by `share`
     /// (1 for one sample): `(filter, a, b)` as for [`Self::point_weights`]; `None` if the
     /// sample misses or is blocked.
+    #[allow(clippy::too_many_arguments)]
     #[inline]
     pub(super) fn area_weights(
         &self,
+        mats: &[Mat<T>],
         l: &AreaT<T>,
         m: &Mat<T>,
         hit: &Frame,
@@ -717,7 +739,13 @@ impl<T: Shade> Compiled<T> {
     ) -> Option<(Option<T>, f32, f32)> {
         let Frame { lift, n, v, .. } = *hit;
         let smp = l.shape.sample(lift, n, u.0, u.1)?;
-        let filter = self.shadow(lift, smp.dir, smp.dist * (1.0 - 1e-4), refraction_blocks)?;
+        let filter = self.shadow(
+            mats,
+            lift,
+            smp.dir,
+            smp.dist * (1.0 - 1e-4),
+            refraction_blocks,
+        )?;
         let a = l.radiance * smp.weight * share / PI;
         let b = match &m.specular {
             Some(_) => l.radiance * smp.weight * share * phong_lobe(m.phong, smp.dir, n, v),
