@@ -81,31 +81,33 @@ pub trait Kernels: Shade {
 #[repr(transparent)]
 pub struct Wide<T>(pub T);
 
+// `inline(always)`: the renderer calls these in deep generic code where the compiler otherwise
+// keeps them out of line, and every call then copies a 128-byte value once more.
 impl<T: Kernels> Shade for Wide<T> {
     type Light = T::Light;
     fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light {
         T::light(observer, light)
     }
-    #[inline]
+    #[inline(always)]
     fn constant(v: f32, light: &Self::Light) -> Self {
         Wide(T::constant(v, light))
     }
-    #[inline]
+    #[inline(always)]
     fn mul(&self, o: &Self) -> Self {
         Wide(match Avx2Fma::detect() {
             Some(k) => T::mul_with(k, &self.0, &o.0),
             None => self.0.mul(&o.0),
         })
     }
-    #[inline]
+    #[inline(always)]
     fn add(&self, o: &Self) -> Self {
         Wide(self.0.add(&o.0))
     }
-    #[inline]
+    #[inline(always)]
     fn scale(&self, k: f32) -> Self {
         Wide(self.0.scale(k))
     }
-    #[inline]
+    #[inline(always)]
     fn xyz(&self, light: &Self::Light) -> Xyz {
         match Avx2Fma::detect() {
             Some(k) => T::xyz_with(k, &self.0, light),

@@ -248,12 +248,12 @@ fn xyz_sampled81(v: &Sampled<81>, light: &SampledLight<81>) -> Xyz {
 macro_rules! kernels {
     ($t:ty, $mul:ident, $xyz:ident) => {
         impl Kernels for $t {
-            #[inline]
+            #[inline(always)]
             fn mul_with(_: Avx2Fma, a: &Self, b: &Self) -> Self {
                 // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
                 unsafe { $mul(a, b) }
             }
-            #[inline]
+            #[inline(always)]
             fn xyz_with(_: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz {
                 // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
                 unsafe { $xyz(a, light) }
