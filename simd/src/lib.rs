@@ -4,13 +4,13 @@
 //! paper's eq. 6) and the integral to XYZ ([`Shade::xyz`]; for spectra `Moments::xyz`) — as
 //! AVX2 + FMA kernels chosen at run time, for the host (which has `std` to ask the CPU). The
 //! core stays `no_std` and portable: built for the x86-64 baseline its loops vectorise for
-//! SSE2, on a Cortex-M they stay scalar; this crate adds a second path, it changes none.
+//! SSE2, on a Cortex-M they stay scalar; this crate adds a second path beside them.
 //!
 //! Kernels exist for the presets the renderer and `xyz` use: the default
 //! (`Spectrum<8, 4>`, one span per 256-bit lane), the paper's (`Spectrum<2, 4, Paper>`) and,
 //! so the speed comparison stays honest, `Sampled<81>`. They are written with `core::arch`
 //! intrinsics because recompiling the core's own code for AVX2 (a `#[target_feature]` wrapper
-//! around the inlined portable kernel) was measured 2–3× slower: the compiler's reductions
+//! around the inlined portable kernel) was measured 1.7–3× slower per call: the compiler's reductions
 //! shuffle lane by lane, and the portable kernels are not always inlined
 //! (`docs/performance.md`, "Kernels at the floor").
 //!
@@ -53,8 +53,8 @@ mod other;
 #[cfg(not(target_arch = "x86_64"))]
 pub use other::Avx2Fma;
 
-/// Bound on the difference between the AVX2 and the portable kernels, in units of 2⁻²⁴ (one
-/// f32 ulp at 1) times the sum of the magnitudes of the terms of each output (crate docs). Each
+/// Bound on the difference between the AVX2 and the portable kernels, in units of 2⁻²⁴ (the
+/// f32 unit roundoff, half an ulp at 1) times the sum of the magnitudes of the terms of each output (crate docs). Each
 /// path's worst-case rounding error is `n·2⁻²⁴` of that sum for `n` roundings in a chain
 /// (Higham 2002, §4.2): at most 7 + 6 for the product, 11 + 7 for the default's →XYZ and
 /// 19 + 10 for sampled-81's, so 32 holds for every kernel.
