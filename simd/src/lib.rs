@@ -10,8 +10,8 @@
 //! (`Spectrum<8, 4>`, one span per 256-bit lane), the paper's (`Spectrum<2, 4, Paper>`) and,
 //! so the speed comparison stays honest, `Sampled<81>`. They are written with `core::arch`
 //! intrinsics because recompiling the core's own code for AVX2 (a `#[target_feature]` wrapper
-//! around the inlined portable kernel) was measured 1.7–3× slower per call: the compiler's reductions
-//! shuffle lane by lane, and the portable kernels are not always inlined
+//! around the inlined portable kernel) was measured 1.7–3× slower per call: the compiler's
+//! reductions shuffle lane by lane, and the portable kernels are not always inlined
 //! (`docs/performance.md`, "Kernels at the floor").
 //!
 //! **Accuracy.** Fused multiply-adds and a pairwise horizontal sum round differently from the
@@ -54,10 +54,10 @@ mod other;
 pub use other::Avx2Fma;
 
 /// Bound on the difference between the AVX2 and the portable kernels, in units of 2⁻²⁴ (the
-/// f32 unit roundoff, half an ulp at 1) times the sum of the magnitudes of the terms of each output (crate docs). Each
-/// path's worst-case rounding error is `n·2⁻²⁴` of that sum for `n` roundings in a chain
-/// (Higham 2002, §4.2): at most 7 + 6 for the product, 11 + 7 for the default's →XYZ and
-/// 19 + 10 for sampled-81's, so 32 holds for every kernel.
+/// f32 unit roundoff, half an ulp at 1) times the sum of the magnitudes of the terms of each
+/// output (crate docs). Each path's worst-case rounding error is `n·2⁻²⁴` of that sum for `n`
+/// roundings in a chain (Higham 2002, §4.2): at most 7 + 6 for the product, 11 + 7 for the
+/// default's →XYZ and 19 + 10 for sampled-81's, so 32 holds for every kernel.
 pub const ULP_BOUND: f64 = 32.0;
 
 /// A representation with AVX2 + FMA kernels, called through the proof [`Avx2Fma`] that the CPU
