@@ -131,23 +131,37 @@ impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     }
 
     /// XYZ of `r` as a reflectance under the light: three dot products of length `S·C`.
+    ///
+    /// Each axis sums span lanes: lane `s` is `Σₖ M[k][s]·c[k][s]` in order of `k` from zero,
+    /// then the lanes are summed in order of `s`. The span loop is the outer one, so a lane's
+    /// three axes stay in registers even where the loops are not unrolled (the firmware builds
+    /// for size); the x86-64 compiler vectorises across the lanes either way, and the sums, in
+    /// the same order, are the same to the bit.
     #[inline]
     pub fn xyz(&self, r: &Spectrum<S, C, L>) -> Xyz {
         let c = r.coefficients();
-        let mut out = [0.0f32; 3];
-        for (o, m) in out.iter_mut().zip(self.m.iter()) {
-            // S lane accumulators from zero. Starting them at the k = 0 products instead (no
-            // `0.0 + p`) was measured 1.7× slower for 8 spans: the loop no longer vectorises
-            // (docs/performance.md, "Breakpoints in the type").
-            let mut acc = [0.0f32; S];
+        let m = &self.m;
+        // S lane accumulators per axis from zero. Starting them at the k = 0 products instead
+        // (no `0.0 + p`) was measured 1.7× slower for 8 spans on x86-64: the loop no longer
+        // vectorises (docs/performance.md, "Breakpoints in the type").
+        let mut lanes = [[0.0f32; S]; 3];
+        for s in 0..S {
+            let (mut x, mut y, mut z) = (0.0f32, 0.0f32, 0.0f32);
             for k in 0..C {
-                for s in 0..S {
-                    acc[s] += m[k][s] * c[k][s];
-                }
+                let v = c[k][s];
+                x += m[0][k][s] * v;
+                y += m[1][k][s] * v;
+                z += m[2][k][s] * v;
             }
-            *o = acc.iter().sum();
+            lanes[0][s] = x;
+            lanes[1][s] = y;
+            lanes[2][s] = z;
         }
-        Xyz::new(out[0], out[1], out[2])
+        Xyz::new(
+            lanes[0].iter().sum(),
+            lanes[1].iter().sum(),
+            lanes[2].iter().sum(),
+        )
     }
 }
 

@@ -167,20 +167,23 @@ fn main() -> ! {
         core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill));
     });
     defmt::info!("insns default moments {}", insns);
+    // the kernels as the controller runs them: through `Reflectance`, compiled in the protocol
+    // crate (built for speed; this crate is built for size, docs/performance.md)
+    let (fp, fd) = (Reflectance::Paper(rp), Reflectance::Default(rd));
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(core::hint::black_box(&rp).mul(core::hint::black_box(&rp)));
+        core::hint::black_box(core::hint::black_box(&fp).mul(core::hint::black_box(&fp)));
     });
     defmt::info!("insns paper mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(core::hint::black_box(&rd).mul(core::hint::black_box(&rd)));
+        core::hint::black_box(core::hint::black_box(&fd).mul(core::hint::black_box(&fd)));
     });
     defmt::info!("insns default mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(m_paper.xyz(core::hint::black_box(&rp)));
+        core::hint::black_box(core::hint::black_box(&fp).xyz(&m_paper, &m_default));
     });
     defmt::info!("insns paper xyz {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(m_default.xyz(core::hint::black_box(&rd)));
+        core::hint::black_box(core::hint::black_box(&fd).xyz(&m_paper, &m_default));
     });
     defmt::info!("insns default xyz {}", insns);
     let target = m_default.xyz(&rd);
