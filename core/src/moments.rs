@@ -131,34 +131,44 @@ impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     }
 
     /// XYZ of `r` as a reflectance under the light: three dot products of length `S·C`.
+    ///
+    /// Each axis sums span lanes: lane `s` is `Σₖ M[k][s]·c[k][s]` in order of `k` from zero.
+    /// The span loop is the outer one, so a lane's three axes stay in registers even where the
+    /// loops are not unrolled (the firmware builds for size); the x86-64 compiler vectorises
+    /// across the lanes either way. The lanes are then summed pairwise: folded in halves down
+    /// to 4 per axis (one SSE register), and the three axes' last lanes summed together — on
+    /// x86-64 half the time of summing each axis's 8 lanes in order (docs/performance.md,
+    /// "Kernels at the floor"); for the paper's 2 spans the same sum as in order.
     #[inline]
     pub fn xyz(&self, r: &Spectrum<S, C, L>) -> Xyz {
         let c = r.coefficients();
-        let mut part = [[0.0f32; S]; 3];
-        let mut n = S;
-        for (p, m) in part.iter_mut().zip(self.m.iter()) {
-            // S lane accumulators from zero. Starting them at the k = 0 products instead (no
-            // `0.0 + p`) was measured 1.7× slower for 8 spans: the loop no longer vectorises
-            // (docs/performance.md, "Breakpoints in the type").
-            let mut acc = [0.0f32; S];
+        let m = &self.m;
+        // S lane accumulators per axis from zero. Starting them at the k = 0 products instead
+        // (no `0.0 + p`) was measured 1.7× slower for 8 spans on x86-64: the loop no longer
+        // vectorises (docs/performance.md, "Breakpoints in the type").
+        let mut lanes = [[0.0f32; S]; 3];
+        for s in 0..S {
+            let (mut x, mut y, mut z) = (0.0f32, 0.0f32, 0.0f32);
             for k in 0..C {
-                for s in 0..S {
-                    acc[s] += m[k][s] * c[k][s];
-                }
+                let v = c[k][s];
+                x += m[0][k][s] * v;
+                y += m[1][k][s] * v;
+                z += m[2][k][s] * v;
             }
-            // Lanes folded in halves down to 4 (one SSE register), per axis; the three axes'
-            // last lanes are summed together below. Half the time of a sequential sum of each
-            // axis's lanes for 8 spans (docs/performance.md, "Kernels at the floor").
-            n = S;
-            while n > 4 && n % 2 == 0 {
-                n /= 2;
+            lanes[0][s] = x;
+            lanes[1][s] = y;
+            lanes[2][s] = z;
+        }
+        let mut n = S;
+        while n > 4 && n % 2 == 0 {
+            n /= 2;
+            for acc in lanes.iter_mut() {
                 for l in 0..n {
                     acc[l] += acc[l + n];
                 }
             }
-            *p = acc;
         }
-        let out = part.map(|mut p| {
+        let out = lanes.map(|mut p| {
             let mut n = n;
             while n > 1 && n % 2 == 0 {
                 n /= 2;

@@ -199,10 +199,7 @@ impl Controller {
     /// observer: three dot products against the light's moments ([`crate::lights`]).
     pub fn reflectance_xyz(&self, illuminant: Illuminant, r: &Reflectance) -> Xyz {
         let o = self.observer;
-        match r {
-            Reflectance::Paper(s) => lights::paper(o, illuminant).xyz(s),
-            Reflectance::Default(s) => lights::default(o, illuminant).xyz(s),
-        }
+        r.xyz(lights::paper(o, illuminant), lights::default(o, illuminant))
     }
 
     /// Shows `target` (white `Y = 100`): the core's drive step ([`Display::drive`]: gamut

@@ -7,8 +7,8 @@ use core::fmt::{self, Write};
 use core::str::SplitAsciiWhitespace;
 use specpoly_core::light::channels::Goal;
 use specpoly_core::{
-    display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Observer, PaperSpectrum,
-    Spectrum, Transfer, Xyy, Xyz,
+    display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Moments, Observer, Paper,
+    PaperSpectrum, Spectrum, Transfer, Xyy, Xyz,
 };
 
 /// Which transfer curves a `trc` command sets.
@@ -61,6 +61,17 @@ impl Reflectance {
         match self {
             Reflectance::Paper(_) => "paper",
             Reflectance::Default(_) => "default",
+        }
+    }
+
+    /// XYZ as a reflectance under a light whose moments for both presets are given
+    /// ([`Moments::xyz`]: three dot products). Here rather than at the caller so that the
+    /// kernel is compiled in this crate, which the firmware builds for speed
+    /// (`opt-level = 3`, docs/performance.md); the controller's own crate is built for size.
+    pub fn xyz(&self, paper: &Moments<2, 4, Paper>, default: &Moments<8, 4>) -> Xyz {
+        match self {
+            Reflectance::Paper(s) => paper.xyz(s),
+            Reflectance::Default(s) => default.xyz(s),
         }
     }
 

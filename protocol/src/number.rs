@@ -1,17 +1,32 @@
-//! Decimal numbers on the wire: a small parser and formatter for `f32`.
+//! Decimal numbers on the wire: a parser and a formatter for `f32` that need no `f64`.
 //!
 //! `core`'s own `str::parse::<f32>` carries ≈ 10 KiB of power-of-five tables and its float
-//! `Display` several KiB more; the firmware's flash budget is 32 KiB, so the protocol brings
-//! its own, in f64 arithmetic.
+//! `Display` several KiB more, and the Cortex-M4F has no double-precision FPU (soft `f64` made
+//! a `refl` line cost 160 000 instructions): the protocol brings its own, in `f32` and integer
+//! arithmetic only (docs/performance.md, "## Firmware").
 //!
 //! Grammar: `[+-]? digits? ('.' digits?)? ([eE] [+-]? digits)?` with at least one digit before
 //! the exponent, at most [`MAX_NUMBER_LEN`] characters. `nan` and `inf` are not numbers here.
 //!
-//! Parsing: the first 19 significant digits form an integer mantissa `m`, the value is
-//! `m · 10^e` computed in f64 with `10^|e|` by exact squaring up to `10^22` (then rounded to
-//! f32): the error is below 1 ulp of f32. Formatting writes the fewest of 6–9 significant
-//! digits that survive `format → parse` unchanged (9 always do: IEEE 754-2008, §5.12.2).
+//! Parsing is correctly rounded (to nearest, ties to even) for up to 19 significant digits;
+//! further digits count only as "something follows" (a sticky bit). With the decimal mantissa
+//! `m` and exponent `e` (value `m · 10^e`): for `m ≤ 2²⁴` and `|e| ≤ 10` one f32 multiply or
+//! divide of exact operands (Clinger 1990); otherwise an f32 estimate a few units in the last
+//! place off, corrected by comparing `m · 10^e` exactly with the halfway points between
+//! neighbouring floats.
+//!
+//! Formatting writes the shortest digits that read back as the same `f32` (the free-format
+//! problem of Steele & White 1990, solved as Ryū does, Adams 2018): the rounding interval
+//! scaled exactly to nine integer digits, then `v` rounded to 1, 2, … digits until inside it.
+//! Plain decimals for `1e-5 ≤ |v| < 1e9`, `d.ddde±x` otherwise.
+//!
+//! The exact arithmetic is u128 products of a mantissa and `5^j` (`j ≤ 27`) and shifts, and
+//! outside that range (below ≈ 10⁻¹⁹, above 10⁹) a 384-bit integer with 32-bit hardware
+//! division only. Hand-written rather than the `ryu` crate: its f32 path links 10.7 KiB of
+//! f64 tables (or, with `small`, u128 arithmetic at 1 800 instructions a number on the
+//! Cortex-M4) and `memmove`, and it does not parse.
 
+use core::cmp::Ordering;
 use core::fmt::{self, Write};
 
 /// Longest number token accepted.
@@ -22,39 +37,57 @@ pub const MAX_NUMBER_LEN: usize = 40;
 pub enum NumberError {
     /// Not of the grammar above (or empty, or too long).
     Syntax,
-    /// Overflows f32 (or underflows to a denormal range handled as 0 is fine; only overflow fails).
+    /// Overflows f32 (values that underflow read as 0; only overflow fails).
     Range,
 }
 
-/// `10^n` for `0 ≤ n ≤ 22`: exact in f64.
-fn pow10_exact(n: u32) -> f64 {
-    let mut r = 1.0f64;
+/// `10^n` for `0 ≤ n ≤ 38`, rounded to f32 (exact up to `10^10`): the first estimate.
+const POW10_F32: [f32; 39] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22, 1e23, 1e24, 1e25, 1e26, 1e27, 1e28, 1e29, 1e30, 1e31, 1e32,
+    1e33, 1e34, 1e35, 1e36, 1e37, 1e38,
+];
+
+/// `10^n` for `0 ≤ n ≤ 9`.
+const POW10_U32: [u32; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
+
+/// `5^n` for `0 ≤ n ≤ 27` (exact in u64).
+const fn pow5(n: u32) -> u64 {
+    let mut r = 1u64;
     let mut i = 0;
     while i < n {
-        r *= 10.0;
+        r *= 5;
         i += 1;
     }
     r
 }
 
-/// `m · 10^e` in f64, stepping by exact `10^22` factors when `|e| > 22`.
-fn scale10(mut v: f64, mut e: i32) -> f64 {
-    while e > 22 {
-        v *= 1e22;
-        e -= 22;
+/// `5^n` for `0 ≤ n ≤ 27`.
+const POW5: [u64; 28] = {
+    let mut t = [1u64; 28];
+    let mut i = 1;
+    while i < 28 {
+        t[i] = pow5(i as u32);
+        i += 1;
     }
-    while e < -22 {
-        v /= 1e22;
-        e += 22;
-    }
-    if e >= 0 {
-        v * pow10_exact(e as u32)
-    } else {
-        v / pow10_exact((-e) as u32)
-    }
-}
+    t
+};
 
-/// Parses a decimal token into a finite `f32`.
+/// The least f32 bit pattern of overflow (`+inf`).
+const INF_BITS: u32 = 0x7f80_0000;
+
+/// Parses a decimal token into a finite `f32`, correctly rounded (see the module docs).
 pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     let b = s.as_bytes();
     if b.is_empty() || b.len() > MAX_NUMBER_LEN {
@@ -74,35 +107,40 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     };
     let mut mantissa: u64 = 0;
     let mut kept = 0u32; // significant digits kept in `mantissa`
+    let mut sticky = false; // a non-zero digit was dropped after the 19th
     let mut exp10: i32 = 0; // decimal exponent correction from dropped or fractional digits
     let mut digits = 0u32;
-    while i < b.len() && b[i].is_ascii_digit() {
-        let d = (b[i] - b'0') as u64;
+    let mut fraction = false;
+    while i < b.len() {
+        let c = b[i];
+        if c == b'.' && !fraction {
+            fraction = true;
+            i += 1;
+            continue;
+        }
+        if !c.is_ascii_digit() {
+            break;
+        }
+        let d = (c - b'0') as u64;
         if mantissa == 0 && d == 0 {
             // leading zero: no information
+            if fraction {
+                exp10 -= 1;
+            }
         } else if kept < 19 {
             mantissa = mantissa * 10 + d;
             kept += 1;
+            if fraction {
+                exp10 -= 1;
+            }
         } else {
-            exp10 += 1;
+            sticky |= d != 0;
+            if !fraction {
+                exp10 += 1;
+            }
         }
         digits += 1;
         i += 1;
-    }
-    if i < b.len() && b[i] == b'.' {
-        i += 1;
-        while i < b.len() && b[i].is_ascii_digit() {
-            let d = (b[i] - b'0') as u64;
-            if mantissa == 0 && d == 0 {
-                exp10 -= 1;
-            } else if kept < 19 {
-                mantissa = mantissa * 10 + d;
-                kept += 1;
-                exp10 -= 1;
-            }
-            digits += 1;
-            i += 1;
-        }
     }
     if digits == 0 {
         return Err(NumberError::Syntax);
@@ -129,26 +167,276 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     if i != b.len() {
         return Err(NumberError::Syntax);
     }
-    let v = if mantissa == 0 {
+    let v = if mantissa == 0 || exp10 + (kept as i32) < -46 {
+        // below 10⁻⁴⁶, under half the least subnormal (1.4·10⁻⁴⁵)
         0.0
-    } else if exp10 + kept as i32 > 40 {
-        f64::INFINITY
-    } else if exp10 + (kept as i32) < -50 {
-        0.0
-    } else {
-        scale10(mantissa as f64, exp10)
-    };
-    let v = v as f32;
-    if !v.is_finite() {
+    } else if exp10 + kept as i32 > 39 {
+        // at least 10³⁹ > f32::MAX
         return Err(NumberError::Range);
-    }
+    } else {
+        decimal_to_f32(mantissa, exp10, sticky).ok_or(NumberError::Range)?
+    };
     Ok(if negative { -v } else { v })
 }
 
-/// Writes `v` with the fewest significant digits (6 to 9) that [`parse_f32`] reads back as the
-/// same f32 (9 always suffice: IEEE 754-2008, §5.12.2), trailing zeros dropped: plain decimals
-/// for `1e-5 ≤ |v| < 1e9`, else `d.ddde±x`. Non-finite values are written `nan`, `inf`, `-inf`
-/// (which [`parse_f32`] rejects).
+/// `m · 10^e` (plus a little when `sticky`) as the nearest f32, `None` on overflow; `m > 0`,
+/// `−65 ≤ e ≤ 38`.
+fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
+    if !sticky && m <= 1 << 24 && (-10..=10).contains(&e) {
+        // both operands exact: one correctly rounded operation (Clinger 1990)
+        let v = m as f32;
+        return Some(if e >= 0 {
+            v * POW10_F32[e as usize]
+        } else {
+            v / POW10_F32[(-e) as usize]
+        });
+    }
+    // an estimate within a few units in the last place, then corrected exactly
+    let v = m as f32;
+    let estimate = if e >= 0 {
+        v * POW10_F32[e as usize]
+    } else if e >= -38 {
+        v / POW10_F32[(-e) as usize]
+    } else {
+        v / POW10_F32[38] / POW10_F32[(-e - 38) as usize]
+    };
+    let mut c = estimate.to_bits().min(INF_BITS - 1);
+    // x against the halfway point between patterns c and c + 1 (`halfway = h · 2^g`), with the
+    // power of five on whichever side keeps the scaling a product (no division)
+    let above = |c: u32| -> Ordering {
+        let (h, g) = halfway(c);
+        let o = if e >= 0 {
+            let (floor, fraction) = scale(m, e, -g);
+            floor.cmp(&h).then(if fraction {
+                Ordering::Greater
+            } else {
+                Ordering::Equal
+            })
+        } else {
+            let (floor, fraction) = scale(h, -e, g);
+            m.cmp(&floor).then(if fraction {
+                Ordering::Less
+            } else {
+                Ordering::Equal
+            })
+        };
+        match o {
+            Ordering::Equal if sticky => Ordering::Greater,
+            o => o,
+        }
+    };
+    loop {
+        if above(c) == Ordering::Greater {
+            c += 1;
+            if c == INF_BITS {
+                return None;
+            }
+        } else if c > 0 && above(c - 1) != Ordering::Greater {
+            c -= 1;
+        } else {
+            break;
+        }
+    }
+    // halfway(c − 1) < x ≤ halfway(c): a tie goes to the even pattern
+    if c & 1 == 1 && above(c) == Ordering::Equal {
+        c += 1;
+        if c == INF_BITS {
+            return None;
+        }
+    }
+    Some(f32::from_bits(c))
+}
+
+/// The value of the positive f32 with bit pattern `c` (`c ≤ 0x7f80_0000`, which reads as
+/// `2^128`) as `a · 2^e`.
+fn float_parts(c: u32) -> (u64, i32) {
+    let (exp, frac) = (c >> 23, c & 0x7f_ffff);
+    if exp == 0 {
+        (frac as u64, -149)
+    } else {
+        ((frac | 1 << 23) as u64, exp as i32 - 150)
+    }
+}
+
+/// The halfway point between the positive f32 patterns `c` and `c + 1` as `h · 2^g`.
+fn halfway(c: u32) -> (u64, i32) {
+    let (a, ea) = float_parts(c);
+    let (b, eb) = float_parts(c + 1);
+    (a + (b << (eb - ea) as u32), ea - 1)
+}
+
+/// `n · 10^j · 2^k` as (its floor, whether a fraction is left), the floor saturated at
+/// `u64::MAX` (then the fraction is reported too). Exact: u128 for `0 ≤ j ≤ 27`, else [`Big`].
+fn scale(n: u64, j: i32, k: i32) -> (u64, bool) {
+    if (0..=27).contains(&j) {
+        let f = POW5[j as usize];
+        let s = j + k;
+        // in u64 when the product fits (⌈log₂ 5^j⌉ ≤ (149j + 63)/64)
+        if (64 - n.leading_zeros() as i32) + ((149 * j + 63) >> 6) <= 64 {
+            let p = n * f;
+            if s >= 0 {
+                if (64 - p.leading_zeros() as i32) + s > 64 {
+                    return (u64::MAX, true);
+                }
+                return (p << s, false);
+            }
+            let sh = (-s) as u32;
+            if sh >= 64 {
+                return (0, p != 0);
+            }
+            return (p >> sh, p & ((1u64 << sh) - 1) != 0);
+        }
+        let p = n as u128 * f as u128; // < 2^127
+        if s >= 0 {
+            if 128 - p.leading_zeros() as i32 + s > 64 {
+                return (u64::MAX, true);
+            }
+            return ((p << s) as u64, false);
+        }
+        let sh = (-s) as u32;
+        if sh >= 128 {
+            return (0, p != 0);
+        }
+        let q = p >> sh;
+        if q > u64::MAX as u128 {
+            return (u64::MAX, true);
+        }
+        return (q as u64, p & ((1u128 << sh) - 1) != 0);
+    }
+    let mut b = Big::from_u64(n);
+    let mut fraction = false;
+    let s = if j >= 0 {
+        b.mul_pow5(j as u32);
+        j + k
+    } else {
+        // n · 2^(j+k) / 5^|j|: shift left first, so the division keeps every bit
+        let s = j + k;
+        if s > 0 {
+            if b.bit_len() as i32 + s > Big::BITS {
+                return (u64::MAX, true);
+            }
+            b.shl(s as u32);
+        }
+        let mut five = (-j) as u32;
+        while five > 0 {
+            let f = five.min(6); // 5^6 < 2^16
+            fraction |= b.div_small(POW5[f as usize] as u32);
+            five -= f;
+        }
+        s.min(0)
+    };
+    if s > 0 {
+        if b.bit_len() as i32 + s > 64 {
+            return (u64::MAX, true);
+        }
+        b.shl(s as u32);
+    } else if s < 0 {
+        fraction |= b.shr((-s) as u32);
+    }
+    if b.bit_len() > 64 {
+        return (u64::MAX, true);
+    }
+    (b.w[0] as u64 | (b.w[1] as u64) << 32, fraction)
+}
+
+/// A small unsigned integer of 12 × 32 bits (little-endian words) for [`scale`] outside u128's
+/// reach: at most a 64-bit mantissa times `5^65 < 2^151`, shifted by up to 133 bits.
+#[derive(Clone, Copy)]
+struct Big {
+    w: [u32; 12],
+}
+
+impl Big {
+    const BITS: i32 = 12 * 32;
+
+    fn from_u64(v: u64) -> Self {
+        let mut w = [0u32; 12];
+        w[0] = v as u32;
+        w[1] = (v >> 32) as u32;
+        Big { w }
+    }
+
+    fn mul_pow5(&mut self, mut n: u32) {
+        while n > 0 {
+            let k = n.min(13); // 5^13 < 2^32
+            let f = POW5[k as usize];
+            let mut carry = 0u64;
+            for x in self.w.iter_mut() {
+                let p = *x as u64 * f + carry;
+                *x = p as u32;
+                carry = p >> 32;
+            }
+            n -= k;
+        }
+    }
+
+    /// Divides by `d < 2^16` (in 16-bit steps: 32-bit hardware division only); returns whether
+    /// a remainder was left.
+    fn div_small(&mut self, d: u32) -> bool {
+        let mut r = 0u32;
+        for x in self.w.iter_mut().rev() {
+            let hi = (r << 16) | (*x >> 16);
+            let (qh, rh) = (hi / d, hi % d);
+            let lo = (rh << 16) | (*x & 0xffff);
+            let (ql, rl) = (lo / d, lo % d);
+            *x = (qh << 16) | ql;
+            r = rl;
+        }
+        r != 0
+    }
+
+    fn bit_len(&self) -> u32 {
+        for i in (0..self.w.len()).rev() {
+            if self.w[i] != 0 {
+                return 32 * i as u32 + 32 - self.w[i].leading_zeros();
+            }
+        }
+        0
+    }
+
+    fn shl(&mut self, n: u32) {
+        let (words, bits) = ((n / 32) as usize, n % 32);
+        for i in (0..self.w.len()).rev() {
+            let lo = if i >= words { self.w[i - words] } else { 0 };
+            let below = if i > words { self.w[i - words - 1] } else { 0 };
+            self.w[i] = if bits == 0 {
+                lo
+            } else {
+                (lo << bits) | (below >> (32 - bits))
+            };
+        }
+    }
+
+    /// Shifts right by `n`; returns whether a one was shifted out.
+    fn shr(&mut self, n: u32) -> bool {
+        let (words, bits) = ((n / 32) as usize, n % 32);
+        let len = self.w.len();
+        let mut lost = false;
+        for i in 0..len {
+            if i < words.min(len) {
+                lost |= self.w[i] != 0;
+            } else if i == words && bits > 0 {
+                lost |= self.w[i] & ((1 << bits) - 1) != 0;
+            }
+        }
+        for i in 0..len {
+            let src = i + words;
+            let lo = if src < len { self.w[src] } else { 0 };
+            let above = if src + 1 < len { self.w[src + 1] } else { 0 };
+            self.w[i] = if bits == 0 {
+                lo
+            } else {
+                (lo >> bits) | (above << (32 - bits))
+            };
+        }
+        lost
+    }
+}
+
+/// Writes `v` with the shortest digits that [`parse_f32`] (and any correct reader) reads back
+/// as the same f32, trailing zeros dropped: plain decimals for `1e-5 ≤ |v| < 1e9`, else
+/// `d.ddde±x`. Non-finite values are written `nan`, `inf`, `-inf` (which [`parse_f32`]
+/// rejects).
 pub fn write_f32<W: Write>(w: &mut W, v: f32) -> fmt::Result {
     if v.is_nan() {
         return w.write_str("nan");
@@ -156,15 +444,82 @@ pub fn write_f32<W: Write>(w: &mut W, v: f32) -> fmt::Result {
     if v.is_infinite() {
         return w.write_str(if v > 0.0 { "inf" } else { "-inf" });
     }
-    let mut buf = Small::default();
-    for p in 6..=9 {
-        buf.len = 0;
-        write_digits(&mut buf, v, p);
-        if p == 9 || parse_f32(buf.as_str()) == Ok(v) {
-            break;
+    let mut out = Small::default();
+    if v.is_sign_negative() {
+        out.push(b'-');
+    }
+    if v == 0.0 {
+        out.push(b'0');
+        return w.write_str(out.as_str());
+    }
+    let (value, count, e) = shortest(v.abs().to_bits());
+    let mut digits = [0u8; 9];
+    let mut x = value;
+    for d in digits[..count].iter_mut().rev() {
+        *d = b'0' + (x % 10) as u8;
+        x /= 10;
+    }
+    let mut n = count;
+    while n > 1 && digits[n - 1] == b'0' {
+        n -= 1;
+    }
+    layout(&mut out, &digits[..n], e);
+    w.write_str(out.as_str())
+}
+
+/// The shortest decimal in the rounding interval of the positive finite f32 with pattern
+/// `bits`: `(digits, how many, e)` for `d.ddd · 10^e`. The interval `[v − ½ulp⁻, v + ½ulp]`
+/// (closed for an even mantissa, which ties read back to) and `v` are scaled by `10^(8−E)`
+/// exactly ([`scale`]), so `v` has 9 integer digits; then the candidates `v` rounded to 1, 2,
+/// … digits are tried in turn (Steele & White 1990's free-format problem, as Ryū solves it).
+fn shortest(bits: u32) -> (u32, usize, i32) {
+    let (a, ea) = float_parts(bits);
+    // at a power of two (not the least normal) the gap below is half the gap above
+    let delta_lo = if bits & 0x7f_ffff == 0 && bits >> 23 > 1 {
+        1
+    } else {
+        2
+    };
+    let log2 = ea + 63 - a.leading_zeros() as i32; // ⌊log₂ v⌋
+    let mut e = (log2 * 78_913) >> 18; // ⌊log₁₀ 2^log2⌋: ⌊log₁₀ v⌋ or one less
+    let j = 8 - e;
+    let (mut mid, mut mid_f) = scale(4 * a, j, ea - 2);
+    let (mut lo, mut lo_f) = scale(4 * a - delta_lo, j, ea - 2);
+    let (mut hi, mut hi_f) = scale(4 * a + 2, j, ea - 2);
+    if mid >= 1_000_000_000 {
+        e += 1;
+        for (x, f) in [
+            (&mut mid, &mut mid_f),
+            (&mut lo, &mut lo_f),
+            (&mut hi, &mut hi_f),
+        ] {
+            *f |= *x % 10 != 0;
+            *x /= 10;
         }
     }
-    w.write_str(buf.as_str())
+    let closed = a % 2 == 0;
+    let inside = |c: u64| {
+        let above_lo = c > lo || (c == lo && !lo_f && closed);
+        let below_hi = c < hi || (c == hi && (hi_f || closed));
+        above_lo && below_hi
+    };
+    let mid = mid as u32; // 10^8 ≤ mid < 10^9
+    for count in 1..=9usize {
+        let step = POW10_U32[9 - count];
+        let (q, r) = (mid / step, mid % step);
+        // to nearest; a tie (no fraction left) to even
+        let twice = 2 * r as u64;
+        let up = twice > step as u64 || (twice == step as u64 && (mid_f || q % 2 == 1));
+        let q = q + up as u32;
+        if inside(q as u64 * step as u64) || count == 9 {
+            // rounding up may carry into another digit: 10^count is 1 · 10^(e+1)
+            if q == POW10_U32[count] {
+                return (1, 1, e + 1);
+            }
+            return (q, count, e);
+        }
+    }
+    (mid, 9, e)
 }
 
 /// A 24-byte buffer for one formatted number.
@@ -179,94 +534,42 @@ impl Small {
         // only ASCII is written
         core::str::from_utf8(&self.b[..self.len]).unwrap_or("")
     }
-}
 
-impl Small {
     fn push(&mut self, c: u8) {
         if self.len < self.b.len() {
             self.b[self.len] = c;
             self.len += 1;
         }
     }
+
+    fn put(&mut self, d: &[u8]) {
+        for c in d {
+            self.push(*c);
+        }
+    }
 }
 
 impl Write for Small {
     fn write_str(&mut self, s: &str) -> fmt::Result {
-        let end = self.len + s.len();
-        if end > self.b.len() {
-            return Err(fmt::Error);
-        }
-        self.b[self.len..end].copy_from_slice(s.as_bytes());
-        self.len = end;
+        self.put(s.as_bytes());
         Ok(())
     }
 }
 
-/// `v` (finite) rounded to `p ≤ 9` significant digits (at most 16 bytes: fits [`Small`]).
-fn write_digits(w: &mut Small, v: f32, p: i32) {
-    if v < 0.0 || (v == 0.0 && v.is_sign_negative()) {
-        w.push(b'-');
-    }
-    let a = (v as f64).abs();
-    if a == 0.0 {
-        return w.push(b'0');
-    }
-    // decimal exponent e with 10^e ≤ a < 10^(e+1)
-    let mut e: i32 = 0;
-    let mut pw = 1.0f64;
-    if a >= 1.0 {
-        while a >= pw * 10.0 {
-            pw *= 10.0;
-            e += 1;
-        }
-    } else {
-        while a < pw {
-            pw /= 10.0;
-            e -= 1;
-        }
-    }
-    let lo = pow10_exact(p as u32 - 1) as u32;
-    let hi = lo * 10;
-    // the loop above may be one off near a power of ten (inexact 10^e): correct and redo
-    let mut m = (scale10(a, p - 1 - e) + 0.5) as u32;
-    if m >= hi {
-        e += 1;
-        m = (scale10(a, p - 1 - e) + 0.5) as u32;
-    } else if m < lo {
-        e -= 1;
-        m = (scale10(a, p - 1 - e) + 0.5) as u32;
-    }
-    if m >= hi {
-        // rounded up to 10^p exactly
-        m /= 10;
-        e += 1;
-    }
-    let mut digits = [0u8; 9];
-    let mut n = p as usize;
-    for d in digits[..n].iter_mut().rev() {
-        *d = b'0' + (m % 10) as u8;
-        m /= 10;
-    }
-    while n > 1 && digits[n - 1] == b'0' {
-        n -= 1;
-    }
-    let digits = &digits[..n];
-    let put = |w: &mut Small, d: &[u8]| {
-        for c in d {
-            w.push(*c);
-        }
-    };
+/// Significant `digits` (1 to 9, no trailing zeros) of `d.ddd · 10^e` in the protocol's
+/// layout (at most 16 bytes).
+fn layout(w: &mut Small, digits: &[u8], e: i32) {
     if (0..9).contains(&e) {
         let int = e as usize + 1;
         if digits.len() <= int {
-            put(w, digits);
+            w.put(digits);
             for _ in digits.len()..int {
                 w.push(b'0');
             }
         } else {
-            put(w, &digits[..int]);
+            w.put(&digits[..int]);
             w.push(b'.');
-            put(w, &digits[int..]);
+            w.put(&digits[int..]);
         }
     } else if (-5..0).contains(&e) {
         w.push(b'0');
@@ -274,12 +577,12 @@ fn write_digits(w: &mut Small, v: f32, p: i32) {
         for _ in 0..(-e - 1) {
             w.push(b'0');
         }
-        put(w, digits);
+        w.put(digits);
     } else {
-        put(w, &digits[..1]);
+        w.put(&digits[..1]);
         if digits.len() > 1 {
             w.push(b'.');
-            put(w, &digits[1..]);
+            w.put(&digits[1..]);
         }
         w.push(b'e');
         let _ = write_int(w, e as i64);
@@ -371,6 +674,27 @@ mod tests {
     }
 
     #[test]
+    fn rounds_halfway_cases_to_even_and_reads_subnormals() {
+        // 2^24 + 1 is halfway between 2^24 and 2^24 + 2: ties to the even mantissa
+        assert_eq!(parse_f32("16777217"), Ok(16_777_216.0));
+        assert_eq!(parse_f32("16777219"), Ok(16_777_220.0));
+        // a hair above halfway (digits past the 19th count)
+        assert_eq!(parse_f32("16777217.00000000000000000001"), Ok(16_777_218.0));
+        assert_eq!(parse_f32("1.4e-45"), Ok(f32::from_bits(1)));
+        assert_eq!(parse_f32("7.1e-46"), Ok(f32::from_bits(1)));
+        assert_eq!(parse_f32("7e-46"), Ok(0.0));
+        assert_eq!(parse_f32("7e-47"), Ok(0.0));
+        assert_eq!(parse_f32("3.4028235e38"), Ok(f32::MAX));
+        assert_eq!(parse_f32("3.40282356e38"), Ok(f32::MAX));
+        assert_eq!(parse_f32("3.40282357e38"), Err(NumberError::Range));
+        assert_eq!(parse_f32("-0"), Ok(-0.0));
+        assert_eq!(
+            parse_f32("0.00000000000000000000000000000000000001"),
+            Ok(1e-38)
+        );
+    }
+
+    #[test]
     fn agrees_with_std_parse() {
         for s in [
             "0.123456789",
@@ -379,29 +703,75 @@ mod tests {
             "1.17549435e-38",
             "3.40282347e38",
             "7e-45",
+            "1.17549421e-38",
+            "0.1234567890123456789",
+            "123456789012345678901234567890",
+            "9.99999999999999999999e-40",
+            "0.33333334",
+            "2.5e-7",
+            "1.23456789e-20",
         ] {
             assert_eq!(parse_f32(s).unwrap(), s.parse::<f32>().unwrap(), "{s}");
+        }
+    }
+
+    /// Any bit pattern as a finite f32 (an all-ones exponent loses its top bit).
+    fn finite(bits: u32) -> f32 {
+        let v = f32::from_bits(bits);
+        if v.is_finite() {
+            v
+        } else {
+            f32::from_bits(bits & !0x4000_0000)
         }
     }
 
     proptest::proptest! {
         #[test]
         fn every_f32_round_trips(bits in proptest::prelude::any::<u32>()) {
-            let v = f32::from_bits(bits);
-            proptest::prop_assume!(v.is_finite());
+            let v = finite(bits);
             let s = fmt(v);
             proptest::prop_assert_eq!(parse_f32(&s).map(f32::to_bits), Ok(v.to_bits()), "{}", s);
             proptest::prop_assert_eq!(s.parse::<f32>().map(f32::to_bits), Ok(v.to_bits()));
         }
 
         #[test]
-        fn parse_matches_std_on_short_decimals(m in -99_999_999i64..99_999_999, e in -30i32..30) {
+        fn parse_matches_std_on_short_decimals(m in -999_999_999i64..999_999_999, e in -30i32..30) {
             let s = std::format!("{m}e{e}");
             let ours = parse_f32(&s).unwrap();
             let std_v: f32 = s.parse().unwrap();
-            // within one ulp (double rounding through f64)
-            let d = (ours.to_bits() as i64 - std_v.to_bits() as i64).abs();
-            proptest::prop_assert!(d <= 1, "{} {} {}", s, ours, std_v);
+            // correctly rounded, as std's
+            proptest::prop_assert_eq!(ours.to_bits(), std_v.to_bits(), "{}", s);
+        }
+
+        #[test]
+        fn parse_matches_std_over_the_whole_range(
+            m in 1u64..u64::MAX,
+            digits in 1usize..20,
+            e in -70i32..45,
+        ) {
+            // up to 19 significant digits at every exponent: all three paths of the parser
+            let m = m % 10u64.pow(digits as u32 - 1).max(1) * 10 + m % 9 + 1;
+            let s = std::format!("{m}e{e}");
+            let std_v: f32 = s.parse().unwrap();
+            match parse_f32(&s) {
+                Ok(v) => proptest::prop_assert_eq!(v.to_bits(), std_v.to_bits(), "{}", s),
+                Err(NumberError::Range) => proptest::prop_assert!(std_v.is_infinite(), "{}", s),
+                Err(e) => proptest::prop_assert!(false, "{}: {:?}", s, e),
+            }
+        }
+
+        #[test]
+        fn formats_the_shortest_digits(bits in proptest::prelude::any::<u32>()) {
+            // as many significant digits as std's shortest round-trip `Display`
+            let v = finite(bits);
+            proptest::prop_assume!(v != 0.0);
+            let count = |s: &str| {
+                let mant = s.split('e').next().unwrap_or("");
+                let d: std::string::String = mant.chars().filter(char::is_ascii_digit).collect();
+                d.trim_start_matches('0').trim_end_matches('0').len()
+            };
+            let std_s = std::format!("{:e}", v);
+            proptest::prop_assert_eq!(count(&fmt(v)), count(&std_s), "{} {}", fmt(v), std_s);
         }
     }
 }

@@ -4,14 +4,14 @@
 //! paper's eq. 6) and the integral to XYZ ([`Shade::xyz`]; for spectra `Moments::xyz`) — as
 //! AVX2 + FMA kernels chosen at run time, for the host (which has `std` to ask the CPU). The
 //! core stays `no_std` and portable: built for the x86-64 baseline its loops vectorise for
-//! SSE2, on a Cortex-M they stay scalar; this crate adds a second path, it changes none.
+//! SSE2, on a Cortex-M they stay scalar; this crate adds a second path beside them.
 //!
 //! Kernels exist for the presets the renderer and `xyz` use: the default
 //! (`Spectrum<8, 4>`, one span per 256-bit lane), the paper's (`Spectrum<2, 4, Paper>`) and,
 //! so the speed comparison stays honest, `Sampled<81>`. They are written with `core::arch`
 //! intrinsics because recompiling the core's own code for AVX2 (a `#[target_feature]` wrapper
-//! around the inlined portable kernel) was measured 2–3× slower: the compiler's reductions
-//! shuffle lane by lane, and the portable kernels are not always inlined
+//! around the inlined portable kernel) was measured 1.7–3× slower per call: the compiler's
+//! reductions shuffle lane by lane, and the portable kernels are not always inlined
 //! (`docs/performance.md`, "Kernels at the floor").
 //!
 //! **Accuracy.** Fused multiply-adds and a pairwise horizontal sum round differently from the
@@ -53,11 +53,11 @@ mod other;
 #[cfg(not(target_arch = "x86_64"))]
 pub use other::Avx2Fma;
 
-/// Bound on the difference between the AVX2 and the portable kernels, in units of 2⁻²⁴ (one
-/// f32 ulp at 1) times the sum of the magnitudes of the terms of each output (crate docs). Each
-/// path's worst-case rounding error is `n·2⁻²⁴` of that sum for `n` roundings in a chain
-/// (Higham 2002, §4.2): at most 7 + 6 for the product, 11 + 7 for the default's →XYZ and
-/// 19 + 10 for sampled-81's, so 32 holds for every kernel.
+/// Bound on the difference between the AVX2 and the portable kernels, in units of 2⁻²⁴ (the
+/// f32 unit roundoff, half an ulp at 1) times the sum of the magnitudes of the terms of each
+/// output (crate docs). Each path's worst-case rounding error is `n·2⁻²⁴` of that sum for `n`
+/// roundings in a chain (Higham 2002, §4.2): at most 7 + 6 for the product, 11 + 7 for the
+/// default's →XYZ and 19 + 10 for sampled-81's, so 32 holds for every kernel.
 pub const ULP_BOUND: f64 = 32.0;
 
 /// A representation with AVX2 + FMA kernels, called through the proof [`Avx2Fma`] that the CPU
@@ -81,31 +81,33 @@ pub trait Kernels: Shade {
 #[repr(transparent)]
 pub struct Wide<T>(pub T);
 
+// `inline(always)`: the renderer calls these in deep generic code where the compiler otherwise
+// keeps them out of line, and every call then copies a 128-byte value once more.
 impl<T: Kernels> Shade for Wide<T> {
     type Light = T::Light;
     fn light(observer: Observer, light: &Tabulated<'_>) -> Self::Light {
         T::light(observer, light)
     }
-    #[inline]
+    #[inline(always)]
     fn constant(v: f32, light: &Self::Light) -> Self {
         Wide(T::constant(v, light))
     }
-    #[inline]
+    #[inline(always)]
     fn mul(&self, o: &Self) -> Self {
         Wide(match Avx2Fma::detect() {
             Some(k) => T::mul_with(k, &self.0, &o.0),
             None => self.0.mul(&o.0),
         })
     }
-    #[inline]
+    #[inline(always)]
     fn add(&self, o: &Self) -> Self {
         Wide(self.0.add(&o.0))
     }
-    #[inline]
+    #[inline(always)]
     fn scale(&self, k: f32) -> Self {
         Wide(self.0.scale(k))
     }
-    #[inline]
+    #[inline(always)]
     fn xyz(&self, light: &Self::Light) -> Xyz {
         match Avx2Fma::detect() {
             Some(k) => T::xyz_with(k, &self.0, light),

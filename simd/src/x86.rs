@@ -67,7 +67,7 @@ fn load8(p: &[f32; 8]) -> __m256 {
 /// `v` as an array, written as two 128-bit halves: the portable (SSE2) code that receives a
 /// kernel's result copies it 16 bytes at a time, and a 16-byte load forwards from a 16-byte
 /// store but stalls on half of a 32-byte one (measured: the run-time path's product went from
-/// 10.9 to … ns, docs/performance.md).
+/// 10.9 to 5.7 ns, docs/performance.md).
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn store8(v: __m256) -> [f32; 8] {
@@ -248,12 +248,12 @@ fn xyz_sampled81(v: &Sampled<81>, light: &SampledLight<81>) -> Xyz {
 macro_rules! kernels {
     ($t:ty, $mul:ident, $xyz:ident) => {
         impl Kernels for $t {
-            #[inline]
+            #[inline(always)]
             fn mul_with(_: Avx2Fma, a: &Self, b: &Self) -> Self {
                 // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
                 unsafe { $mul(a, b) }
             }
-            #[inline]
+            #[inline(always)]
             fn xyz_with(_: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz {
                 // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
                 unsafe { $xyz(a, light) }

@@ -272,6 +272,10 @@ fn selftest_passes_on_target_within_the_budgets() {
     let cal: u64 = field(&out, "insns calibration delay-100000 ");
     assert!((199_990..=200_100).contains(&cal), "calibration {cal}");
 
+    // the instruction counts (docs/performance.md, "## Firmware"), for `--nocapture`
+    for l in out.lines().filter(|l| l.starts_with("insns ")) {
+        println!("{l}");
+    }
     let (flash, ram) = budget(&dir.join("specpoly-firmware"));
     println!("flash {flash} B, static RAM {ram} B");
     assert!(

@@ -237,20 +237,23 @@ fn main() -> ! {
         core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill));
     });
     defmt::info!("insns default moments {}", insns);
+    // the kernels as the controller runs them: through `Reflectance`, compiled in the protocol
+    // crate (built for speed; this crate is built for size, docs/performance.md)
+    let (fp, fd) = (Reflectance::Paper(rp), Reflectance::Default(rd));
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(core::hint::black_box(&rp).mul(core::hint::black_box(&rp)));
+        core::hint::black_box(core::hint::black_box(&fp).mul(core::hint::black_box(&fp)));
     });
     defmt::info!("insns paper mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(core::hint::black_box(&rd).mul(core::hint::black_box(&rd)));
+        core::hint::black_box(core::hint::black_box(&fd).mul(core::hint::black_box(&fd)));
     });
     defmt::info!("insns default mul {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(m_paper.xyz(core::hint::black_box(&rp)));
+        core::hint::black_box(core::hint::black_box(&fp).xyz(&m_paper, &m_default));
     });
     defmt::info!("insns paper xyz {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        core::hint::black_box(m_default.xyz(core::hint::black_box(&rd)));
+        core::hint::black_box(core::hint::black_box(&fd).xyz(&m_paper, &m_default));
     });
     defmt::info!("insns default xyz {}", insns);
     let target = m_default.xyz(&rd);
@@ -265,7 +268,34 @@ fn main() -> ! {
         defmt::info!("insns {} encode {}", name, insns);
     }
     let _ = disp;
-    // whole colour computations: reflectance (cached moments) → XYZ → duties
+    // the wire's numbers: a 9-digit decimal read, a float written (shortest round trip)
+    let insns = counter.insns_per_call(n * 50, || {
+        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(
+            core::hint::black_box("0.123456789"),
+        ));
+    });
+    defmt::info!("insns number parse-9-digits {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(
+            core::hint::black_box("0.25"),
+        ));
+    });
+    defmt::info!("insns number parse-short {}", insns);
+    let insns = counter.insns_per_call(n * 50, || {
+        let mut s: String<24> = String::new();
+        let _ = specpoly_protocol::number::write_f32(&mut s, core::hint::black_box(1.0 / 3.0));
+        core::hint::black_box(&s);
+    });
+    defmt::info!("insns number format {}", insns);
+    // whole colour computations: reflectance (cached moments) → XYZ → duties, on a linear
+    // (PWM) curve, then (below) on the sRGB curve
+    let _ = handle(&mut c, "trc rgb linear");
+    let r = Reflectance::Default(rd);
+    let insns = counter.insns_per_call(n * 10, || {
+        let xyz = c.reflectance_xyz(Illuminant::D65, core::hint::black_box(&r));
+        core::hint::black_box(c.colour(xyz));
+    });
+    defmt::info!("insns default colour-linear {}", insns);
     for (preset, r) in [
         ("paper", Reflectance::Paper(rp)),
         ("default", Reflectance::Default(rd)),
