@@ -16,6 +16,9 @@ use std::process::Command;
 
 /// Little CMS against the calibration (ΔE00, any patch).
 const LCMS_DE: f64 = 0.05;
+/// Little CMS through the `A2B0`/`B2A0` tables against the calibration (ΔE00, any patch):
+/// `lut16Type` stores XYZ in steps of 1/32768, ΔE00 up to ≈ 0.2 on the darkest ramp steps.
+const TABLE_DE: f64 = 0.25;
 /// `profcheck`'s mean ΔE00 against ours on the same patches.
 const PROFCHECK_DE: f64 = 0.05;
 
@@ -25,10 +28,10 @@ fn acer(opts: &FitOptions) -> Calibration {
 }
 
 fn check(cal: &Calibration, label: &str) {
-    check_bytes(cal, label, &icc::profile(cal, label).unwrap(), 4.4);
+    check_bytes(cal, label, &icc::profile(cal, label).unwrap(), 4.4, LCMS_DE);
 }
 
-fn check_bytes(cal: &Calibration, label: &str, bytes: &[u8], version: f64) {
+fn check_bytes(cal: &Calibration, label: &str, bytes: &[u8], version: f64, tolerance: f64) {
     let p = Profile::new_icc(bytes).expect("lcms reads the profile");
     assert!(
         (p.version() - version).abs() < 1e-6,
@@ -74,7 +77,7 @@ fn check_bytes(cal: &Calibration, label: &str, bytes: &[u8], version: f64) {
         }
     }
     eprintln!("{label}: lcms vs calibration: max ΔE00 {worst:.4}, max |ΔXYZ| {worst_xyz:.2e}");
-    assert!(worst < LCMS_DE, "{label}: ΔE00 {worst}");
+    assert!(worst < tolerance, "{label}: ΔE00 {worst}");
     assert!(worst_xyz < 1e-3, "{label}: ΔXYZ {worst_xyz}");
     // white → D50
     let mut w = [[0.0; 3]];
@@ -134,7 +137,8 @@ fn both_versions_with_and_without_tables_agree_with_lcms() {
             assert_eq!(p.has_tag(TagSignature::AToB0Tag), tables, "{label}");
             assert_eq!(p.has_tag(TagSignature::BToA0Tag), tables, "{label}");
             let v = if version == IccVersion::V2 { 2.4 } else { 4.4 };
-            check_bytes(&cal, &label, &bytes, v);
+            let tolerance = if tables { TABLE_DE } else { LCMS_DE };
+            check_bytes(&cal, &label, &bytes, v, tolerance);
         }
     }
 }
@@ -175,7 +179,7 @@ fn b2a0_inverts_a2b0_inside_the_gamut() {
         }
     }
     eprintln!("B2A0 then the model: max ΔE00 {worst:.4}");
-    assert!(worst < 10.0 * LCMS_DE, "{worst}");
+    assert!(worst < TABLE_DE, "{worst}");
 }
 
 #[test]
@@ -340,8 +344,6 @@ fn argyll_profcheck_finds_our_prediction_error() {
             .iter()
             .map(|m| {
                 let p = cal.predict(m.device).map(|v| v / w[1]);
-                let chad = icc::bradford(w.map(|v| v / w[1]), d50);
-                let _ = chad;
                 de00_palette(p, m.xyz.map(|v| v / 100.0), d50)
             })
             .collect();
@@ -353,7 +355,8 @@ fn argyll_profcheck_finds_our_prediction_error() {
 
 #[test]
 fn argyll_applycal_reads_our_cal() {
-    // applycal folds a .cal into a profile's curves: the curves it writes are ours through the LUT
+    // applycal folds a .cal into a profile's curves (as if the profile had been measured
+    // without the LUT and the LUT then loaded): new curve(LUT(v)) = old curve(v)
     let (cal, _) = acer_with_lut();
     let lut = cal.video_lut().unwrap().clone();
     let dir = tempfile::tempdir().unwrap();
@@ -374,10 +377,10 @@ fn argyll_applycal_reads_our_cal() {
     let mut worst = 0.0f64;
     for k in 0..=64 {
         let v = k as f64 / 64.0;
-        let want = t0.eval(lut.channel(0, v) as f32) as f64;
-        let got = t1.eval(v as f32) as f64;
+        let want = t0.eval(v as f32) as f64;
+        let got = t1.eval(lut.channel(0, v) as f32) as f64;
         worst = worst.max((want - got).abs());
     }
-    eprintln!("applycal's red curve vs ours through the LUT: max {worst:.2e}");
+    eprintln!("applycal's red curve through the LUT vs ours: max {worst:.2e}");
     assert!(worst < 2e-3, "{worst}");
 }

@@ -266,6 +266,14 @@ fn u16_xyz(v: f64) -> u16 {
 pub const GRID: usize = 17;
 /// Entries of the tables' input curves.
 pub const LUT_CURVE: usize = 1024;
+/// `B2A0`'s grid holds linear drive `l` as `(l + B2A_OFFSET) / B2A_SPAN` (so `l ∈ [−1, 2]`,
+/// beyond the gamut, stays linear in XYZ and interpolates exactly up to the boundary); its
+/// output curves (`B2A_CURVE` entries, the most `lut16Type` allows) clip and encode.
+pub const B2A_OFFSET: f64 = 1.0;
+/// See [`B2A_OFFSET`].
+pub const B2A_SPAN: f64 = 3.0;
+/// Entries of `B2A0`'s output curves.
+pub const B2A_CURVE: usize = 4096;
 
 /// A channel's normalised linear light: the luminance the model predicts for the channel alone
 /// at `v`, black subtracted, over its luminance at full drive (a monotone curve sampled at
@@ -341,10 +349,12 @@ fn mft2(inputs: &[Vec<u16>; 3], clut: &[[u16; 3]], outputs: &[Vec<u16>; 3]) -> V
 /// ([`channel_curves`]), so the 17³ grid is even in light, not in code values; the grid holds
 /// the model's PCS XYZ ([`predict_pcs`]) at the device values whose linear light is each grid
 /// point. `B2A0` (PCS XYZ → device): identity input curves over the PCS encoding, the grid holds
-/// each channel's linear light of the model's inverse (clipped to the display's gamut), and the
-/// output curves turn linear light back into device values. For an additive model both grids
-/// are linear in their inputs, so trilinear interpolation is exact inside the gamut; a model
-/// with channel interaction is sampled at 17³ points.
+/// each channel's linear light of the model's inverse (outside the gamut the base matrix's,
+/// unclipped, offset as [`B2A_OFFSET`] says), and the output curves clip it and turn it back
+/// into device values. For an additive model both grids are linear in their inputs, so
+/// trilinear interpolation is exact up to 16-bit rounding (XYZ steps of 1/32768: up to
+/// ΔE00 ≈ 0.2 in the darkest colours); a model with channel interaction is sampled at 17³
+/// points.
 pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
     let curves = channel_curves(cal);
     let g = |k: usize| k as f64 / (GRID - 1) as f64;
@@ -378,20 +388,35 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
         })
     };
     let full = 1.0 + 32767.0 / 32768.0;
+    let display = cal.display();
     let mut b_clut = Vec::with_capacity(GRID * GRID * GRID);
     for x in 0..GRID {
         for y in 0..GRID {
             for z in 0..GRID {
                 let pcs = [g(x) * full, g(y) * full, g(z) * full];
                 let xyz = mat_vec(&unchad, pcs).map(|v| v * w[1]);
-                let rgb = super::target::inverse(cal, xyz);
-                b_clut.push(lin_of(rgb).map(u16_unit));
+                // inside the gamut the model's own inverse; outside, the base matrix's linear
+                // drive unclipped, so the grid stays linear across the gamut's boundary
+                let lin = match super::target::reach(cal, xyz) {
+                    Some(rgb) => lin_of(rgb),
+                    None => display
+                        .xyz_to_linear(specpoly_core::Xyz::new(
+                            xyz[0] as f32,
+                            xyz[1] as f32,
+                            xyz[2] as f32,
+                        ))
+                        .map(|v| v as f64),
+                };
+                b_clut.push(lin.map(|l| u16_unit((l + B2A_OFFSET) / B2A_SPAN)));
             }
         }
     }
     let b_out = [0, 1, 2].map(|c| {
-        (0..LUT_CURVE)
-            .map(|k| u16_unit(curve_inverse(&curves[c], k as f64 / (LUT_CURVE - 1) as f64)))
+        (0..B2A_CURVE)
+            .map(|k| {
+                let l = k as f64 / (B2A_CURVE - 1) as f64 * B2A_SPAN - B2A_OFFSET;
+                u16_unit(curve_inverse(&curves[c], l.clamp(0.0, 1.0)))
+            })
             .collect::<Vec<_>>()
     });
     let b2a0 = mft2(&[ident(), ident(), ident()], &b_clut, &b_out);
