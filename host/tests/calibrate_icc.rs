@@ -7,7 +7,7 @@
 
 use lcms2::{InfoType, Intent, Locale, PixelFormat, Profile, Tag, TagSignature, Transform};
 use specpoly::calibrate::file::{Calibration, TransferKind};
-use specpoly::calibrate::fit::{fit, FitOptions, MatrixFit};
+use specpoly::calibrate::fit::{fit, FitOptions, InteractionChoice, MatrixFit};
 use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
 use specpoly::calibrate::verify::delta_e00;
 use specpoly::calibrate::video_lut::VideoLut;
@@ -24,7 +24,12 @@ const PROFCHECK_DE: f64 = 0.05;
 
 fn acer(opts: &FitOptions) -> Calibration {
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
-    fit(&t.best_units().0, opts).unwrap()
+    // a matrix/TRC profile holds no interaction lattice: fit the matrix model alone
+    let opts = FitOptions {
+        interaction: InteractionChoice::None,
+        ..*opts
+    };
+    fit(&t.best_units().0, &opts).unwrap()
 }
 
 fn check(cal: &Calibration, label: &str) {
@@ -116,11 +121,16 @@ fn pure_gamma_without_black_uses_para() {
     check(&cal, "para");
 }
 
-/// The acer calibration with the video LUT of its .ti3's CAL table.
-fn acer_with_lut() -> (Calibration, Vec<[f64; 4]>) {
+/// The acer calibration with the video LUT of its .ti3's CAL table: the matrix model alone
+/// (`None`) or with the interaction lattice cross-validation picks.
+fn acer_with_lut(interaction: InteractionChoice) -> (Calibration, Vec<[f64; 4]>) {
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
     let rows = t.video_lut.clone().expect("the acer .ti3 has a CAL table");
-    let mut cal = fit(&t.best_units().0, &FitOptions::default()).unwrap();
+    let opts = FitOptions {
+        interaction,
+        ..FitOptions::default()
+    };
+    let mut cal = fit(&t.best_units().0, &opts).unwrap();
     cal.set_video_lut(Some(VideoLut::from_rows(&rows, "acer.ti3").unwrap()))
         .unwrap();
     (cal, rows)
@@ -128,24 +138,31 @@ fn acer_with_lut() -> (Calibration, Vec<[f64; 4]>) {
 
 #[test]
 fn both_versions_with_and_without_tables_agree_with_lcms() {
-    let (cal, _) = acer_with_lut();
+    let (matrix, _) = acer_with_lut(InteractionChoice::None);
+    let (lattice, _) = acer_with_lut(InteractionChoice::Auto);
+    eprintln!(
+        "acer: interaction term chosen: {}",
+        lattice.has_interaction()
+    );
     for version in [IccVersion::V2, IccVersion::V4] {
         for tables in [false, true] {
+            // a matrix/TRC profile holds the matrix model; tables hold any model
+            let cal = if tables { &lattice } else { &matrix };
             let label = format!("acer {version:?} tables {tables}");
-            let bytes = icc::build(&cal, &label, &IccOptions { version, tables }).unwrap();
+            let bytes = icc::build(cal, &label, &IccOptions { version, tables }).unwrap();
             let p = Profile::new_icc(&bytes).unwrap();
             assert_eq!(p.has_tag(TagSignature::AToB0Tag), tables, "{label}");
             assert_eq!(p.has_tag(TagSignature::BToA0Tag), tables, "{label}");
             let v = if version == IccVersion::V2 { 2.4 } else { 4.4 };
             let tolerance = if tables { TABLE_DE } else { LCMS_DE };
-            check_bytes(&cal, &label, &bytes, v, tolerance);
+            check_bytes(cal, &label, &bytes, v, tolerance);
         }
     }
 }
 
 #[test]
 fn b2a0_inverts_a2b0_inside_the_gamut() {
-    let (cal, _) = acer_with_lut();
+    let (cal, _) = acer_with_lut(InteractionChoice::Auto);
     let bytes = icc::build(
         &cal,
         "tables",
@@ -184,7 +201,7 @@ fn b2a0_inverts_a2b0_inside_the_gamut() {
 
 #[test]
 fn the_ti3_cal_table_becomes_the_vcgt() {
-    let (cal, rows) = acer_with_lut();
+    let (cal, rows) = acer_with_lut(InteractionChoice::None);
     let bytes = icc::build(&cal, "vcgt", &IccOptions::default()).unwrap();
     let p = Profile::new_icc(&bytes).unwrap();
     let Tag::VcgtCurves(curves) = p.read_tag(TagSignature::VcgtTag) else {
@@ -218,7 +235,7 @@ fn tool(name: &str, args: &[&str], dir: &std::path::Path) -> std::process::Outpu
 
 #[test]
 fn the_profile_id_is_the_md5_of_the_zeroed_profile() {
-    let (cal, _) = acer_with_lut();
+    let (cal, _) = acer_with_lut(InteractionChoice::None);
     let dir = tempfile::tempdir().unwrap();
     for version in [IccVersion::V2, IccVersion::V4] {
         let bytes = icc::build(
@@ -253,7 +270,7 @@ fn the_profile_id_is_the_md5_of_the_zeroed_profile() {
 
 #[test]
 fn argyll_iccdump_reads_the_v2_profile_and_its_vcgt() {
-    let (cal, rows) = acer_with_lut();
+    let (cal, rows) = acer_with_lut(InteractionChoice::None);
     let dir = tempfile::tempdir().unwrap();
     let bytes = icc::build(&cal, "acer v2", &IccOptions::default()).unwrap();
     std::fs::write(dir.path().join("acer.icc"), &bytes).unwrap();
@@ -324,15 +341,22 @@ fn argyll_profcheck_finds_our_prediction_error() {
     std::fs::write(dir.path().join("acer.ti3"), specpoly::data::ACER_TI3).unwrap();
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
     for opts in [
-        FitOptions::default(),
+        FitOptions {
+            interaction: InteractionChoice::None,
+            ..Default::default()
+        },
         FitOptions {
             transfer: TransferKind::Gamma,
             matrix: MatrixFit::Cowan,
+            interaction: InteractionChoice::None,
             ..Default::default()
         },
+        // the default model: with an interaction lattice the profile carries A2B0/B2A0
+        FitOptions::default(),
     ] {
         let cal = fit(&t.best_units().0, &opts).unwrap();
-        let bytes = icc::build(&cal, "acer", &IccOptions::default()).unwrap();
+        let options = IccOptions::for_calibration(&cal);
+        let bytes = icc::build(&cal, "acer", &options).unwrap();
         std::fs::write(dir.path().join("acer.icc"), &bytes).unwrap();
         let theirs = profcheck_mean(dir.path(), "acer.ti3", "acer.icc");
         // ours: the prediction in the profile's units (white Y = 1) against the .ti3's
@@ -348,7 +372,10 @@ fn argyll_profcheck_finds_our_prediction_error() {
             })
             .collect();
         let ours = des.iter().sum::<f64>() / des.len() as f64;
-        eprintln!("{opts:?}: profcheck mean ΔE00 {theirs:.4}, ours {ours:.4}");
+        eprintln!(
+            "{opts:?} (tables {}): profcheck mean ΔE00 {theirs:.4}, ours {ours:.4}",
+            options.tables
+        );
         assert!((theirs - ours).abs() <= PROFCHECK_DE, "{theirs} vs {ours}");
     }
 }
@@ -357,7 +384,7 @@ fn argyll_profcheck_finds_our_prediction_error() {
 fn argyll_applycal_reads_our_cal() {
     // applycal folds a .cal into a profile's curves (as if the profile had been measured
     // without the LUT and the LUT then loaded): new curve(LUT(v)) = old curve(v)
-    let (cal, _) = acer_with_lut();
+    let (cal, _) = acer_with_lut(InteractionChoice::None);
     let lut = cal.video_lut().unwrap().clone();
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("lut.cal"), lut.to_cal("test", &[])).unwrap();

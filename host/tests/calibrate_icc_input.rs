@@ -6,7 +6,7 @@
 //! display); broken and non-display profiles are one-line errors.
 
 use specpoly::calibrate::file::{self, Calibration};
-use specpoly::calibrate::fit::{fit, FitOptions};
+use specpoly::calibrate::fit::{fit, FitOptions, InteractionChoice};
 use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
 use specpoly::calibrate::verify::delta_e00;
 use specpoly::io::cgats::read_ti3;
@@ -31,9 +31,14 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// The matrix model (what a `Display` and a matrix/TRC profile hold).
 fn acer() -> Calibration {
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
-    fit(&t.best_units().0, &FitOptions::default()).unwrap()
+    let opts = FitOptions {
+        interaction: InteractionChoice::None,
+        ..FitOptions::default()
+    };
+    fit(&t.best_units().0, &opts).unwrap()
 }
 
 /// `xyz … --display D --json`: the device values of each colour.
@@ -121,9 +126,9 @@ fn argyll_profiles_describe_the_display() {
     std::fs::write(dir.path().join("acer.ti3"), specpoly::data::ACER_TI3).unwrap();
     let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
     let (meas, _) = t.best_units();
-    for (name, args) in [("shaper", &["-ql", "-as"][..])] {
-        let mut a: Vec<&str> = args.to_vec();
-        a.extend(["-O", name, "acer"]);
+    {
+        let name = "shaper";
+        let a = ["-ql", "-as", "-O", name, "acer"];
         let o = Command::new("colprof")
             .args(&a)
             .current_dir(dir.path())

@@ -17,16 +17,23 @@
 //! gamma = [2.2, 2.2, 2.2]    # the best pure power law per channel (always present)
 //! red = […]                  # linear light at device 0, 1/(n−1), …, 1 (n ≤ 64)
 //! …
-//! [fit]                      # residuals, additivity
+//! [interaction]              # optional: the channel-interaction lattice (fit/lattice.rs)
+//! grid = 9
+//! values = [[…], …]          # grid³ XYZ offsets
+//! [fit]                      # model chosen, residuals, outliers, additivity
 //! [provenance]               # source file, dates, instrument, patch counts
 //! [video_lut]                # optional: the video LUT loaded while the model holds
 //! red = […]                  # ≥ 256 outputs per channel for inputs 0, 1/(n−1), …, 1
 //! …
 //! ```
 //!
+//! The model is `XYZ = M · t(rgb) + black + L(rgb)`, `L` the interaction lattice when present
+//! (files without `[interaction]`, all version-1 files before it, are the matrix model).
+//!
 //! Every key is described in docs/calibration.md. Loading checks the format name, the
 //! version, and that every number is finite and the model is usable.
 
+pub use super::fit::lattice::Lattice;
 use crate::error::{CliError, Result};
 use serde::{Deserialize, Serialize};
 use specpoly_core::{Display, Transfer, Xyz};
@@ -139,6 +146,43 @@ pub struct FitReport {
     /// Additivity: `(Y_R + Y_G + Y_B − 2·Y_black) / Y_white − 1`, in percent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub additivity_luminance_percent: Option<f64>,
+    /// The model the fit chose: `"shaper-matrix"` or `"shaper-matrix + lattice N"` (absent in
+    /// files written before the interaction correction).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub model: String,
+    /// The candidate models and their cross-validated ΔE00 on the fit patches (how `model`
+    /// was chosen).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub candidates: Vec<Candidate>,
+    /// Patches left out of the fit as bad readings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outliers: Vec<Outlier>,
+    /// Primaries the fit had to constrain to the chromaticity triangle (`x ≥ 0`, `y > 0`,
+    /// `x + y ≤ 1`), one sentence each.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub constrained: Vec<String>,
+}
+
+/// A candidate model of the fit and its cross-validated error.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Candidate {
+    /// The model, as in [`FitReport::model`].
+    pub model: String,
+    /// Mean ΔE00 on each fold's held-out patches, pooled over the folds.
+    pub cv_mean: f64,
+}
+
+/// A measurement the fit dropped.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Outlier {
+    /// Its position among the measurements given to the fit (1-based).
+    pub patch: usize,
+    /// Its device values (0–1).
+    pub device: [f64; 3],
+    /// Its ΔE00 against the model fitted with it (the statistic of the test).
+    pub delta_e00: f64,
+    /// Why it was dropped.
+    pub reason: String,
 }
 
 /// Where a calibration came from.
@@ -182,6 +226,9 @@ pub struct CalibrationData {
     pub primaries: Primaries,
     /// The transfer curves.
     pub transfer: TransferCurves,
+    /// The channel-interaction correction, if the fit chose one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interaction: Option<Lattice>,
     /// Fit quality.
     pub fit: FitReport,
     /// Provenance.
@@ -277,6 +324,9 @@ impl Calibration {
                 TransferKind::Gamma => Transfer::Gamma(t.gamma[c] as f32),
             };
         }
+        if let Some(l) = &data.interaction {
+            l.check().map_err(CliError::data)?;
+        }
         let p = data.primaries.array();
         let display = Display::from_primaries(
             p.map(|p| [p.x as f32, p.y as f32]),
@@ -330,10 +380,32 @@ impl Calibration {
         self.data.units == "cd/m2"
     }
 
-    /// Predicted XYZ for device values in `[0, 1]` (the calibration's units).
+    /// Predicted XYZ for device values in `[0, 1]` (the calibration's units): the matrix
+    /// model of [`Self::display`] plus the interaction lattice, if any.
     pub fn predict(&self, rgb: [f64; 3]) -> [f64; 3] {
         let v = self.display.device_to_xyz(rgb.map(|v| v as f32)).to_array();
-        v.map(|x| x as f64)
+        let mut x = v.map(|x| x as f64);
+        if let Some(l) = &self.data.interaction {
+            let d = l.eval(rgb);
+            for r in 0..3 {
+                x[r] += d[r];
+            }
+        }
+        x
+    }
+
+    /// Whether the model has a channel-interaction correction (then [`Self::display`], the
+    /// matrix model alone, is an approximation of [`Self::predict`]).
+    pub fn has_interaction(&self) -> bool {
+        self.data.interaction.is_some()
+    }
+
+    /// Device RGB in `[0, 1]³` whose [`Self::predict`] is `xyz` (the calibration's units): the
+    /// exact inverse inside the gamut, by damped Newton steps on the forward model from the
+    /// matrix model's inverse; outside the gamut the nearest prediction in the weighted
+    /// least-squares sense within the cube. See [`super::fit::inverse`].
+    pub fn inverse(&self, xyz: [f64; 3]) -> [f64; 3] {
+        super::fit::inverse::inverse(self, xyz)
     }
 
     /// The linear light of each channel for device values in `[0, 1]`.

@@ -180,10 +180,9 @@ pub struct IccOptions {
 impl IccOptions {
     /// The defaults for `cal`: v2.4, tables when the model has channel interaction.
     pub fn for_calibration(cal: &Calibration) -> Self {
-        let _ = cal;
         IccOptions {
             version: IccVersion::V2,
-            tables: false,
+            tables: cal.has_interaction(),
         }
     }
 }

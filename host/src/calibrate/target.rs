@@ -209,16 +209,9 @@ pub fn reach(cal: &Calibration, xyz: [f64; 3]) -> Option<[f64; 3]> {
     ok.then_some(rgb)
 }
 
-/// The model's inverse: device values in `[0, 1]` for an XYZ (clamped where out of range).
+/// The model's inverse: device values in `[0, 1]` for an XYZ ([`Calibration::inverse`]).
 pub fn inverse(cal: &Calibration, xyz: [f64; 3]) -> [f64; 3] {
-    let d = cal.display();
-    let lin = d.xyz_to_linear(specpoly_core::Xyz::new(
-        xyz[0] as f32,
-        xyz[1] as f32,
-        xyz[2] as f32,
-    ));
-    let t = d.transfer();
-    [0, 1, 2].map(|c| t[c].encode(lin[c]) as f64)
+    cal.inverse(xyz)
 }
 
 /// Relative luminance of CIE L* (CIE 15:2004): `Y/Y_n` for `L* = l`.

@@ -2,7 +2,7 @@
 //! and (`run`) measure a display. See docs/calibration.md.
 
 use crate::calibrate::file::{self, Calibration, TransferKind};
-use crate::calibrate::fit::{self, FitOptions, MatrixFit};
+use crate::calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
 use crate::calibrate::{export, icc, verify};
 use crate::error::{CliError, Result};
 use crate::io::cgats;
@@ -67,10 +67,17 @@ pub struct FitArgs {
     /// Points of each transfer table (2–64).
     #[arg(long, default_value_t = 64)]
     pub table_points: usize,
-    /// Hold out every other patch that is not black, white or a single-channel ramp step,
+    /// Hold out every 5th patch that is not black, white or a single-channel ramp step,
     /// and report ΔE00 on them (stored in the file's [fit.verification]).
     #[arg(long)]
     pub hold_out: bool,
+    /// The channel-interaction lattice: auto (chosen by cross-validation), none, or its
+    /// nodes per side (2–17).
+    #[arg(long, default_value = "auto", value_name = "auto|none|N")]
+    pub interaction: InteractionChoice,
+    /// Keep every patch (no outlier test).
+    #[arg(long)]
+    pub keep_outliers: bool,
 }
 
 /// `calibrate show`.
@@ -184,6 +191,8 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         matrix: a.matrix,
         table_points: a.table_points,
         absolute,
+        interaction: a.interaction,
+        robust: !a.keep_outliers,
         ..Default::default()
     };
     let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
@@ -244,10 +253,39 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
             "additivity (R+G+B−2·black vs white): ΔE00 {de:.3}, luminance {pc:+.2} %\n"
         ));
     }
+    s.push_str(&fit_facts(&d.fit));
     for n in &d.provenance.notes {
         s.push_str(&format!("note: {n}\n"));
     }
     print(&s)
+}
+
+/// What the fit decided, one line each: the model and how it was chosen, the patches dropped
+/// as bad readings, the primaries constrained.
+pub fn fit_facts(f: &file::FitReport) -> String {
+    let mut s = String::new();
+    if !f.model.is_empty() {
+        let cv: Vec<String> = f
+            .candidates
+            .iter()
+            .map(|c| format!("{} {:.3}", c.model, c.cv_mean))
+            .collect();
+        s.push_str(&format!("model: {}", f.model));
+        if !cv.is_empty() {
+            s.push_str(&format!(" (cross-validated ΔE00 mean: {})", cv.join(", ")));
+        }
+        s.push('\n');
+    }
+    for o in &f.outliers {
+        s.push_str(&format!(
+            "outlier dropped: patch {} (RGB {:.4} {:.4} {:.4}): {}\n",
+            o.patch, o.device[0], o.device[1], o.device[2], o.reason
+        ));
+    }
+    for c in &f.constrained {
+        s.push_str(&format!("constrained: {c}\n"));
+    }
+    s
 }
 
 /// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
@@ -311,6 +349,7 @@ fn show(a: &ShowArgs) -> Result<()> {
             v.mean, v.p95, v.max, v.n
         ));
     }
+    s.push_str(&fit_facts(&d.fit));
     s.push_str(&format!(
         "source {} (fitted {})\n",
         d.provenance.source, d.provenance.created
