@@ -130,7 +130,7 @@ fn argyll_profiles_describe_the_display() {
         let name = "shaper";
         let a = ["-ql", "-as", "-O", name, "acer"];
         let o = Command::new("colprof")
-            .args(&a)
+            .args(a)
             .current_dir(dir.path())
             .output()
             .expect("colprof (test.sh installs ArgyllCMS)");
