@@ -496,7 +496,7 @@ pub fn build(cal: &Calibration, description: &str, opts: &IccOptions) -> Result<
     h.extend_from_slice(b"mntr");
     h.extend_from_slice(b"RGB ");
     h.extend_from_slice(b"XYZ ");
-    for v in super::file::utc_parts() {
+    for v in created(cal) {
         h.extend_from_slice(&(v as u16).to_be_bytes());
     }
     h.extend_from_slice(b"acsp");
@@ -516,6 +516,30 @@ pub fn build(cal: &Calibration, description: &str, opts: &IccOptions) -> Result<
     let id = profile_id(&h);
     h[84..100].copy_from_slice(&id);
     Ok(h)
+}
+
+/// The header's date: when the calibration was fitted (`provenance.created`, so one
+/// calibration always gives the same profile bytes), or now if that is not an ISO 8601 UTC time.
+fn created(cal: &Calibration) -> [i64; 6] {
+    let c = &cal.data().provenance.created;
+    let parts: Vec<i64> = c
+        .split(|ch: char| !ch.is_ascii_digit())
+        .filter(|p| !p.is_empty())
+        .filter_map(|p| p.parse().ok())
+        .collect();
+    match parts[..] {
+        [y, mo, d, h, mi, s, ..]
+            if (1900..=9999).contains(&y)
+                && (1..=12).contains(&mo)
+                && (1..=31).contains(&d)
+                && h < 24
+                && mi < 60
+                && s < 61 =>
+        {
+            [y, mo, d, h, mi, s]
+        }
+        _ => super::file::utc_parts(),
+    }
 }
 
 /// The profile ID (ICC.1:2022 §7.2.18): MD5 of the profile with the header's flags (bytes
