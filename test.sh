@@ -25,7 +25,7 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread targen cc; do
+for tool in qemu-system-arm chromium spotread dispread targen colprof profcheck iccdump applycal cc; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then

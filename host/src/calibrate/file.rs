@@ -22,6 +22,9 @@
 //! values = [[…], …]          # grid³ XYZ offsets
 //! [fit]                      # model chosen, residuals, outliers, additivity
 //! [provenance]               # source file, dates, instrument, patch counts
+//! [video_lut]                # optional: the video LUT loaded while the model holds
+//! red = […]                  # ≥ 256 outputs per channel for inputs 0, 1/(n−1), …, 1
+//! …
 //! ```
 //!
 //! The model is `XYZ = M · t(rgb) + black + L(rgb)`, `L` the interaction lattice when present
@@ -238,6 +241,9 @@ pub struct CalibrationData {
 pub struct Calibration {
     data: CalibrationData,
     display: Display,
+    /// The video LUT loaded while the display was measured (the model describes the display
+    /// with it loaded): the file's optional `[video_lut]`.
+    video_lut: Option<super::video_lut::VideoLut>,
 }
 
 fn finite(name: &str, v: &[f64]) -> Result<()> {
@@ -334,7 +340,25 @@ impl Calibration {
             curves,
         )
         .map_err(|e| CliError::data(format!("the primaries do not make a display: {e}")))?;
-        Ok(Calibration { data, display })
+        Ok(Calibration {
+            data,
+            display,
+            video_lut: None,
+        })
+    }
+
+    /// The video LUT the model holds with, if any (see [`super::video_lut`]).
+    pub fn video_lut(&self) -> Option<&super::video_lut::VideoLut> {
+        self.video_lut.as_ref()
+    }
+
+    /// Sets the video LUT the model holds with (checked; an identity LUT is kept too).
+    pub fn set_video_lut(&mut self, lut: Option<super::video_lut::VideoLut>) -> Result<()> {
+        if let Some(l) = &lut {
+            l.check()?;
+        }
+        self.video_lut = lut;
+        Ok(())
     }
 
     /// The file's contents.
@@ -401,8 +425,22 @@ impl Calibration {
     pub fn to_toml(&self) -> Result<String> {
         let body = toml::to_string(&self.data)
             .map_err(|e| CliError::data(format!("cannot write the calibration: {e}")))?;
+        // the optional table goes last, after every table of the model
+        let lut = match &self.video_lut {
+            None => String::new(),
+            Some(l) => {
+                #[derive(Serialize)]
+                struct Lut<'a> {
+                    video_lut: &'a super::video_lut::VideoLut,
+                }
+                let t = toml::to_string(&Lut { video_lut: l }).map_err(|e| {
+                    CliError::data(format!("cannot write the calibration's video LUT: {e}"))
+                })?;
+                format!("\n{t}")
+            }
+        };
         Ok(format!(
-            "# specpoly display calibration (Cowan's model); keys: docs/calibration.md\n{body}"
+            "# specpoly display calibration (Cowan's model); keys: docs/calibration.md\n{body}{lut}"
         ))
     }
 
@@ -433,10 +471,21 @@ impl Calibration {
             }
             None => return Err(CliError::data(format!("{source}: no version"))),
         }
+        let lut =
+            match value.get("video_lut") {
+                None => None,
+                Some(v) => Some(v.clone().try_into::<super::video_lut::VideoLut>().map_err(
+                    |e| CliError::data(one_line(&e, text, &format!("{source}: video_lut"))),
+                )?),
+            };
         let data: CalibrationData = value
             .try_into()
             .map_err(|e: toml::de::Error| CliError::data(one_line(&e, text, source)))?;
-        Calibration::new(data).map_err(|e| CliError::data(format!("{source}: {e}")))
+        let mut cal =
+            Calibration::new(data).map_err(|e| CliError::data(format!("{source}: {e}")))?;
+        cal.set_video_lut(lut)
+            .map_err(|e| CliError::data(format!("{source}: {e}")))?;
+        Ok(cal)
     }
 
     /// Writes the file atomically.
@@ -451,8 +500,13 @@ pub fn load(path: &Path) -> Result<Calibration> {
     Calibration::from_toml(&text, &path.display().to_string())
 }
 
-/// Loads a calibration file and returns its display model (for `render --display CAL.toml`).
+/// The one loader of a display for `render --display`, `led --calibration` and `xyz
+/// --display`: a calibration file's model, or an ICC display profile (recognised by its
+/// `acsp` signature, read by [`super::icc_read`]).
 pub fn load_display(path: &Path) -> Result<Display> {
+    if super::icc_read::is_icc_file(path) {
+        return super::icc_read::load(path);
+    }
     Ok(load(path)?.display())
 }
 

@@ -6,6 +6,7 @@ pub mod export;
 pub mod file;
 pub mod fit;
 pub mod icc;
+pub mod icc_read;
 pub mod instrument;
 pub mod interrupt;
 pub mod patch_display;
@@ -14,6 +15,8 @@ pub mod report_html;
 pub mod run;
 pub mod session;
 pub mod sim;
+pub mod target;
 pub mod verify;
+pub mod video_lut;
 
 pub use crate::measurement::Measurement;

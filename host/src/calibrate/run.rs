@@ -16,8 +16,10 @@ use crate::calibrate::fit::{self, FitOptions, MatrixFit};
 use crate::calibrate::instrument::{self, argyll, Instrument};
 use crate::calibrate::interrupt;
 use crate::calibrate::patch_display::{self, PatchDisplay};
-use crate::calibrate::patches::{self, Patch};
+use crate::calibrate::patches::{self, Patch, PatchKind};
 use crate::calibrate::session::Session;
+use crate::calibrate::target::Meter;
+use crate::calibrate::video_lut::VideoLut;
 use crate::error::{CliError, Result};
 use crate::io::cgats::{self, Ti3Info};
 use crate::io::progress;
@@ -199,6 +201,147 @@ pub struct Devices<'a> {
     pub ti3: &'a Path,
 }
 
+/// The opened display and instrument of a run: a patch display read by an instrument, or
+/// ArgyllCMS's `dispread` (which shows and reads its own patches). Optionally a video LUT is
+/// applied to every patch before it is shown ([`Rig::set_lut`]), as a graphics card would.
+pub enum Rig {
+    /// `--display D --instrument I`.
+    Patch {
+        /// Where patches are shown.
+        display: Box<dyn PatchDisplay>,
+        /// What reads them.
+        instrument: Box<dyn Instrument>,
+        /// The wait before each reading.
+        settle: Duration,
+        /// The video LUT patches go through.
+        lut: Option<VideoLut>,
+    },
+    /// `--display argyll… --instrument argyll…`.
+    Argyll {
+        /// The reader.
+        reader: argyll::Dispread,
+        /// The video LUT patches go through.
+        lut: Option<VideoLut>,
+    },
+}
+
+impl Rig {
+    /// Opens the devices of `dev`; `say` prints what they are.
+    pub fn open(dev: &Devices<'_>, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<Rig> {
+        if argyll::is_argyll(dev.instrument) {
+            let reader = argyll::Dispread::open(
+                dev.instrument,
+                dev.display,
+                dev.ti3,
+                dev.settle.map(Duration::from_millis),
+            )?;
+            say(&format!("display: {}", reader.describe_display()))?;
+            say(&format!("instrument: {}", reader.describe()))?;
+            return Ok(Rig::Argyll { reader, lut: None });
+        }
+        if dev.display.starts_with("argyll") {
+            return Err(CliError::usage(
+                "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
+            ));
+        }
+        let display = patch_display::open(dev.display)?;
+        say(&format!("display: {}", display.describe()))?;
+        let (display, instrument) = instrument::open(dev.instrument, display)?;
+        say(&format!("instrument: {}", instrument.describe()))?;
+        let settle = dev
+            .settle
+            .map(Duration::from_millis)
+            .unwrap_or_else(|| display.default_settle());
+        Ok(Rig::Patch {
+            display,
+            instrument,
+            settle,
+            lut: None,
+        })
+    }
+
+    /// Patches go through `lut` from now on (`None`: as they are).
+    pub fn set_lut(&mut self, l: Option<VideoLut>) {
+        match self {
+            Rig::Patch { lut, .. } | Rig::Argyll { lut, .. } => *lut = l,
+        }
+    }
+
+    /// The instrument's description.
+    pub fn describe_instrument(&self) -> String {
+        match self {
+            Rig::Patch { instrument, .. } => instrument.describe(),
+            Rig::Argyll { reader, .. } => reader.describe(),
+        }
+    }
+
+    /// The simulated display's true primaries, if it is simulated.
+    pub fn truth(&self) -> Option<[[f64; 3]; 3]> {
+        match self {
+            Rig::Patch { display, .. } => display.simulation().map(|s| s.model().primaries),
+            Rig::Argyll { .. } => None,
+        }
+    }
+
+    /// Asks the user to place the instrument (ArgyllCMS's window, on a terminal, not fake).
+    fn place_instrument(&self) -> Result<()> {
+        use std::io::IsTerminal;
+        if let Rig::Argyll { reader, .. } = self {
+            if !reader.is_fake() && std::io::stdin().is_terminal() {
+                eprintln!(
+                    "put the instrument on the middle of the screen (where ArgyllCMS's patch window opens) and press Enter"
+                );
+                let mut line = String::new();
+                std::io::stdin()
+                    .read_line(&mut line)
+                    .map_err(|e| CliError::io("stdin", e))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Meter for Rig {
+    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+        match self {
+            Rig::Patch {
+                display,
+                instrument,
+                settle,
+                lut,
+            } => {
+                let patches: Vec<Patch> = devices
+                    .iter()
+                    .map(|d| Patch {
+                        kind: PatchKind::Mixed,
+                        device: lut.as_ref().map_or(*d, |l| l.apply(*d)),
+                    })
+                    .collect();
+                let m = measure_all(
+                    display.as_mut(),
+                    instrument.as_mut(),
+                    &patches,
+                    *settle,
+                    |_| Ok(()),
+                )
+                .map_err(|i| i.error)?;
+                Ok(m.into_iter().map(|m| m.xyz).collect())
+            }
+            Rig::Argyll { reader, lut } => {
+                let through: Vec<[f64; 3]> = devices
+                    .iter()
+                    .map(|d| lut.as_ref().map_or(*d, |l| l.apply(*d)))
+                    .collect();
+                let mut out = Vec::with_capacity(devices.len());
+                for chunk in through.chunks(reader.batch().max(1)) {
+                    out.extend(reader.measure(chunk)?);
+                }
+                Ok(out)
+            }
+        }
+    }
+}
+
 /// Measures the patches `session` lacks: one at a time with `--display` and `--instrument`
 /// (each saved at once), or a batch at a time with ArgyllCMS's `dispread` (each batch saved
 /// before the next starts). `say` prints a line (the devices, the patch count) before
@@ -210,77 +353,65 @@ pub fn measure_session(
     head: &str,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<Option<[[f64; 3]; 3]>> {
-    if argyll::is_argyll(dev.instrument) {
-        return measure_with_argyll(dev, set, session, head, say).map(|()| None);
-    }
-    if dev.display.starts_with("argyll") {
-        return Err(CliError::usage(
-            "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
-        ));
-    }
-    let display = patch_display::open(dev.display)?;
-    say(&format!("display: {}", display.describe()))?;
-    let (mut display, mut instrument) = instrument::open(dev.instrument, display)?;
-    say(&format!("instrument: {}", instrument.describe()))?;
+    let mut rig = Rig::open(dev, say)?;
     say(head)?;
-    session.set_instrument(instrument.describe());
-    let settle = dev
-        .settle
-        .map(Duration::from_millis)
-        .unwrap_or_else(|| display.default_settle());
-    let missing = session.missing();
-    let todo: Vec<Patch> = missing.iter().map(|&i| set[i]).collect();
-    measure_all(display.as_mut(), instrument.as_mut(), &todo, settle, |m| {
-        let k = m.len() - 1;
-        session.record(missing[k], m[k].xyz)
-    })
-    .map_err(|i| i.error)?;
-    Ok(display.simulation().map(|s| s.model().primaries))
+    record_session(&mut rig, set, session)?;
+    Ok(rig.truth())
 }
 
-fn measure_with_argyll(
-    dev: &Devices<'_>,
-    set: &[Patch],
-    session: &mut Session,
-    head: &str,
-    say: &mut dyn FnMut(&str) -> Result<()>,
-) -> Result<()> {
-    use std::io::IsTerminal;
-    let mut reader = argyll::Dispread::open(
-        dev.instrument,
-        dev.display,
-        dev.ti3,
-        dev.settle.map(Duration::from_millis),
-    )?;
-    say(&format!("display: {}", reader.describe_display()))?;
-    say(&format!("instrument: {}", reader.describe()))?;
-    say(head)?;
-    session.set_instrument(reader.describe());
-    if !reader.is_fake() && std::io::stdin().is_terminal() {
-        eprintln!(
-            "put the instrument on the middle of the screen (where ArgyllCMS's patch window opens) and press Enter"
-        );
-        let mut line = String::new();
-        std::io::stdin()
-            .read_line(&mut line)
-            .map_err(|e| CliError::io("stdin", e))?;
-    }
+/// Measures the patches `session` lacks on `rig` (through its LUT, if it has one), saving
+/// each reading (each batch, with ArgyllCMS) as it is taken.
+pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
+    session.set_instrument(rig.describe_instrument());
+    rig.place_instrument()?;
     let missing = session.missing();
-    let bar = progress::bar(missing.len() as u64, "measuring", "patches");
-    let total = set.len();
-    for chunk in missing.chunks(reader.batch()) {
-        let devices: Vec<[f64; 3]> = chunk.iter().map(|&i| set[i].device).collect();
-        let first = chunk[0] + 1;
-        let last = chunk[chunk.len() - 1] + 1;
-        let xyz = reader.measure(&devices).map_err(|e| {
-            bar.abandon();
-            CliError::data(format!("patches {first}–{last} of {total}: {e}"))
-        })?;
-        let rows: Vec<(usize, [f64; 3])> = chunk.iter().copied().zip(xyz).collect();
-        session.set_instrument(reader.describe());
-        session.record_all(&rows)?;
-        bar.inc(chunk.len() as u64);
+    match rig {
+        Rig::Patch {
+            display,
+            instrument,
+            settle,
+            lut,
+        } => {
+            let todo: Vec<Patch> = missing
+                .iter()
+                .map(|&i| Patch {
+                    kind: set[i].kind,
+                    device: lut
+                        .as_ref()
+                        .map_or(set[i].device, |l| l.apply(set[i].device)),
+                })
+                .collect();
+            measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, |m| {
+                let k = m.len() - 1;
+                session.record(missing[k], m[k].xyz)
+            })
+            .map_err(|i| i.error)?;
+            Ok(())
+        }
+        Rig::Argyll { reader, lut } => {
+            let bar = progress::bar(missing.len() as u64, "measuring", "patches");
+            let total = set.len();
+            for chunk in missing.chunks(reader.batch()) {
+                let devices: Vec<[f64; 3]> = chunk
+                    .iter()
+                    .map(|&i| {
+                        lut.as_ref()
+                            .map_or(set[i].device, |l| l.apply(set[i].device))
+                    })
+                    .collect();
+                let first = chunk[0] + 1;
+                let last = chunk[chunk.len() - 1] + 1;
+                let xyz = reader.measure(&devices).map_err(|e| {
+                    bar.abandon();
+                    CliError::data(format!("patches {first}–{last} of {total}: {e}"))
+                })?;
+                let rows: Vec<(usize, [f64; 3])> = chunk.iter().copied().zip(xyz).collect();
+                session.set_instrument(reader.describe());
+                session.record_all(&rows)?;
+                bar.inc(chunk.len() as u64);
+            }
+            bar.finish_and_clear();
+            Ok(())
+        }
     }
-    bar.finish_and_clear();
-    Ok(())
 }

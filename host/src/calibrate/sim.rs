@@ -10,6 +10,7 @@
 //! | `gamma` | `2.2` | transfer curve: a number (pure power law), `srgb` (IEC 61966-2-1) or `linear` |
 //! | `black` | `0` | black level, cd/m², with the chromaticity of the display's white |
 //! | `flare` | `0` | veiling flare (ambient light reflected by the screen), cd/m², chromaticity of D65 |
+//! | `white_xy` | — | the native white's chromaticity `X:Y` (e.g. `0.28:0.29`, far bluer than D65): each primary's luminance is rescaled so R + G + B has it (a panel whose backlight or phosphor balance is off) |
 //! | `crosstalk` | `0` | channel interaction: each channel's light falls by `crosstalk` × the mean linear drive of the other two (a power supply sagging under load), so white ≠ R + G + B |
 //! | `noise` | `0` | measurement noise: each reading's X, Y, Z are multiplied by `1 + σ·N(0, 1)`, σ = `noise` |
 //! | `seed` | `1` | seed of the noise (the same seed gives the same readings) |
@@ -36,6 +37,8 @@ pub struct SimOptions {
     pub black: f64,
     /// Flare, cd/m² (D65 chromaticity).
     pub flare: f64,
+    /// The native white's chromaticity, if set (see the module docs).
+    pub white_xy: Option<[f64; 2]>,
     /// Channel interaction (see the module docs).
     pub crosstalk: f64,
     /// Relative measurement noise σ.
@@ -59,6 +62,19 @@ impl SimOptions {
                 "gamma" => o.transfer = gamma(spec, v)?,
                 "srgb" if v.is_empty() => o.transfer = Transfer::Srgb,
                 "black" => o.black = spec.non_negative(k, v)?,
+                "white_xy" => {
+                    let xy = v
+                        .split_once(':')
+                        .map(|(x, y)| (spec.number(k, x), spec.number(k, y)));
+                    match xy {
+                        Some((Ok(x), Ok(y))) if x > 0.0 && y > 0.0 && x + y < 1.0 => {
+                            o.white_xy = Some([x, y])
+                        }
+                        _ => {
+                            return Err(spec.bad(k, v, "expected X:Y with x, y > 0 and x + y < 1"))
+                        }
+                    }
+                }
                 "flare" => o.flare = spec.non_negative(k, v)?,
                 "crosstalk" => {
                     o.crosstalk = spec.non_negative(k, v)?;
@@ -69,9 +85,10 @@ impl SimOptions {
                 "noise" => o.noise = spec.non_negative(k, v)?,
                 "seed" => o.seed = spec.integer(k, v)?,
                 _ => {
-                    return Err(
-                        spec.unknown(k, "white, gamma, black, flare, crosstalk, noise, seed")
-                    )
+                    return Err(spec.unknown(
+                        k,
+                        "white, gamma, black, white_xy, flare, crosstalk, noise, seed",
+                    ))
                 }
             }
         }
@@ -100,6 +117,7 @@ impl Default for SimOptions {
             white: 100.0,
             transfer: Transfer::Gamma(2.2),
             black: 0.0,
+            white_xy: None,
             flare: 0.0,
             crosstalk: 0.0,
             noise: 0.0,
@@ -144,6 +162,24 @@ impl SimModel {
             let t = Tabulated::new(wavelengths, s)
                 .map_err(|e| CliError::data(format!("{source}: channel {i}: {e}")))?;
             p[i] = spd_xyz(&t);
+        }
+        if let Some([x, y]) = options.white_xy {
+            // scale each primary so that R + G + B has the chromaticity (x, y): s = P⁻¹ · W
+            let m = [0, 1, 2].map(|r| [p[0][r], p[1][r], p[2][r]]);
+            let w = [x / y, 1.0, (1.0 - x - y) / y];
+            let s = crate::calibrate::icc::mat_inv(&m)
+                .map(|inv| [0, 1, 2].map(|r| (0..3).map(|c| inv[r][c] * w[c]).sum::<f64>()))
+                .filter(|s| s.iter().all(|v| *v > 0.0 && v.is_finite()))
+                .ok_or_else(|| {
+                    CliError::usage(format!(
+                        "{source}: white_xy={x}:{y} is outside the primaries' gamut"
+                    ))
+                })?;
+            for (c, k) in p.iter_mut().zip(s) {
+                for v in c.iter_mut() {
+                    *v *= k;
+                }
+            }
         }
         let y: f64 = p.iter().map(|c| c[1]).sum();
         if y.is_nan() || y <= 0.0 {
@@ -252,8 +288,17 @@ impl SimModel {
             Transfer::Table(_) => "table".to_string(),
         };
         format!(
-            "simulated display `{}` (white {} cd/m², {trc}, black {}, flare {}, crosstalk {}, noise {}, seed {})",
-            self.source, o.white, o.black, o.flare, o.crosstalk, o.noise, o.seed
+            "simulated display `{}` (white {} cd/m²{}, {trc}, black {}, flare {}, crosstalk {}, noise {}, seed {})",
+            self.source,
+            o.white,
+            o.white_xy
+                .map(|[x, y]| format!(" at x {x} y {y}"))
+                .unwrap_or_default(),
+            o.black,
+            o.flare,
+            o.crosstalk,
+            o.noise,
+            o.seed
         )
     }
 }
@@ -391,6 +436,13 @@ mod tests {
         // crosstalk: each channel loses 2 %
         assert!((w[1] - (0.7 + 80.0 * 0.98)).abs() < 1e-6, "{w:?}");
         assert!(SimModel::parse("crt,bogus=1").is_err());
+        let warm = SimModel::parse("crt,white_xy=0.28:0.29").unwrap();
+        let w = warm.xyz([1.0; 3]);
+        let s = w[0] + w[1] + w[2];
+        assert!((w[0] / s - 0.28).abs() < 1e-9 && (w[1] / s - 0.29).abs() < 1e-9);
+        assert!((w[1] - 100.0).abs() < 1e-9);
+        assert!(SimModel::parse("crt,white_xy=0.9:0.05").is_err());
+        assert!(SimModel::parse("crt,white_xy=0.3").is_err());
         assert!(SimModel::parse("crt,gamma=x").is_err());
         assert!(SimModel::parse("").is_err());
     }

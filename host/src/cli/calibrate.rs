@@ -23,7 +23,8 @@ pub enum CalibrateCommand {
     /// ΔE00 of a calibration's predictions against measured patches of a .ti3: DisplayCAL's and
     /// ISO 14861's criteria, pass/fail (exit 1 on a failure), optionally an HTML report.
     Verify(crate::cli::calibrate_verify::VerifyArgs),
-    /// Export an ICC v4 matrix/TRC display profile.
+    /// Export an ICC display profile (v2.4 or v4.4; matrix/TRC, `vcgt`, tables for models with
+    /// channel interaction).
     Icc(IccArgs),
     /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
     Export(ExportArgs),
@@ -103,6 +104,13 @@ pub struct IccArgs {
     /// The profile's description (`desc`); default: the calibration file's name.
     #[arg(long)]
     pub description: Option<String>,
+    /// ICC version: 2 (v2.4, read by every consumer, ArgyllCMS 2.3 included) or 4 (v4.4).
+    #[arg(long, value_enum, default_value = "2", value_name = "2|4")]
+    pub version: icc::IccVersion,
+    /// Also write `A2B0`/`B2A0` tables sampled from the model [default: when the model has
+    /// channel interaction].
+    #[arg(long)]
+    pub tables: bool,
 }
 
 /// `calibrate export`.
@@ -194,6 +202,14 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
             "measured through a video-LUT calibration (the source's CAL table, {} entries): this model holds only while that LUT is loaded",
             ti3.video_lut.as_ref().map_or(0, Vec::len)
         ));
+    }
+    if let Some(rows) = &ti3.video_lut {
+        // kept, so the ICC profile carries it as its `vcgt`
+        let lut = crate::calibrate::video_lut::VideoLut::from_rows(
+            rows,
+            &format!("{}: CAL table", a.ti3.display()),
+        )?;
+        cal.set_video_lut(Some(lut))?;
     }
     cal.save(&a.output)?;
     eprintln!(
@@ -367,10 +383,26 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
             .map(|s| s.to_string_lossy().to_string())
             .unwrap_or_else(|| "specpoly display".into())
     });
-    let bytes = icc::profile(&cal, &desc)?;
+    let auto = icc::IccOptions::for_calibration(&cal);
+    let opts = icc::IccOptions {
+        version: a.version,
+        tables: a.tables || auto.tables,
+    };
+    let bytes = icc::build(&cal, &desc, &opts)?;
     crate::io::atomic::write(&a.output, &bytes)?;
+    let version = match a.version {
+        icc::IccVersion::V2 => "v2.4",
+        icc::IccVersion::V4 => "v4.4",
+    };
+    let mut what = format!("ICC {version} matrix/TRC display profile");
+    if opts.tables {
+        what.push_str(", A2B0/B2A0 tables");
+    }
+    if let Some(l) = cal.video_lut() {
+        what.push_str(&format!(", vcgt of {} entries", l.len()));
+    }
     eprintln!(
-        "wrote {} ({} bytes, ICC v4.4 matrix/TRC display profile)",
+        "wrote {} ({} bytes, {what})",
         crate::io::escape::one_line(&a.output.display().to_string()),
         bytes.len()
     );

@@ -65,10 +65,16 @@ pub struct RunArgs {
     /// Progress on stderr, and the result as JSON on stdout (keys in docs/calibration.md).
     #[arg(long)]
     pub json: bool,
+    /// Calibrate to a target first (video LUTs, as ArgyllCMS's dispcal):
+    /// `white=D65|native|X,Y,gamma=G|srgb|bt1886|lstar,luminance=N|native`. The native
+    /// readings go to `CAL.native.ti3`, the LUT to `CAL.cal`, the readings through it to
+    /// `CAL.ti3` and their fit (with the LUT) to `CAL.toml`. See docs/calibration.md.
+    #[arg(long, value_name = "TARGET", value_parser = crate::calibrate::target::parse)]
+    pub target: Option<crate::calibrate::target::Target>,
 }
 
 /// Prints one line of progress: on stdout, or on stderr when stdout carries `--json`.
-fn line(s: &str) -> Result<()> {
+pub(crate) fn line(s: &str) -> Result<()> {
     if JSON.load(std::sync::atomic::Ordering::Relaxed) {
         eprintln!("{}", crate::io::escape::one_line(s));
         return Ok(());
@@ -90,8 +96,11 @@ fn xyy(p: [f64; 3]) -> [f64; 3] {
 pub fn run(a: &RunArgs) -> Result<()> {
     JSON.store(a.json, std::sync::atomic::Ordering::Relaxed);
     let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify)?;
-    let ti3 = ti3_path(&a.output);
-    if ti3 == a.output {
+    let ti3 = match a.target {
+        Some(_) => crate::cli::calibrate_target::native_ti3_path(&a.output),
+        None => ti3_path(&a.output),
+    };
+    if ti3_path(&a.output) == a.output {
         return Err(CliError::usage(format!(
             "-o {}: name the calibration `.toml`; the readings go to `.ti3` beside it",
             a.output.display()
@@ -111,7 +120,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         absolute: true,
         keywords: Vec::new(),
     };
-    let (mut session, note) = Session::open(&ti3, &set, existing, info)?;
+    let (mut session, note) = Session::open(&ti3, &set, existing, info.clone())?;
     if let Some(n) = note {
         eprintln!("{n}");
     }
@@ -130,6 +139,18 @@ pub fn run(a: &RunArgs) -> Result<()> {
         settle: a.settle,
         ti3: &ti3,
     };
+    if let Some(target) = &a.target {
+        let ctx = crate::cli::calibrate_target::Context {
+            args: a,
+            target,
+            set: &set,
+            head: &head,
+            devices: &devices,
+            existing,
+            info,
+        };
+        return crate::cli::calibrate_target::run(&ctx, &mut session);
+    }
     let truth =
         measure_session(&devices, &set, &mut session, &head, &mut |s| line(s)).map_err(|e| {
             let n = session.taken();
@@ -195,7 +216,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
 }
 
 /// Prints the fitted primaries and the fit's ΔE00.
-fn print_fit(cal: &Calibration, out: &Path) -> Result<()> {
+pub(crate) fn print_fit(cal: &Calibration, out: &Path) -> Result<()> {
     let d = cal.data();
     line(&format!(
         "fit ({} matrix) → {}",

@@ -8,6 +8,7 @@ pub mod accuracy;
 pub mod args;
 pub mod calibrate;
 pub mod calibrate_run;
+pub mod calibrate_target;
 pub mod calibrate_verify;
 pub mod fit;
 pub mod led;

@@ -34,6 +34,11 @@ pub struct XyzArgs {
     /// Multiply every reflectance by FACTOR first (0.01 for data in percent).
     #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
     pub scale: f64,
+    /// Also print the device RGB (0–1, clipped to the gamut) on this display: `sRGB`, a
+    /// display TOML, a calibration file or an ICC display profile (XYZ relative to the
+    /// display's white, Y = 100).
+    #[arg(long, value_name = "sRGB|FILE")]
+    pub display: Option<String>,
 }
 
 /// One printed result.
@@ -53,6 +58,9 @@ pub struct XyzRow {
     l: f64,
     a: f64,
     b: f64,
+    /// Device RGB on `--display`, if given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rgb: Option<[f64; 3]>,
 }
 
 impl XyzRow {
@@ -71,6 +79,7 @@ impl XyzRow {
             l: r(lab.l),
             a: r(lab.a),
             b: r(lab.b),
+            rgb: None,
         }
     }
 }
@@ -108,10 +117,24 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
     for (n, c) in names.iter().zip(&colours) {
         crate::plausible::finite(n, &c.xyz)?;
     }
+    let display = a
+        .display
+        .as_deref()
+        .map(crate::render::output::load)
+        .transpose()?;
     Ok(names
         .into_iter()
         .zip(&colours)
-        .map(|(n, c)| XyzRow::new(n, c))
+        .map(|(n, c)| {
+            let mut row = XyzRow::new(n, c);
+            if let Some(d) = &display {
+                let xyz =
+                    specpoly_core::Xyz::new(c.xyz[0] as f32, c.xyz[1] as f32, c.xyz[2] as f32);
+                let e = d.encode_relative(xyz, specpoly_core::GamutMap::Clip);
+                row.rgb = Some(e.device.map(|v| (v as f64 * 1e6).round() / 1e6));
+            }
+            row
+        })
         .collect())
 }
 
@@ -139,17 +162,28 @@ pub fn run(a: &XyzArgs) -> Result<()> {
         a.colorimetry.observer.name(),
         a.repr
     );
-    let _ = writeln!(
+    let _ = write!(
         o,
         "{:<w$} {:>9} {:>9} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8}",
         "name", "X", "Y", "Z", "x", "y", "L*", "a*", "b*"
     );
+    o.push_str(if a.display.is_some() {
+        "        R        G        B\n"
+    } else {
+        "\n"
+    });
     for r in &rows {
-        let _ = writeln!(
+        let _ = write!(
             o,
             "{:<w$} {:>9.4} {:>9.4} {:>9.4} {:>7.4} {:>7.4} {:>8.3} {:>8.3} {:>8.3}",
             r.name, r.x_, r.y_, r.z_, r.x, r.y, r.l, r.a, r.b
         );
+        match r.rgb {
+            Some([red, green, blue]) => {
+                let _ = writeln!(o, " {red:>8.5} {green:>8.5} {blue:>8.5}");
+            }
+            None => o.push('\n'),
+        }
     }
     crate::io::stdout::print(&o)
 }

@@ -212,12 +212,15 @@ fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<
 }
 
 /// The colour tag for a `--display` argument: `sRGB` gets the `sRGB` chunk, a calibration file
-/// its ICC profile, a plain display TOML nothing.
+/// its ICC profile, an ICC profile itself, a plain display TOML nothing.
 pub fn colour_tag(display_spec: &str) -> Result<ColourTag> {
     if display_spec.eq_ignore_ascii_case("srgb") {
         return Ok(ColourTag::Srgb);
     }
     let path = Path::new(display_spec);
+    if crate::calibrate::icc_read::is_icc_file(path) {
+        return Ok(ColourTag::Icc(crate::io::read::bytes(path)?));
+    }
     let text = crate::io::read::text(path)?;
     let is_calibration = text
         .parse::<toml::Table>()
@@ -232,5 +235,8 @@ pub fn colour_tag(display_spec: &str) -> Result<ColourTag> {
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
         .unwrap_or_else(|| "specpoly display".into());
-    Ok(ColourTag::Icc(crate::calibrate::icc::profile(&cal, &desc)?))
+    let opts = crate::calibrate::icc::IccOptions::for_calibration(&cal);
+    Ok(ColourTag::Icc(crate::calibrate::icc::build(
+        &cal, &desc, &opts,
+    )?))
 }

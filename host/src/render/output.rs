@@ -10,7 +10,7 @@
 //! ```
 //!
 //! A calibration file written by `specpoly calibrate` (`format = "specpoly-calibration"`, see
-//! docs/calibration.md) is also accepted: its fitted display model is used
+//! docs/calibration.md) or an ICC display profile is also accepted: its display model is used
 //! ([`crate::calibrate::file::load_display`]).
 
 use super::scene::Scene;
@@ -97,6 +97,9 @@ pub fn load(spec: &str) -> Result<Display> {
         return Err(CliError::usage(format!(
             "--display `{spec}`: not `sRGB` and no such file"
         )));
+    }
+    if crate::calibrate::icc_read::is_icc_file(path) {
+        return crate::calibrate::file::load_display(path);
     }
     let text = crate::io::read::text(std::path::Path::new(path))?;
     let is_calibration = text

@@ -1,0 +1,180 @@
+//! `specpoly calibrate run … --target T`: measure the display, calibrate it to the target with
+//! video LUTs ([`crate::calibrate::target`]), then measure it again through the LUT and fit
+//! that (the profile then describes the display with the LUT loaded, as ArgyllCMS's
+//! `dispcal` + `dispread -k` + `colprof` do).
+//!
+//! Files, for `-o CAL.toml`: `CAL.native.ti3` (the readings without a LUT), `CAL.cal` (the
+//! LUT, ArgyllCMS's format), `CAL.ti3` (the readings through the LUT, with the LUT as its
+//! `CAL` table, as `dispread -k` writes it) and `CAL.toml` (their fit, with the LUT in its
+//! `[video_lut]`).
+
+use crate::calibrate::fit::{self, FitOptions};
+use crate::calibrate::patches::Patch;
+use crate::calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
+use crate::calibrate::session::{Existing, Session};
+use crate::calibrate::target::{self, Score, Target};
+use crate::cli::calibrate_run::{line, print_fit, RunArgs};
+use crate::error::{CliError, Result};
+use crate::io::cgats::Ti3Info;
+use std::path::{Path, PathBuf};
+
+/// Where the native readings go: `CAL.toml` → `CAL.native.ti3`.
+pub fn native_ti3_path(output: &Path) -> PathBuf {
+    output.with_extension("native.ti3")
+}
+
+/// Where the LUT goes: `CAL.toml` → `CAL.cal`.
+pub fn cal_path(output: &Path) -> PathBuf {
+    output.with_extension("cal")
+}
+
+/// What `calibrate run` hands over.
+pub struct Context<'a> {
+    /// The arguments.
+    pub args: &'a RunArgs,
+    /// `--target`.
+    pub target: &'a Target,
+    /// The patch set.
+    pub set: &'a [Patch],
+    /// The line saying what will be measured.
+    pub head: &'a str,
+    /// The devices.
+    pub devices: &'a Devices<'a>,
+    /// What to do with existing readings files.
+    pub existing: Existing,
+    /// The readings files' keywords.
+    pub info: Ti3Info,
+}
+
+fn score_line(s: &Score) -> String {
+    format!(
+        "  iteration {}: white x {:.4} y {:.4} (Δxy {:.4}, ΔE00 {:.2}), {:.2} cd/m²; tone error {:.2} %; greys ΔE00 mean {:.2}, max {:.2}",
+        s.iteration,
+        s.white_xy[0],
+        s.white_xy[1],
+        s.white_delta_xy,
+        s.white_delta_e00,
+        s.white_luminance,
+        s.tone_error_percent,
+        s.grey_delta_e00_mean,
+        s.grey_delta_e00_max
+    )
+}
+
+/// Runs the calibration; `native` is the open session of the native readings.
+pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
+    let a = c.args;
+    let kept = |s: &Session, file: &Path, e: CliError| {
+        let n = s.taken();
+        let msg = if n == 0 {
+            format!("{e}; no readings taken")
+        } else {
+            format!(
+                "{e}; {n} readings kept in {} (run again with --resume)",
+                file.display()
+            )
+        };
+        match e {
+            CliError::Usage(_) => CliError::usage(msg),
+            _ => CliError::data(msg),
+        }
+    };
+    let mut rig = Rig::open(c.devices, &mut |s| line(s))?;
+    line(c.head)?;
+    line(&format!("target: {}", c.target))?;
+    record_session(&mut rig, c.set, native).map_err(|e| kept(native, c.devices.ti3, e))?;
+    let taken = native.measurements();
+    line(&format!(
+        "measured {} patches → {} (native, no LUT)",
+        taken.len(),
+        c.devices.ti3.display()
+    ))?;
+    let (fit_set, verify_set) = split(c.set, &taken);
+    let opts = FitOptions {
+        matrix: a.matrix,
+        ..FitOptions::default()
+    };
+    let model = fit::fit_and_verify(&fit_set, &verify_set, &opts)?;
+    let w = model.predict([1.0; 3]);
+    let s = w[0] + w[1] + w[2];
+    line(&format!(
+        "native white x {:.4} y {:.4}, {:.2} cd/m²; calibrating ({} grey levels per iteration)",
+        w[0] / s,
+        w[1] / s,
+        w[1],
+        target::Options::default().levels
+    ))?;
+    let outcome = target::calibrate(
+        &model,
+        c.target,
+        &mut rig,
+        &target::Options::default(),
+        &mut |s| line(&score_line(s)),
+    )?;
+    for n in &outcome.notes {
+        eprintln!("note: {n}");
+    }
+    let best = outcome.score();
+    line(&format!(
+        "kept iteration {} of {}: {}",
+        best.iteration,
+        outcome.scores.len(),
+        if best.met() {
+            format!(
+                "target met (every grey within ΔE00 {})",
+                target::GREY_TOLERANCE
+            )
+        } else {
+            "the closest the display reaches".to_string()
+        }
+    ))?;
+    let cal_file = cal_path(&a.output);
+    outcome.lut.save_cal(
+        &cal_file,
+        "specpoly calibrate run",
+        &target::cal_keywords(c.target, &outcome),
+    )?;
+    eprintln!("wrote {}", cal_file.display());
+
+    // the display with the LUT loaded: measure again and fit that
+    rig.set_lut(Some(outcome.lut.clone()));
+    let ti3 = ti3_path(&a.output);
+    let (mut session, note) = Session::open(&ti3, c.set, c.existing, c.info.clone())?;
+    if let Some(n) = note {
+        eprintln!("{n}");
+    }
+    record_session(&mut rig, c.set, &mut session).map_err(|e| kept(&session, &ti3, e))?;
+    // the LUT as the readings' CAL table (as `dispread -k` writes it)
+    let text = crate::io::read::text(&ti3)?;
+    let with_cal = format!(
+        "{text}\n{}",
+        outcome.lut.to_cal(
+            "specpoly calibrate run",
+            &target::cal_keywords(c.target, &outcome)
+        )
+    );
+    crate::io::atomic::write(&ti3, with_cal.as_bytes())?;
+    let taken = session.measurements();
+    line(&format!(
+        "measured {} patches through the LUT → {}",
+        taken.len(),
+        ti3.display()
+    ))?;
+    let (fit_set, verify_set) = split(c.set, &taken);
+    let mut cal = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix,
+        &fit_set,
+        &verify_set,
+    )?;
+    cal.set_video_lut(Some(outcome.lut.clone()))?;
+    cal.report_mut().1.notes.push(format!(
+        "calibrated to {} with a video LUT ({}): the model holds while it is loaded",
+        c.target,
+        cal_file.display()
+    ));
+    cal.save(&a.output)?;
+    print_fit(&cal, &a.output)
+}
