@@ -135,8 +135,9 @@ impl<const S: usize, const C: usize, L: Layout<S>> Moments<S, C, L> {
     /// Each axis sums span lanes: lane `s` is `Σₖ M[k][s]·c[k][s]` in order of `k` from zero,
     /// then the lanes are summed in order of `s`. The span loop is the outer one, so a lane's
     /// three axes stay in registers even where the loops are not unrolled (the firmware builds
-    /// for size); the x86-64 compiler vectorises across the lanes either way, and the sums, in
-    /// the same order, are the same to the bit.
+    /// for size: 2 016 → 1 085 instructions on the Cortex-M4). The sums, in the same order,
+    /// are the same to the bit; the x86-64 criterion figures were not re-measured with this
+    /// loop order.
     #[inline]
     pub fn xyz(&self, r: &Spectrum<S, C, L>) -> Xyz {
         let c = r.coefficients();
