@@ -270,15 +270,15 @@ fn main() -> ! {
     let _ = disp;
     // the wire's numbers: a 9-digit decimal read, a float written (shortest round trip)
     let insns = counter.insns_per_call(n * 50, || {
-        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(
-            core::hint::black_box("0.123456789"),
-        ));
+        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(core::hint::black_box(
+            "0.123456789",
+        )));
     });
     defmt::info!("insns number parse-9-digits {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
-        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(
-            core::hint::black_box("0.25"),
-        ));
+        let _ = core::hint::black_box(specpoly_protocol::number::parse_f32(core::hint::black_box(
+            "0.25",
+        )));
     });
     defmt::info!("insns number parse-short {}", insns);
     let insns = counter.insns_per_call(n * 50, || {
