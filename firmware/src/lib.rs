@@ -19,6 +19,7 @@
 #![warn(missing_docs)]
 
 pub mod controller;
+pub mod fuzz;
 pub mod led;
 pub mod lights;
 pub mod settings;
