@@ -15,9 +15,12 @@
 
 use crate::error::CliError;
 
+/// A fuzz target: arbitrary bytes in, a panic only on a bug.
+pub type Target = fn(&[u8]);
+
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpora `fuzz/corpus/NAME/`
 /// call them.
-pub const TARGETS: [(&str, fn(&[u8])); 8] = [
+pub const TARGETS: [(&str, Target); 8] = [
     ("csv", csv),
     ("cgats", cgats),
     ("scene_toml", scene_toml),

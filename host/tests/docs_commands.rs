@@ -1,6 +1,7 @@
 //! Every command in the README and `docs/*.md` runs as written: the fenced `sh` blocks are
-//! extracted and each command is run by `sh -c`, in order, in a temporary copy of the repository
-//! (so files one command writes are there for the next, and nothing lands in the tree), with
+//! extracted and each command is run by `sh -c`, in order, in a fresh temporary copy of the
+//! repository per markdown file (so files one command writes are there for the next command of
+//! the same file, no file depends on another's, and nothing lands in the tree), with
 //! the `specpoly` under test first on `PATH`. A command must exit 0; all failures are listed
 //! at once.
 //!
@@ -258,8 +259,7 @@ fn serve(mut port: TTYPort, stop: Arc<AtomicBool>) {
 fn every_command_in_the_docs_runs_as_written() {
     let bin = PathBuf::from(env!("CARGO_BIN_EXE_specpoly"));
     let tmp = tempfile::tempdir().unwrap();
-    let root = tmp.path().join("repo");
-    copy_tree(&repo(), &root);
+    let mut copies: Vec<String> = Vec::new();
     // `specpoly` on PATH; nothing else of the test's environment changes
     let path = format!(
         "{}:{}",
@@ -277,6 +277,13 @@ fn every_command_in_the_docs_runs_as_written() {
     let mut ran = 0;
     let t0 = Instant::now();
     for b in &blocks {
+        // a fresh copy of the repository for each markdown file
+        if !copies.contains(&b.file) {
+            copies.push(b.file.clone());
+            copy_tree(&repo(), &tmp.path().join(copies.len().to_string()));
+        }
+        let n = copies.iter().position(|f| *f == b.file).unwrap() + 1;
+        let root = tmp.path().join(n.to_string());
         let mut replace: Option<(String, FakeLed)> = None;
         match b.directive.as_deref() {
             None => {}

@@ -51,6 +51,17 @@ pub fn separator(header: &str) -> u8 {
     seps[best]
 }
 
+/// A cell or name as a message shows it: one line (control characters escaped) and at most
+/// 40 characters.
+fn shown(s: &str) -> String {
+    let one = crate::io::escape::one_line(s);
+    if one.chars().count() > 40 {
+        format!("{}…", one.chars().take(39).collect::<String>())
+    } else {
+        one.into_owned()
+    }
+}
+
 fn is_skipped(line: &str) -> bool {
     let t = line.trim();
     t.is_empty() || t.starts_with('#')
@@ -69,14 +80,33 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
         .from_reader(text.as_bytes());
     let mut records = reader.records();
     let at = |line: u64, col: usize| format!("{source}:{line}:{col}");
-    let next =
+    // The line where a record starts, counted forward from the last one asked (records come
+    // in order). The `csv` crate's own position of a record after a CRLF is the `\n` of that
+    // CRLF, one line early, so line ends at the offset are skipped first.
+    let bytes = text.as_bytes();
+    let mut counted = (0usize, 1u64);
+    let mut line_of = move |byte: u64| -> u64 {
+        let mut to = (byte as usize).min(bytes.len());
+        while to < bytes.len() && (bytes[to] == b'\n' || bytes[to] == b'\r') {
+            to += 1;
+        }
+        if to >= counted.0 {
+            counted.1 += bytes[counted.0..to].iter().filter(|&&b| b == b'\n').count() as u64;
+            counted.0 = to;
+        }
+        counted.1
+    };
+    let mut next =
         |records: &mut ::csv::StringRecordsIter<&[u8]>| -> Result<Option<(u64, Vec<String>)>> {
             for r in records.by_ref() {
-                let r = r.map_err(|e| {
-                    let line = e.position().map_or(0, |p| p.line());
-                    CliError::data(format!("{source}:{line}: {e}"))
-                })?;
-                let line = r.position().map_or(0, |p| p.line());
+                let r = match r {
+                    Ok(r) => r,
+                    Err(e) => {
+                        let line = e.position().map_or(0, |p| line_of(p.byte()));
+                        return Err(CliError::data(format!("{source}:{line}: {e}")));
+                    }
+                };
+                let line = r.position().map_or(0, |p| line_of(p.byte()));
                 if r.iter().all(|c| c.trim().is_empty()) {
                     continue;
                 }
@@ -103,7 +133,7 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
         return Err(CliError::data(format!(
             "{}: no spectrum columns after `{}` (separator `{}`; `,`, `;` and tab are read)",
             at(hline, 1),
-            names[0],
+            shown(&names[0]),
             (sep as char).escape_default()
         )));
     }
@@ -117,8 +147,9 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
         }
         if let Some(j) = names[1..i].iter().position(|m| m == n) {
             return Err(CliError::data(format!(
-                "{}: column name `{n}` repeats column {}",
+                "{}: column name `{}` repeats column {}",
                 at(hline, i + 1),
+                shown(n),
                 j + 2
             )));
         }
@@ -138,7 +169,7 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
             )));
         }
         for (c, cell) in cells.iter().enumerate() {
-            let col = &names[c];
+            let col = shown(&names[c]);
             let here = at(ln, c + 1);
             if cell.is_empty() {
                 return Err(CliError::data(format!(
@@ -147,12 +178,14 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
             }
             let v = number(cell, sep).ok_or_else(|| {
                 CliError::data(format!(
-                    "{here}: `{cell}` in column `{col}` is not a number"
+                    "{here}: `{}` in column `{col}` is not a number",
+                    shown(cell)
                 ))
             })?;
             if !v.is_finite() {
                 return Err(CliError::data(format!(
-                    "{here}: `{cell}` in column `{col}` is not finite (or beyond ±3.4e38)"
+                    "{here}: `{}` in column `{col}` is not finite (or beyond ±3.4e38)",
+                    shown(cell)
                 )));
             }
             if c == 0 {

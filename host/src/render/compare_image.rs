@@ -70,7 +70,8 @@ pub fn compose(panels: &[Panel]) -> Result<(u32, u32, Vec<u8>)> {
         x0 += p.width + GAP;
     }
     // the colour bar under the panels, full width less a margin for the end labels
-    let margin = (measure_text("10", px) + 8).min(w / 4);
+    let name = "ΔE00";
+    let margin = (measure_text(name, px * 0.85) + 8).min(w / 4);
     let (bx0, bx1) = (margin, w.saturating_sub(margin).max(margin + 1));
     let by0 = label_h + ph + (px * 0.4) as u32;
     for x in bx0..bx1 {
@@ -107,11 +108,10 @@ pub fn compose(panels: &[Panel]) -> Result<(u32, u32, Vec<u8>)> {
             &t,
         )?;
     }
-    let name = "ΔE00";
     draw_text(
         &mut out,
         (w, h),
-        (2, by0 as i32 - (px * 0.2) as i32),
+        (2, by0 as i32 - (px * 0.1) as i32),
         px * 0.85,
         [0, 0, 0],
         name,

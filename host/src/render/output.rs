@@ -111,8 +111,10 @@ pub fn load(spec: &str) -> Result<Display> {
 
 /// Parses a display TOML; `source` names it in errors.
 pub fn parse(text: &str, source: &str) -> Result<Display> {
-    let f: DisplayFile = toml::from_str(text)
-        .map_err(|e| CliError::data(format!("{source}: {}", e.message().trim())))?;
+    let f: DisplayFile = toml::from_str(text).map_err(|e| {
+        let msg = e.message().trim().lines().collect::<Vec<_>>().join("; ");
+        CliError::data(format!("{source}: {msg}"))
+    })?;
     let curve = match (f.gamma, f.transfer) {
         (Some(_), Some(_)) => {
             return Err(CliError::data(format!(

@@ -541,7 +541,8 @@ impl SceneFile {
     /// Parses TOML text; `source` names the file in errors.
     pub fn parse(text: &str, source: &str) -> Result<Self> {
         toml::from_str(text).map_err(|e| {
-            let msg = e.message().trim().to_string();
+            // TOML's messages span lines (`invalid array\nexpected `]``): one line here
+            let msg = e.message().trim().lines().collect::<Vec<_>>().join("; ");
             let at = e
                 .span()
                 .map(|s| {
