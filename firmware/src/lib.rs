@@ -23,6 +23,7 @@
 
 pub mod controller;
 pub mod fade;
+pub mod fuzz;
 pub mod led;
 pub mod lights;
 pub mod mix;

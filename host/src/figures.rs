@@ -13,14 +13,32 @@ use crate::size::Size;
 use crate::spectrum_names::Named;
 use specpoly_core::{Breaks, Layout, Spectrum};
 
-const PALETTE: [[u8; 3]; 6] = [
+/// Series colours (Tableau 10); after ten spectra the fitted lines are dashed, after twenty
+/// dotted, so 30 spectra are told apart in the legend.
+const PALETTE: [[u8; 3]; 10] = [
     [31, 119, 180],
     [214, 39, 40],
     [44, 160, 44],
     [148, 103, 189],
     [255, 127, 14],
     [23, 190, 207],
+    [140, 86, 75],
+    [227, 119, 194],
+    [127, 127, 127],
+    [188, 189, 34],
 ];
+
+/// The fitted line of the `k`-th spectrum: solid, dashed or dotted by the palette's round.
+fn fit_style(k: usize) -> Style {
+    Style::Line {
+        width: 2.0,
+        dash: match (k / PALETTE.len()) % 3 {
+            0 => None,
+            1 => Some(8.0),
+            _ => Some(2.0),
+        },
+    }
+}
 
 /// What the plot shows, computed for one polynomial type.
 struct Build<'a> {
@@ -122,8 +140,9 @@ impl PolyVisitor for Build<'_> {
             for (k, n) in self.named.iter().enumerate() {
                 let p = fit(n)?;
                 let colour = PALETTE[k % PALETTE.len()];
+                // one legend entry per spectrum (its fitted line); the title says dots are data
                 series.push(Series {
-                    label: Some(format!("{} (data)", n.short())),
+                    label: None,
                     colour,
                     style: Style::Points(3.0),
                     points: n
@@ -138,12 +157,9 @@ impl PolyVisitor for Build<'_> {
                     .enumerate()
                 {
                     series.push(Series {
-                        label: (i == 0).then(|| format!("{} (fit)", n.short())),
+                        label: (i == 0).then(|| n.short().to_string()),
                         colour,
-                        style: Style::Line {
-                            width: 2.0,
-                            dash: None,
-                        },
+                        style: fit_style(k),
                         points: pts,
                     });
                 }
@@ -183,7 +199,12 @@ pub fn spectra(named: &[Named], repr: Repr, product: bool, size: Size) -> Result
         )
     } else {
         let names: Vec<&str> = named.iter().map(|n| n.short()).collect();
-        format!("{}: data and fitted polynomial ({repr})", names.join(", "))
+        let names = if names.len() > 3 {
+            format!("{} spectra", names.len())
+        } else {
+            names.join(", ")
+        };
+        format!("{names}: data (dots) and fitted polynomial (lines, {repr})")
     };
     Ok(Figure {
         width,

@@ -36,6 +36,7 @@ pub mod data;
 pub mod error;
 pub mod figures;
 pub mod fit_report;
+pub mod fuzz;
 pub mod io;
 pub mod led;
 pub mod light;

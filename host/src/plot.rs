@@ -1,9 +1,35 @@
-//! A small line-plot renderer with two outputs from one layout: SVG (text as `<text>`) and PNG
-//! (its own anti-aliased rasteriser, text in the public-domain 8×8 bitmap font of `font8x8`, so
-//! no system font or fontconfig is needed). Enough for spectra: line and point series, dashed
-//! vertical markers, axes with ticks, a legend.
+//! Line plots through `plotters`, one drawing routine for both outputs: SVG (plotters' SVG
+//! backend) and PNG (its bitmap backend into an RGB buffer, encoded by `png`). Text in PNGs is
+//! DejaVu Sans, embedded in the binary (`host/assets/fonts/`, with its licence) and rasterised
+//! by `ab_glyph`, so no system font or fontconfig is needed and names in any Latin, Greek or
+//! Cyrillic script are drawn. Enough for spectra: line series (solid, dashed, dotted) and point
+//! series, dashed vertical markers, axes with ticks and a legend beside or below the plot.
+//!
+//! Readable at every size `plot` allows: type is never smaller than [`MIN_TEXT_PX`]; the
+//! legend takes as many columns as it needs beside the plot, or rows below it, and a figure
+//! too small to hold it at that size is refused with the size that holds it.
 
-use std::fmt::Write as _;
+use crate::error::{CliError, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+/// The smallest text drawn (pixels): 9 px DejaVu Sans is still legible.
+pub const MIN_TEXT_PX: f64 = 9.0;
+
+/// DejaVu Sans (Bitstream Vera licence, `host/assets/fonts/LICENSE-DejaVu.txt`).
+const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+
+/// The family name text is drawn in (registered with plotters once).
+const FAMILY: &str = "sans-serif";
+
+fn register_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // The font is a fixed, valid file; a failure would show as missing text, not a crash.
+        let _ = plotters::style::register_font(FAMILY, FontStyle::Normal, FONT);
+    });
+}
 
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,118 +81,50 @@ pub struct Figure {
     pub markers: Vec<f64>,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Anchor {
-    Start,
-    Middle,
-    End,
-}
-
-#[derive(Clone, Debug)]
-enum Prim {
-    Line {
-        pts: Vec<(f64, f64)>,
-        width: f64,
-        colour: [u8; 3],
-        dash: Option<f64>,
-    },
-    Dot {
-        c: (f64, f64),
-        r: f64,
-        colour: [u8; 3],
-    },
-    /// A white box with a grey border (legend background).
-    Box { lo: (f64, f64), hi: (f64, f64) },
-    Text {
-        at: (f64, f64),
-        size: f64,
-        anchor: Anchor,
-        vertical: bool,
-        s: String,
-    },
-}
-
-const MARGIN_L: f64 = 120.0;
-const MARGIN_R: f64 = 30.0;
-const MARGIN_T: f64 = 50.0;
-const MARGIN_B: f64 = 70.0;
-
-/// The plot box in pixels (`pl`eft, `pr` right, `pt` top, `pb` bottom) and the data ranges it
-/// shows.
-#[derive(Clone, Copy, Debug)]
-struct PlotBox {
-    pl: f64,
-    pr: f64,
-    pt: f64,
-    pb: f64,
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-}
-
-impl PlotBox {
-    /// Pixel column of data `x`.
-    fn px(&self, x: f64) -> f64 {
-        self.pl + (x - self.x0) / (self.x1 - self.x0) * (self.pr - self.pl)
-    }
-
-    /// Pixel row of data `y`.
-    fn py(&self, y: f64) -> f64 {
-        self.pb - (y - self.y0) / (self.y1 - self.y0) * (self.pb - self.pt)
-    }
-}
-
 /// "Nice" tick step for a range (1, 2 or 5 × 10ⁿ, about 5–10 ticks).
 fn tick_step(span: f64) -> f64 {
-    let raw = span / 6.0;
-    let p = 10f64.powf(raw.log10().floor());
-    let m = raw / p;
-    p * if m < 1.5 {
+    if !(span.is_finite() && span > 0.0) {
+        return 1.0;
+    }
+    let raw = span / 8.0;
+    let mag = 10f64.powf(raw.log10().floor());
+    let norm = raw / mag;
+    let nice = if norm < 1.5 {
         1.0
-    } else if m < 3.5 {
+    } else if norm < 3.5 {
         2.0
-    } else if m < 7.5 {
+    } else if norm < 7.5 {
         5.0
     } else {
         10.0
-    }
-}
-
-/// Integer scale of the 8×8 bitmap font for a font size (px).
-fn text_scale(size: f64) -> usize {
-    ((size / 8.0).round() as usize).max(1)
-}
-
-/// Width (px) of `s` in the bitmap font; SVG text at the same size is narrower, so layouts
-/// sized with this fit both.
-fn text_width(s: &str, size: f64) -> f64 {
-    (s.chars().count() * 8 * text_scale(size)) as f64
-}
-
-/// The multiples of `step` in `[lo, hi]` (with a tolerance of 10⁻⁹ steps), at most
-/// [`MAX_TICKS`]: counted by index, so a range tiny against its magnitude or against the
-/// tolerance cannot loop for ever.
-fn ticks(lo: f64, hi: f64, step: f64) -> impl Iterator<Item = f64> {
-    let (first, last) = if step > 0.0 && (lo / step).is_finite() && (hi / step).is_finite() {
-        ((lo / step).ceil(), (hi / step + 1e-9).floor())
-    } else {
-        (0.0, -1.0)
     };
-    let n = if last >= first {
-        ((last - first) as usize + 1).min(MAX_TICKS)
-    } else {
-        0
-    };
-    (0..n).map(move |i| (first + i as f64) * step)
+    nice * mag
 }
 
-/// The most ticks on one axis (`tick_step` aims at 5–10).
-const MAX_TICKS: usize = 40;
+/// Where the legend goes and how it is laid out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum LegendPlace {
+    None,
+    Right { columns: usize, rows: usize },
+    Below { columns: usize, rows: usize },
+}
 
-fn fmt_tick(v: f64, step: f64) -> String {
-    let dec = (-step.log10().floor()).max(0.0) as usize;
-    format!("{v:.dec$}")
+/// Sizes derived from the figure's size.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    /// Body text (ticks, legend), px.
+    text: f64,
+    /// Axis labels and title, px.
+    label: f64,
+    /// One legend entry: width and height, px.
+    entry: (f64, f64),
+    legend: LegendPlace,
+}
+
+/// A rough width of `s` in DejaVu Sans at `px` (average advance ≈ 0.6 em): used only to lay
+/// out; the text is then measured by plotters where it matters.
+fn text_width(s: &str, px: f64) -> f64 {
+    s.chars().count() as f64 * 0.6 * px
 }
 
 impl Figure {
@@ -176,654 +134,413 @@ impl Figure {
         }
         let (mut lo, mut hi) = (0.0f64, f64::MIN);
         for s in &self.series {
-            for &(_, y) in &s.points {
-                if y.is_finite() {
+            for &(x, y) in &s.points {
+                if y.is_finite() && x >= self.x_range.0 && x <= self.x_range.1 {
                     lo = lo.min(y);
                     hi = hi.max(y);
                 }
             }
         }
-        if hi <= lo {
+        if !(hi > lo) {
             hi = lo + 1.0;
         }
         let step = tick_step(hi - lo);
-        ((lo / step).floor() * step, (hi * 1.02 / step).ceil() * step)
-    }
-
-    /// The plot box and the mapping from data to pixels.
-    fn plot_box(&self) -> PlotBox {
-        let (w, h) = (self.width as f64, self.height as f64);
-        let (x0, x1) = self.x_range;
-        let (y0, y1) = self.y_range();
-        PlotBox {
-            pl: MARGIN_L,
-            pr: w - MARGIN_R,
-            pt: MARGIN_T,
-            pb: h - MARGIN_B,
-            x0,
-            x1,
-            y0,
-            y1,
-        }
-    }
-
-    fn prims(&self) -> Vec<Prim> {
-        let p = self.plot_box();
-        let mut v = Vec::new();
-        self.axes(&p, &mut v);
-        self.markers_and_series(&p, &mut v);
-        self.legend(&p, &mut v);
-        v
-    }
-
-    /// Frame, ticks, axis labels and title.
-    fn axes(&self, p: &PlotBox, v: &mut Vec<Prim>) {
-        let (w, h) = (self.width as f64, self.height as f64);
-        let black = [0, 0, 0];
-        // frame
-        v.push(Prim::Line {
-            pts: vec![
-                (p.pl, p.pt),
-                (p.pr, p.pt),
-                (p.pr, p.pb),
-                (p.pl, p.pb),
-                (p.pl, p.pt),
-            ],
-            width: 1.0,
-            colour: black,
-            dash: None,
-        });
-        // ticks
-        let xs = tick_step(p.x1 - p.x0);
-        for t in ticks(p.x0, p.x1, xs) {
-            v.push(Prim::Line {
-                pts: vec![(p.px(t), p.pb), (p.px(t), p.pb + 6.0)],
-                width: 1.0,
-                colour: black,
-                dash: None,
-            });
-            v.push(Prim::Text {
-                at: (p.px(t), p.pb + 24.0),
-                size: 14.0,
-                anchor: Anchor::Middle,
-                vertical: false,
-                s: fmt_tick(t, xs),
-            });
-        }
-        let ys = tick_step(p.y1 - p.y0);
-        for t in ticks(p.y0, p.y1, ys) {
-            v.push(Prim::Line {
-                pts: vec![(p.pl - 6.0, p.py(t)), (p.pl, p.py(t))],
-                width: 1.0,
-                colour: black,
-                dash: None,
-            });
-            v.push(Prim::Text {
-                at: (p.pl - 10.0, p.py(t) + 5.0),
-                size: 14.0,
-                anchor: Anchor::End,
-                vertical: false,
-                s: fmt_tick(t, ys),
-            });
-        }
-        // labels
-        v.push(Prim::Text {
-            at: (0.5 * (p.pl + p.pr), h - 20.0),
-            size: 16.0,
-            anchor: Anchor::Middle,
-            vertical: false,
-            s: self.x_label.clone(),
-        });
-        v.push(Prim::Text {
-            at: (20.0, 0.5 * (p.pt + p.pb)),
-            size: 16.0,
-            anchor: Anchor::Middle,
-            vertical: true,
-            s: self.y_label.clone(),
-        });
-        let title_size = if text_width(&self.title, 18.0) <= w - 20.0 {
-            18.0
+        let (a, b) = ((lo / step).floor() * step, (hi * 1.02 / step).ceil() * step);
+        if a < b && a.is_finite() && b.is_finite() {
+            (a, b)
         } else {
-            9.0
-        };
-        v.push(Prim::Text {
-            at: (0.5 * w, 30.0),
-            size: title_size,
-            anchor: Anchor::Middle,
-            vertical: false,
-            s: self.title.clone(),
-        });
-    }
-
-    /// Span markers (dashed grey) and the series, clipped to the plot box.
-    fn markers_and_series(&self, p: &PlotBox, v: &mut Vec<Prim>) {
-        let grey = [150, 150, 150];
-        // markers
-        for &m in &self.markers {
-            v.push(Prim::Line {
-                pts: vec![(p.px(m), p.pt), (p.px(m), p.pb)],
-                width: 1.0,
-                colour: grey,
-                dash: Some(6.0),
-            });
-        }
-        // series, clipped to the plot box
-        let inside = |(x, y): (f64, f64)| {
-            x >= p.pl - 0.5 && x <= p.pr + 0.5 && y >= p.pt - 0.5 && y <= p.pb + 0.5
-        };
-        for s in &self.series {
-            let pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
-                .map(|&(x, y)| (p.px(x), p.py(y).clamp(p.pt, p.pb)))
-                .filter(|q| inside(*q))
-                .collect();
-            match s.style {
-                Style::Line { width, dash } => v.push(Prim::Line {
-                    pts,
-                    width,
-                    colour: s.colour,
-                    dash,
-                }),
-                Style::Points(r) => v.extend(pts.into_iter().map(|c| Prim::Dot {
-                    c,
-                    r,
-                    colour: s.colour,
-                })),
-            }
+            (lo, hi)
         }
     }
 
-    /// The legend, in the corner of the plot box that hides the fewest data points.
-    fn legend(&self, p: &PlotBox, v: &mut Vec<Prim>) {
-        // legend: in the corner of the plot box that hides the fewest data points
-        let labels = self.series.iter().filter(|s| s.label.is_some()).count();
-        let widest = self
-            .series
+    fn labels(&self) -> Vec<&Series> {
+        self.series.iter().filter(|s| s.label.is_some()).collect()
+    }
+
+    /// Type sizes and the legend's place; an error when the legend cannot be drawn readably.
+    fn layout(&self) -> Result<Layout> {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let text = (h.min(w * 0.7) / 40.0).clamp(MIN_TEXT_PX, 22.0);
+        let label = (text * 1.15).max(MIN_TEXT_PX);
+        let labels = self.labels();
+        let widest = labels
             .iter()
             .filter_map(|s| s.label.as_deref())
-            .map(|l| text_width(l, 14.0))
+            .map(|l| text_width(l, text))
             .fold(0.0, f64::max);
-        let (bw, bh) = (38.0 + widest + 12.0, 20.0 * labels as f64 + 10.0);
-        let corners = [
-            (p.pr - 8.0 - bw, p.pt + 8.0),
-            (p.pl + 8.0, p.pt + 8.0),
-            (p.pr - 8.0 - bw, p.pb - 8.0 - bh),
-            (p.pl + 8.0, p.pb - 8.0 - bh),
-        ];
-        let hidden = |(x, y): (f64, f64)| {
-            self.series
-                .iter()
-                .flat_map(|s| s.points.iter())
-                .filter(|&&(a, b)| {
-                    let (u, v) = (p.px(a), p.py(b));
-                    u >= x && u <= x + bw && v >= y && v <= y + bh
-                })
-                .count()
-        };
-        let (bx, by) = corners
-            .into_iter()
-            .min_by_key(|c| hidden(*c))
-            .unwrap_or(corners[0]);
-        if labels > 0 {
-            v.push(Prim::Box {
-                lo: (bx, by),
-                hi: (bx + bw, by + bh),
+        let entry = (2.6 * text + widest + text, 1.45 * text);
+        let n = labels.len();
+        if n == 0 {
+            return Ok(Layout {
+                text,
+                label,
+                entry,
+                legend: LegendPlace::None,
             });
         }
-        let mut ly = by + 22.0;
-        let lx = bx + 6.0;
-        for s in self.series.iter().filter(|s| s.label.is_some()) {
-            let label = s.label.clone().unwrap_or_default();
-            match s.style {
-                Style::Line { width, dash } => v.push(Prim::Line {
-                    pts: vec![(lx, ly - 5.0), (lx + 30.0, ly - 5.0)],
-                    width,
-                    colour: s.colour,
-                    dash,
-                }),
-                Style::Points(r) => v.push(Prim::Dot {
-                    c: (lx + 15.0, ly - 5.0),
-                    r,
-                    colour: s.colour,
-                }),
-            }
-            v.push(Prim::Text {
-                at: (lx + 38.0, ly),
-                size: 14.0,
-                anchor: Anchor::Start,
-                vertical: false,
-                s: label,
+        // beside the plot, in the height the plot takes, using at most 40 % of the width
+        let plot_h = h - 2.2 * label - 3.2 * text;
+        let rows = ((plot_h / entry.1).floor() as usize).max(1);
+        let columns = n.div_ceil(rows);
+        if columns as f64 * entry.0 <= 0.4 * w {
+            return Ok(Layout {
+                text,
+                label,
+                entry,
+                legend: LegendPlace::Right {
+                    columns,
+                    rows: n.div_ceil(columns),
+                },
             });
-            ly += 20.0;
         }
+        // below the plot, using at most 40 % of the height
+        let columns = ((w - 2.0 * text) / entry.0).floor().max(1.0) as usize;
+        let rows = n.div_ceil(columns);
+        if rows as f64 * entry.1 <= 0.4 * h {
+            return Ok(Layout {
+                text,
+                label,
+                entry,
+                legend: LegendPlace::Below { columns, rows },
+            });
+        }
+        let need_h = (rows as f64 * entry.1 / 0.4).ceil();
+        Err(CliError::usage(format!(
+            "{n} legend entries do not fit a {}x{} figure in readable type (≥ {MIN_TEXT_PX} px): use --size {}x{} or larger, or plot fewer spectra",
+            self.width,
+            self.height,
+            self.width,
+            need_h.max(h)
+        )))
     }
 
-    /// Draws every primitive on `surface`.
-    fn draw(&self, surface: &mut impl Surface) {
-        for p in self.prims() {
-            match p {
-                Prim::Line {
-                    pts,
-                    width,
-                    colour,
-                    dash,
-                } => surface.draw_line(&pts, width, colour, dash),
-                Prim::Dot { c, r, colour } => surface.draw_dot(c, r, colour),
-                Prim::Box { lo, hi } => surface.draw_box(lo, hi),
-                Prim::Text {
-                    at,
-                    size,
-                    anchor,
-                    vertical,
-                    s,
-                } => surface.draw_text(at, size, anchor, vertical, &s),
-            }
+    /// Draws the figure on any plotters drawing area.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let fail = |e: String| CliError::data(format!("drawing the figure: {e}"));
+        register_font();
+        let l = self.layout()?;
+        let w = self.width as f64;
+        root.fill(&WHITE).map_err(|e| fail(e.to_string()))?;
+        let font = |px: f64| (FAMILY, px).into_font();
+        // title, shrunk (never below MIN_TEXT_PX) and shortened to fit the width
+        let mut title_px = l.label * 1.1;
+        while title_px > MIN_TEXT_PX && text_width(&self.title, title_px) > w - 10.0 {
+            title_px -= 0.5;
         }
+        let mut title = self.title.clone();
+        while title.chars().count() > 4 && text_width(&title, title_px) > w - 10.0 {
+            title.pop();
+            title.pop();
+            title.push('…');
+        }
+        let title_h = (title_px * 1.8).round() as u32;
+        let (top, body) = root.split_vertically(title_h);
+        top.draw(&Text::new(
+            title,
+            ((w / 2.0) as i32, (title_px * 0.4) as i32),
+            font(title_px)
+                .color(&BLACK)
+                .pos(plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Center,
+                    plotters::style::text_anchor::VPos::Top,
+                )),
+        ))
+        .map_err(|e| fail(e.to_string()))?;
+        let (plot_area, legend_area) = match l.legend {
+            LegendPlace::None => (body, None),
+            LegendPlace::Right { columns, .. } => {
+                let lw = (columns as f64 * l.entry.0).ceil() as u32;
+                let (a, b) = body.split_horizontally(self.width.saturating_sub(lw));
+                (a, Some(b))
+            }
+            LegendPlace::Below { rows, .. } => {
+                let lh = (rows as f64 * l.entry.1 + 0.5 * l.text).ceil() as u32;
+                let (a, b) = body.split_vertically(self.height.saturating_sub(title_h + lh));
+                (a, Some(b))
+            }
+        };
+        let (x0, x1) = self.x_range;
+        let (y0, y1) = self.y_range();
+        let mut chart = ChartBuilder::on(&plot_area)
+            .margin((l.text * 0.8) as u32)
+            .x_label_area_size((l.text * 1.4 + l.label * 1.6) as u32)
+            .y_label_area_size((l.text * 4.0 + l.label * 1.6) as u32)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| fail(e.to_string()))?;
+        let plot_w = (plot_area.dim_in_pixel().0 as f64 - l.text * 6.0).max(10.0);
+        let plot_h = (plot_area.dim_in_pixel().1 as f64 - l.text * 4.0).max(10.0);
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .bold_line_style(RGBColor(225, 225, 225))
+            .light_line_style(TRANSPARENT)
+            .x_labels(((plot_w / (l.text * 4.5)) as usize).clamp(2, 10))
+            .y_labels(((plot_h / (l.text * 2.5)) as usize).clamp(2, 10))
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .label_style(font(l.text))
+            .axis_desc_style(font(l.label))
+            .draw()
+            .map_err(|e| fail(e.to_string()))?;
+        let grey = RGBColor(150, 150, 150);
+        for &m in &self.markers {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(m, y0), (m, y1)],
+                    6,
+                    4,
+                    grey.stroke_width(1),
+                ))
+                .map_err(|e| fail(e.to_string()))?;
+        }
+        let inside = |&(x, y): &(f64, f64)| {
+            x.is_finite() && y.is_finite() && x >= x0 && x <= x1 && y >= y0 && y <= y1
+        };
+        for s in &self.series {
+            let c = RGBColor(s.colour[0], s.colour[1], s.colour[2]);
+            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(inside).collect();
+            match s.style {
+                Style::Line { width, dash: None } => chart
+                    .draw_series(LineSeries::new(pts, c.stroke_width(width.round() as u32)))
+                    .map(|_| ()),
+                Style::Line {
+                    width,
+                    dash: Some(d),
+                } => chart
+                    .draw_series(DashedLineSeries::new(
+                        pts,
+                        d.round().max(1.0) as u32,
+                        (d * 0.6).round().max(2.0) as u32,
+                        c.stroke_width(width.round() as u32),
+                    ))
+                    .map(|_| ()),
+                Style::Points(r) => chart
+                    .draw_series(pts.into_iter().map(|p| Circle::new(p, r, c.filled())))
+                    .map(|_| ()),
+            }
+            .map_err(|e| fail(e.to_string()))?;
+        }
+        if let Some(area) = legend_area {
+            self.draw_legend(&area, &l)
+                .map_err(|e| fail(e.to_string()))?;
+        }
+        root.present().map_err(|e| fail(e.to_string()))
+    }
+
+    /// Legend entries: a sample of the series' style, then its label.
+    fn draw_legend<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        l: &Layout,
+    ) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let (columns, rows) = match l.legend {
+            LegendPlace::None => return Ok(()),
+            LegendPlace::Right { columns, rows } | LegendPlace::Below { columns, rows } => {
+                (columns, rows)
+            }
+        };
+        let top = match l.legend {
+            LegendPlace::Right { .. } => l.text * 1.2,
+            _ => 0.0,
+        };
+        let left = match l.legend {
+            LegendPlace::Below { .. } => l.text,
+            _ => 0.0,
+        };
+        for (i, s) in self.labels().into_iter().enumerate() {
+            let (col, row) = if matches!(l.legend, LegendPlace::Right { .. }) {
+                (i / rows, i % rows)
+            } else {
+                (i % columns, i / columns)
+            };
+            let x = left + col as f64 * l.entry.0;
+            let y = top + row as f64 * l.entry.1 + l.entry.1 / 2.0;
+            let c = RGBColor(s.colour[0], s.colour[1], s.colour[2]);
+            let sw = 2.0 * l.text;
+            match s.style {
+                Style::Line { width, dash } => {
+                    let style = c.stroke_width(width.round() as u32);
+                    let d = dash.unwrap_or(sw);
+                    let mut a = x;
+                    while a < x + sw {
+                        let b = (a + d).min(x + sw);
+                        area.draw(&PathElement::new(
+                            vec![(a as i32, y as i32), (b as i32, y as i32)],
+                            style,
+                        ))?;
+                        a = b + if dash.is_some() { 0.6 * d } else { 0.0 };
+                    }
+                }
+                Style::Points(r) => {
+                    area.draw(&Circle::new(
+                        ((x + sw / 2.0) as i32, y as i32),
+                        r,
+                        c.filled(),
+                    ))?;
+                }
+            }
+            area.draw(&Text::new(
+                s.label.clone().unwrap_or_default(),
+                ((x + sw + 0.5 * l.text) as i32, y as i32),
+                (FAMILY, l.text).into_font().color(&BLACK).pos(
+                    plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Left,
+                        plotters::style::text_anchor::VPos::Center,
+                    ),
+                ),
+            ))?;
+        }
+        Ok(())
     }
 
     /// The figure as an SVG document.
-    pub fn svg(&self) -> String {
-        let mut o = Svg(String::new());
-        let _ = writeln!(
-            o.0,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Helvetica, Arial, sans-serif">"#,
-            w = self.width,
-            h = self.height
-        );
-        let _ = writeln!(o.0, r#"<rect width="100%" height="100%" fill="white"/>"#);
-        self.draw(&mut o);
-        o.0.push_str("</svg>\n");
-        o.0
+    pub fn svg(&self) -> Result<String> {
+        let mut s = String::new();
+        {
+            let root =
+                SVGBackend::with_string(&mut s, (self.width, self.height)).into_drawing_area();
+            self.draw(&root)?;
+        }
+        Ok(s)
     }
 
     /// The figure as RGB pixels (row-major, 3 bytes per pixel).
-    pub fn rgb_pixels(&self) -> Vec<u8> {
-        let mut c = Canvas::new(self.width as usize, self.height as usize);
-        self.draw(&mut c);
-        c.to_rgb8()
+    pub fn rgb_pixels(&self) -> Result<Vec<u8>> {
+        let mut px = vec![255u8; self.width as usize * self.height as usize * 3];
+        {
+            let root =
+                BitMapBackend::with_buffer(&mut px, (self.width, self.height)).into_drawing_area();
+            self.draw(&root)?;
+        }
+        Ok(px)
     }
 
     /// The figure as a PNG file.
-    pub fn png(&self) -> Result<Vec<u8>, png::EncodingError> {
-        let pixels = self.rgb_pixels();
-        let mut out = Vec::new();
-        {
-            let mut e = png::Encoder::new(&mut out, self.width, self.height);
-            e.set_color(png::ColorType::Rgb);
-            e.set_depth(png::BitDepth::Eight);
-            let mut w = e.write_header()?;
-            w.write_image_data(&pixels)?;
-        }
-        Ok(out)
+    pub fn png(&self) -> Result<Vec<u8>> {
+        let pixels = self.rgb_pixels()?;
+        encode_png(self.width, self.height, &pixels)
     }
 }
 
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+/// RGB pixels as a PNG file's bytes.
+pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>> {
+    let fail = |e: png::EncodingError| CliError::data(format!("PNG encoding: {e}"));
+    let mut out = Vec::new();
+    {
+        let mut e = png::Encoder::new(&mut out, width, height);
+        e.set_color(png::ColorType::Rgb);
+        e.set_depth(png::BitDepth::Eight);
+        let mut w = e.write_header().map_err(fail)?;
+        w.write_image_data(rgb).map_err(fail)?;
+    }
+    Ok(out)
 }
 
-/// An RGB float canvas with coverage-based anti-aliasing: each primitive is rasterised into a
-/// coverage mask (max over its parts, so a polyline's joints are not painted twice) and then
-/// blended once.
-struct Canvas {
-    w: usize,
-    h: usize,
-    px: Vec<[f32; 3]>,
-    mask: Vec<f32>,
-    bbox: Option<(usize, usize, usize, usize)>,
+/// Draws `text` on an RGB buffer (`width` × `height`, row-major) with its top-left corner at
+/// `at`, in DejaVu Sans of `px` pixels: labels for composite images (`render --compare`).
+pub fn draw_text(
+    rgb: &mut [u8],
+    (width, height): (u32, u32),
+    at: (i32, i32),
+    px: f64,
+    colour: [u8; 3],
+    text: &str,
+) -> Result<()> {
+    register_font();
+    let root = BitMapBackend::with_buffer(rgb, (width, height)).into_drawing_area();
+    let style = (FAMILY, px)
+        .into_font()
+        .color(&RGBColor(colour[0], colour[1], colour[2]));
+    root.draw(&Text::new(text.to_string(), at, style))
+        .and_then(|_| root.present())
+        .map_err(|e| CliError::data(format!("drawing text: {e}")))
 }
 
-impl Canvas {
-    fn new(w: usize, h: usize) -> Self {
-        Canvas {
-            w,
-            h,
-            px: vec![[1.0; 3]; w * h],
-            mask: vec![0.0; w * h],
-            bbox: None,
-        }
-    }
-
-    fn cover(&mut self, x: usize, y: usize, a: f32) {
-        let m = &mut self.mask[y * self.w + x];
-        if a > *m {
-            *m = a;
-        }
-        self.bbox = Some(match self.bbox {
-            None => (x, y, x, y),
-            Some((a0, b0, a1, b1)) => (a0.min(x), b0.min(y), a1.max(x), b1.max(y)),
-        });
-    }
-
-    fn flush(&mut self, colour: [u8; 3]) {
-        let Some((x0, y0, x1, y1)) = self.bbox.take() else {
-            return;
-        };
-        let c = colour.map(|v| v as f32 / 255.0);
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let i = y * self.w + x;
-                let a = self.mask[i];
-                if a > 0.0 {
-                    for k in 0..3 {
-                        self.px[i][k] = self.px[i][k] * (1.0 - a) + c[k] * a;
-                    }
-                    self.mask[i] = 0.0;
-                }
-            }
-        }
-    }
-
-    fn region(&self, lo: (f64, f64), hi: (f64, f64)) -> (usize, usize, usize, usize) {
-        let cx = |v: f64| (v.max(0.0) as usize).min(self.w.saturating_sub(1));
-        let cy = |v: f64| (v.max(0.0) as usize).min(self.h.saturating_sub(1));
-        (cx(lo.0), cy(lo.1), cx(hi.0), cy(hi.1))
-    }
-
-    fn segment(&mut self, a: (f64, f64), b: (f64, f64), width: f64) {
-        let r = 0.5 * width.max(1.0);
-        let (x0, y0, x1, y1) = self.region(
-            (a.0.min(b.0) - r - 1.0, a.1.min(b.1) - r - 1.0),
-            (a.0.max(b.0) + r + 1.0, a.1.max(b.1) + r + 1.0),
-        );
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let len2 = dx * dx + dy * dy;
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
-                let t = if len2 > 0.0 {
-                    (((cx - a.0) * dx + (cy - a.1) * dy) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let d = ((cx - a.0 - t * dx).powi(2) + (cy - a.1 - t * dy).powi(2)).sqrt();
-                let cov = (r + 0.5 - d).clamp(0.0, 1.0) as f32;
-                if cov > 0.0 {
-                    self.cover(x, y, cov);
-                }
-            }
-        }
-    }
-
-    fn polyline(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
-        match dash {
-            None => {
-                for p in pts.windows(2) {
-                    self.segment(p[0], p[1], width);
-                }
-            }
-            Some(on) => {
-                // walk the polyline, drawing `on` px and skipping 0.7·on px
-                let off = 0.7 * on;
-                let mut drawing = true;
-                let mut left = on;
-                for p in pts.windows(2) {
-                    let (mut a, b) = (p[0], p[1]);
-                    loop {
-                        let seg = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
-                        if seg <= left {
-                            if drawing {
-                                self.segment(a, b, width);
-                            }
-                            left -= seg;
-                            break;
-                        }
-                        let f = left / seg;
-                        let m = (a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1));
-                        if drawing {
-                            self.segment(a, m, width);
-                        }
-                        a = m;
-                        drawing = !drawing;
-                        left = if drawing { on } else { off };
-                    }
-                }
-            }
-        }
-        self.flush(colour);
-    }
-
-    fn dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
-        let (x0, y0, x1, y1) = self.region(
-            (c.0 - r - 1.0, c.1 - r - 1.0),
-            (c.0 + r + 1.0, c.1 + r + 1.0),
-        );
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let d = ((x as f64 + 0.5 - c.0).powi(2) + (y as f64 + 0.5 - c.1).powi(2)).sqrt();
-                let cov = (r + 0.5 - d).clamp(0.0, 1.0) as f32;
-                if cov > 0.0 {
-                    self.cover(x, y, cov);
-                }
-            }
-        }
-        self.flush(colour);
-    }
-
-    /// Bitmap text: 8×8 glyphs scaled by an integer factor (size 14–18 → ×2); `at` is the
-    /// baseline point of the anchor, as in SVG.
-    fn text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
-        let scale = text_scale(size);
-        let glyph_w = 8 * scale;
-        let n = s.chars().count();
-        let total = (n * glyph_w) as f64;
-        let start = match anchor {
-            Anchor::Start => 0.0,
-            Anchor::Middle => -0.5 * total,
-            Anchor::End => -total,
-        };
-        // glyph box top is 7 rows above the baseline
-        let top = -(7.0 * scale as f64);
-        for (i, ch) in s.chars().enumerate() {
-            let g = glyph(ch);
-            for (row, bits) in g.iter().enumerate() {
-                for col in 0..8 {
-                    if bits & (1 << col) == 0 {
-                        continue;
-                    }
-                    for sy in 0..scale {
-                        for sx in 0..scale {
-                            // along the text (u) and down (v), relative to the anchor
-                            let u = start + (i * glyph_w + col * scale + sx) as f64;
-                            let v = top + (row * scale + sy) as f64;
-                            let (x, y) = if vertical {
-                                (at.0 + v, at.1 - u)
-                            } else {
-                                (at.0 + u, at.1 + v)
-                            };
-                            if x >= 0.0
-                                && y >= 0.0
-                                && (x as usize) < self.w
-                                && (y as usize) < self.h
-                            {
-                                self.cover(x as usize, y as usize, 1.0);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        self.flush([0, 0, 0]);
-    }
-
-    fn to_rgb8(&self) -> Vec<u8> {
-        self.px
-            .iter()
-            .flat_map(|p| p.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
-            .collect()
-    }
-}
-
-/// The 8×8 glyph of `c` (bit 0 = leftmost pixel); non-ASCII characters get a stand-in.
-fn glyph(c: char) -> [u8; 8] {
-    let c = match c {
-        'λ' => 'l',
-        'Δ' => 'D',
-        '×' | '·' => '*',
-        '–' | '—' => '-',
-        c if c.is_ascii() => c,
-        _ => '?',
-    };
-    font8x8::legacy::BASIC_LEGACY[c as usize]
-}
-
-/// Where a figure's primitives are drawn: the SVG writer and the PNG canvas.
-trait Surface {
-    /// A polyline (dashed when `dash` gives the dash length).
-    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>);
-    /// A filled disc.
-    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]);
-    /// A white box with a grey border (the legend's background).
-    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64));
-    /// Text at `at` (the baseline), `size` px, anchored by `anchor`, rotated when `vertical`.
-    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str);
-}
-
-/// An SVG document being written.
-struct Svg(String);
-
-fn svg_rgb(c: [u8; 3]) -> String {
-    format!("rgb({},{},{})", c[0], c[1], c[2])
-}
-
-impl Surface for Svg {
-    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
-        if pts.len() < 2 {
-            return;
-        }
-        let d: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect();
-        let dash = dash
-            .map(|l| format!(r#" stroke-dasharray="{l:.1},{:.1}""#, l * 0.7))
-            .unwrap_or_default();
-        let _ = writeln!(
-            self.0,
-            r#"<polyline fill="none" stroke="{}" stroke-width="{width}" stroke-linejoin="round"{dash} points="{}"/>"#,
-            svg_rgb(colour),
-            d.join(" ")
-        );
-    }
-
-    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
-        let _ = writeln!(
-            self.0,
-            r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
-            c.0,
-            c.1,
-            svg_rgb(colour)
-        );
-    }
-
-    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
-        let _ = writeln!(
-            self.0,
-            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="white" stroke="rgb(150,150,150)"/>"#,
-            lo.0,
-            lo.1,
-            hi.0 - lo.0,
-            hi.1 - lo.1
-        );
-    }
-
-    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
-        let a = match anchor {
-            Anchor::Start => "start",
-            Anchor::Middle => "middle",
-            Anchor::End => "end",
-        };
-        let rot = if vertical {
-            format!(r#" transform="rotate(-90 {:.1} {:.1})""#, at.0, at.1)
-        } else {
-            String::new()
-        };
-        let _ = writeln!(
-            self.0,
-            r#"<text x="{:.1}" y="{:.1}" font-size="{size}" text-anchor="{a}"{rot}>{}</text>"#,
-            at.0,
-            at.1,
-            xml_escape(s)
-        );
-    }
-}
-
-impl Surface for Canvas {
-    fn draw_line(&mut self, pts: &[(f64, f64)], width: f64, colour: [u8; 3], dash: Option<f64>) {
-        self.polyline(pts, width, colour, dash);
-    }
-
-    fn draw_dot(&mut self, c: (f64, f64), r: f64, colour: [u8; 3]) {
-        self.dot(c, r, colour);
-    }
-
-    fn draw_box(&mut self, lo: (f64, f64), hi: (f64, f64)) {
-        let (x0, y0, x1, y1) = self.region(lo, hi);
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                self.cover(x, y, 1.0);
-            }
-        }
-        self.flush([255, 255, 255]);
-        let edge = [
-            (lo.0, lo.1),
-            (hi.0, lo.1),
-            (hi.0, hi.1),
-            (lo.0, hi.1),
-            (lo.0, lo.1),
-        ];
-        self.polyline(&edge, 1.0, [150, 150, 150], None);
-    }
-
-    fn draw_text(&mut self, at: (f64, f64), size: f64, anchor: Anchor, vertical: bool, s: &str) {
-        self.text(at, size, anchor, vertical, s);
-    }
+/// The width of `text` in DejaVu Sans of `px` pixels, as plotters lays it out.
+pub fn measure_text(text: &str, px: f64) -> u32 {
+    register_font();
+    let font = (FAMILY, px).into_font();
+    font.box_size(text).map(|(w, _)| w).unwrap_or(0)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn fig() -> Figure {
+    fn fig(n: usize, size: (u32, u32), label: &str) -> Figure {
         Figure {
-            width: 400,
-            height: 300,
+            width: size.0,
+            height: size.1,
             title: "t <1>".into(),
             x_label: "wavelength (nm)".into(),
             y_label: "reflectance".into(),
             x_range: (380.0, 780.0),
             y_range: None,
-            series: vec![Series {
-                label: Some("a".into()),
-                colour: [200, 0, 0],
-                style: Style::Line {
-                    width: 2.0,
-                    dash: Some(5.0),
-                },
-                points: vec![(380.0, 0.1), (780.0, 0.9)],
-            }],
+            series: (0..n)
+                .map(|i| Series {
+                    label: Some(format!("{label} {i}")),
+                    colour: [200, (i * 10) as u8, 0],
+                    style: Style::Line {
+                        width: 2.0,
+                        dash: Some(5.0),
+                    },
+                    points: vec![(380.0, 0.1), (780.0, 0.9)],
+                })
+                .collect(),
             markers: vec![550.0],
         }
     }
 
     #[test]
     fn svg_and_png() {
-        let f = fig();
-        let s = f.svg();
-        assert!(s.starts_with("<svg") && s.contains("t &lt;1&gt;") && s.contains("polyline"));
-        let px = f.rgb_pixels();
+        let f = fig(1, (400, 300), "a");
+        let s = f.svg().unwrap();
+        assert!(s.starts_with("<svg") && s.contains("t &lt;1&gt;"), "{s}");
+        let px = f.rgb_pixels().unwrap();
         assert_eq!(px.len(), 400 * 300 * 3);
         assert!(px.chunks(3).any(|p| p[0] > 150 && p[1] < 100)); // the red line is there
-        assert!(px.chunks(3).any(|p| p == [0, 0, 0])); // text and frame
+        assert!(px.chunks(3).any(|p| p[0] < 60 && p[1] < 60 && p[2] < 60)); // text and frame
         let png = f.png().unwrap();
         assert_eq!(&png[1..4], b"PNG");
     }
 
     #[test]
+    fn non_ascii_labels_are_drawn() {
+        // the same figure with `u` and with `ü`, `ß`, `Ω` in a label: the pixels differ
+        let a = fig(1, (400, 300), "grun").rgb_pixels().unwrap();
+        let b = fig(1, (400, 300), "grün").rgb_pixels().unwrap();
+        let c = fig(1, (400, 300), "Ωß").rgb_pixels().unwrap();
+        let d = fig(1, (400, 300), "  ").rgb_pixels().unwrap();
+        assert_ne!(a, b);
+        assert_ne!(c, d, "Ω and ß are drawn, not blank");
+    }
+
+    #[test]
+    fn legends_fit_or_the_size_that_fits_is_named() {
+        // 24 series at the default size: the legend fits beside or below in readable type
+        assert!(fig(24, (900, 560), "spectrum").png().is_ok());
+        // at the smallest size, 24 do not: the error names a size, which then works
+        let e = fig(24, (200, 150), "spectrum")
+            .png()
+            .unwrap_err()
+            .to_string();
+        let size = e
+            .split("--size ")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap();
+        let (w, h) = size.split_once('x').unwrap();
+        let (w, h): (u32, u32) = (w.parse().unwrap(), h.parse().unwrap());
+        assert!(fig(24, (w, h), "spectrum").png().is_ok(), "{e}");
+        // one series at the smallest size fits
+        assert!(fig(1, (200, 150), "a").png().is_ok());
+    }
+
+    #[test]
     fn ticks_are_nice() {
         assert_eq!(tick_step(400.0), 50.0);
-        assert_eq!(tick_step(1.0), 0.2);
+        assert_eq!(tick_step(1.0), 0.1);
     }
 }

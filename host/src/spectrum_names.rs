@@ -49,7 +49,7 @@ impl Named {
 pub fn load_table(base: &str) -> Result<(String, Table)> {
     let path = std::path::Path::new(base);
     if path.exists() {
-        let text = crate::io::read::text(std::path::Path::new(path))?;
+        let text = crate::io::read::text_or_latin1(path)?;
         return Ok((base.to_string(), csv::parse(&text, base)?));
     }
     if let Some(t) = TABLES.iter().find(|t| t.name.eq_ignore_ascii_case(base)) {

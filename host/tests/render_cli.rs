@@ -101,8 +101,11 @@ fn builtin_scene_and_compare() {
     for m in ["rgb", "paper", "poly"] {
         assert!(out.lines().any(|l| l.starts_with(m)), "{out}");
     }
-    // five panels of 32 and four gaps of 4
-    assert_eq!(png_size(&dir.path().join("c.png")), (5 * 32 + 4 * 4, 24));
+    // five panels of 32 and four gaps of 4, with a label strip above and the ΔE00 colour bar
+    // below (render/compare_image.rs)
+    let (w, h) = png_size(&dir.path().join("c.png"));
+    assert_eq!(w, 5 * 32 + 4 * 4);
+    assert!(h > 24 + 20, "labels and colour bar: {h}");
 }
 
 fn fails(scene: &str, code: i32, needle: &str) {
@@ -146,7 +149,7 @@ fn bad_spectrum_file() {
     fails(
         &GOOD.replace("\"colorchecker#red\"", "\"bad.csv\""),
         1,
-        "bad.csv:3: `oops` in column `v` is not a number",
+        "bad.csv:3:2: `oops` in column `v` is not a number",
     );
 }
 

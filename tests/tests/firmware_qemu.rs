@@ -1263,3 +1263,97 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         panic!("board reply {dev:?}: {e}");
     }
 }
+
+/// The host's model of the controller ([`specpoly::led::Model::answer`], what the host's fake
+/// controllers answer) and the firmware refuse the same colours with `err not-finite` and
+/// otherwise report the same gamut and duties (within one tick), on the same seeded inputs:
+/// targets from 1e-45 to 3.4e38, where the conversions overflow (issue 10).
+#[test]
+fn host_model_and_firmware_refuse_the_same_colours() {
+    let emu = Emulator::start();
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    let max = link.hello().expect("hello");
+    let cal = "cal 0.64 0.33 0.212639 0.3 0.6 0.71516865 0.15 0.06 0.072192304";
+    assert_eq!(link.send(cal).unwrap(), Reply::Done("cal"));
+    assert_eq!(link.send("trc rgb linear").unwrap(), Reply::Done("trc"));
+    let Ok(Command::Calibrate { xy, luminance }) = Command::parse(cal) else {
+        panic!("{cal}")
+    };
+    let model = specpoly::led::Model {
+        display: Display::from_primaries(
+            xy,
+            luminance,
+            Xyz::default(),
+            [Transfer::Linear, Transfer::Linear, Transfer::Linear],
+        )
+        .unwrap(),
+        map: GamutMap::Clip,
+        observer: Observer::Cie1931,
+        max,
+    };
+    let mut s: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        s
+    };
+    // log-uniform magnitudes 1e-45 … 3.4e38, either sign, or 0
+    let wide = |n: u64| -> f32 {
+        if n & 7 == 0 {
+            return 0.0;
+        }
+        let e = -45.0 + 83.5 * ((n >> 11) as f64 / (1u64 << 53) as f64);
+        let v = 10f64.powf(e).min(3.4e38) as f32;
+        if n & 1 == 0 {
+            v
+        } else {
+            -v
+        }
+    };
+    let (mut refused, mut agreed) = (0, 0);
+    for i in 0..400 {
+        let line = if i == 0 {
+            "xyy 0.5 1e-45 3.4e38".to_string()
+        } else if i % 2 == 0 {
+            format!(
+                "xyz {:e} {:e} {:e}",
+                wide(next()),
+                wide(next()),
+                wide(next())
+            )
+        } else {
+            let (x, y) = (
+                (next() % 1000) as f32 / 1000.0,
+                (1 + next() % 1000) as f32 / 1000.0,
+            );
+            format!("xyy {x} {y} {:e}", wide(next()).abs())
+        };
+        // as the firmware's controller turns each command into a target
+        let target = match Command::parse(&line) {
+            Ok(Command::Xyz(t)) => t,
+            Ok(Command::Xyy(v)) => v.to_xyz(),
+            _ => continue, // out of the documented ranges: both sides answer the parser's error
+        };
+        let text = link.exchange_unchecked(&line).unwrap();
+        let device = Reply::parse(&text).unwrap_or_else(|f| panic!("{line} → {text}: {f:?}"));
+        match (device, model.answer(target)) {
+            (Reply::Error(a), Reply::Error(b)) => {
+                assert_eq!(a, b, "{line}");
+                refused += 1;
+            }
+            (Reply::Colour(a), Reply::Colour(b)) => {
+                assert_eq!(a.gamut, b.gamut, "{line}");
+                for k in 0..3 {
+                    assert!(a.duty[k].abs_diff(b.duty[k]) <= 1, "{line}: {a:?} vs {b:?}");
+                }
+                agreed += 1;
+            }
+            (a, b) => panic!("{line}: firmware {a:?}, host model {b:?}"),
+        }
+    }
+    assert!(
+        refused > 0 && agreed > 0,
+        "refused {refused}, agreed {agreed}"
+    );
+}

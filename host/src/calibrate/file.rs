@@ -452,9 +452,11 @@ impl Calibration {
         match value.get("format").and_then(|v| v.as_str()) {
             Some(FORMAT) => {}
             Some(f) => {
+                // the file's own text, shown on one line (found by fuzzing)
+                let f = crate::io::escape::one_line(f);
                 return Err(CliError::data(format!(
                     "{source}: format is \"{f}\", expected \"{FORMAT}\""
-                )))
+                )));
             }
             None => {
                 return Err(CliError::data(format!(

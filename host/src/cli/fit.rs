@@ -24,6 +24,9 @@ pub struct FitArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    /// Multiply every spectrum by FACTOR first (0.01 for reflectances in percent).
+    #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
+    pub scale: f64,
 }
 
 /// Runs `specpoly fit`.
@@ -34,7 +37,7 @@ pub fn run(a: &FitArgs) -> Result<()> {
         observer,
     } = &a.colorimetry;
     let light = spectrum_names::light(illuminant)?;
-    let named = spectrum_names::resolve_all(&a.spectra)?;
+    let named = crate::plausible::reflectances(&a.spectra, a.scale, true)?;
     let reports = named
         .iter()
         .map(|n| fit_one(n, repr, *observer, &light.tabulated()))

@@ -9,7 +9,6 @@ use crate::figures;
 use crate::plot::Figure;
 use crate::repr::Repr;
 use crate::size::Size;
-use crate::spectrum_names;
 use std::path::PathBuf;
 
 /// Arguments of `specpoly plot`.
@@ -30,6 +29,9 @@ pub struct PlotArgs {
     /// Image size in pixels, WIDTHxHEIGHT (200x150 to 8000x8000).
     #[arg(long, default_value = "900x560", value_name = "WxH")]
     pub size: Size,
+    /// Multiply every spectrum by FACTOR first (0.01 for reflectances in percent).
+    #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
+    pub scale: f64,
 }
 
 enum Format {
@@ -41,7 +43,7 @@ enum Format {
 pub fn figure(a: &PlotArgs) -> Result<Figure> {
     let repr = a.repr.polynomial_for("plot")?;
     a.size.check(figures::MIN_SIZE, figures::MAX_SIZE)?;
-    let named = spectrum_names::resolve_all(&a.spectra)?;
+    let named = crate::plausible::reflectances(&a.spectra, a.scale, false)?;
     figures::spectra(&named, repr, a.product, a.size)
 }
 
@@ -64,10 +66,8 @@ pub fn run(a: &PlotArgs) -> Result<()> {
     };
     let fig = figure(a)?;
     let bytes = match format {
-        Format::Svg => fig.svg().into_bytes(),
-        Format::Png => fig
-            .png()
-            .map_err(|e| CliError::data(format!("PNG encoding: {e}")))?,
+        Format::Svg => fig.svg()?.into_bytes(),
+        Format::Png => fig.png()?,
     };
     crate::io::atomic::write(&a.output, &bytes)?;
     eprintln!(

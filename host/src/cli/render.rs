@@ -116,6 +116,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let img = render::render(&scene, mode, Some(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     pb.finish_and_clear();
+    crate::plausible::image(&a.scene, &img.xyz)?;
     image_out::write(&a.output, &img, &out, format, &tag, space)?;
     let paths = render::paths_per_pixel(&scene);
     if a.json {
@@ -154,17 +155,33 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     let pb = progress::bar(1 + modes.len() as u64, "compare", "renders");
     let c = render::compare(scene, &modes, &|| pb.inc(1))?;
     pb.finish_and_clear();
-    let panel = |img: &render::Image| (w, h, render::to_rgb8(img, out));
-    let heat = |de: &[f64]| (w, h, de.iter().flat_map(|d| render::heat(*d)).collect());
+    crate::plausible::image(&a.scene, &c.reference.xyz)?;
+    for m in &c.modes {
+        crate::plausible::image(&format!("{} ({})", a.scene, m.repr), &m.image.xyz)?;
+    }
+    use render::compare_image::{compose, Panel};
+    let panel = |label: String, rgb: Vec<u8>| Panel {
+        label,
+        width: w,
+        height: h,
+        rgb,
+    };
+    let image = |img: &render::Image| render::to_rgb8(img, out);
+    let heat = |m: &render::ModeResult| {
+        panel(
+            format!("ΔE00 {} (mean {:.2})", m.repr, m.stats.mean),
+            m.delta_e.iter().flat_map(|d| render::heat(*d)).collect(),
+        )
+    };
     let (rgb, poly) = (&c.modes[0], &c.modes[2]);
     let panels = [
-        panel(&rgb.image),
-        panel(&poly.image),
-        panel(&c.reference),
-        heat(&rgb.delta_e),
-        heat(&poly.delta_e),
+        panel(rgb.repr.to_string(), image(&rgb.image)),
+        panel(poly.repr.to_string(), image(&poly.image)),
+        panel("reference (1 nm)".into(), image(&c.reference)),
+        heat(rgb),
+        heat(poly),
     ];
-    let (cw, ch, px) = render::side_by_side(&panels, 4);
+    let (cw, ch, px) = compose(&panels)?;
     render::write_png(&a.output, cw, ch, &px)?;
     if a.json {
         let modes: Vec<_> = c
@@ -224,7 +241,7 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     }
     print(&o)?;
     eprintln!(
-        "wrote {} (rgb | poly | reference | ΔE00 rgb | ΔE00 poly; heat map 0 → {} ΔE00: black, blue, red, yellow, white)",
+        "wrote {} (rgb | poly | reference | ΔE00 rgb | ΔE00 poly, labelled; heat map 0 → {} ΔE00: black, blue, red, yellow, white, its colour bar below)",
         crate::io::escape::one_line(&a.output.display().to_string()),
         render::HEAT_MAX
     );

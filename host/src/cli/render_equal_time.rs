@@ -26,24 +26,6 @@ pub fn modes() -> [Repr; 5] {
     ]
 }
 
-/// Rows of panels stacked, each row's panels side by side (`gap` black pixels between).
-fn grid(rows: &[Vec<(u32, u32, Vec<u8>)>], gap: u32) -> (u32, u32, Vec<u8>) {
-    let rows: Vec<_> = rows.iter().map(|r| render::side_by_side(r, gap)).collect();
-    let w = rows.iter().map(|r| r.0).max().unwrap_or(0);
-    let h = rows.iter().map(|r| r.1).sum::<u32>() + gap * (rows.len() as u32).saturating_sub(1);
-    let mut out = vec![0u8; (w * h * 3) as usize];
-    let mut y0 = 0u32;
-    for (rw, rh, px) in &rows {
-        for y in 0..*rh {
-            let src = &px[(y * rw * 3) as usize..((y + 1) * rw * 3) as usize];
-            let dst = (((y0 + y) * w) * 3) as usize;
-            out[dst..dst + src.len()].copy_from_slice(src);
-        }
-        y0 += rh + gap;
-    }
-    (w, h, out)
-}
-
 /// Runs the equal-time comparison for `render --compare --equal-time`.
 pub fn run(a: &RenderArgs, scene: &Scene, out: &Output) -> Result<()> {
     if scene.render.integrator != Integrator::Path {
@@ -56,12 +38,30 @@ pub fn run(a: &RenderArgs, scene: &Scene, out: &Output) -> Result<()> {
     let pb = progress::bar(2 + modes.len() as u64, "equal time", "renders");
     let c = equal_time(scene, Repr::DEFAULT, &modes, a.reference_spp, &|| pb.inc(1))?;
     pb.finish_and_clear();
-    let panel = |img: &render::Image| (w, h, render::to_rgb8(img, out));
-    let heat = |de: &[f64]| (w, h, de.iter().flat_map(|d| render::heat(*d)).collect());
-    let mut top: Vec<_> = c.modes.iter().map(|m| panel(&m.image)).collect();
-    top.push(panel(&c.reference));
-    let bottom: Vec<_> = c.modes.iter().map(|m| heat(&m.delta_e)).collect();
-    let (cw, ch, px) = grid(&[top, bottom], 4);
+    use crate::render::compare_image::{compose, Panel};
+    let panel = |label: String, rgb: Vec<u8>| Panel {
+        label,
+        width: w,
+        height: h,
+        rgb,
+    };
+    // one labelled row: each mode, the reference, then each mode's ΔE00 map, and the colour bar
+    let mut panels: Vec<Panel> = c
+        .modes
+        .iter()
+        .map(|m| panel(m.repr.to_string(), render::to_rgb8(&m.image, out)))
+        .collect();
+    panels.push(panel(
+        "reference".into(),
+        render::to_rgb8(&c.reference, out),
+    ));
+    panels.extend(c.modes.iter().map(|m| {
+        panel(
+            format!("ΔE00 {} (mean {:.2})", m.repr, m.stats.mean),
+            m.delta_e.iter().flat_map(|d| render::heat(*d)).collect(),
+        )
+    }));
+    let (cw, ch, px) = compose(&panels)?;
     render::write_png(&a.output, cw, ch, &px)?;
     if a.json {
         let modes: Vec<_> = c

@@ -91,13 +91,7 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
         observer,
     } = &a.colorimetry;
     let light = spectrum_names::light(illuminant)?;
-    let named: Vec<Named> = spectrum_names::resolve_all(&a.spectra)?
-        .into_iter()
-        .map(|n| crate::plausible::scaled(n, a.scale))
-        .collect::<Result<_>>()?;
-    for n in &named {
-        crate::plausible::reflectance(n)?;
-    }
+    let named: Vec<Named> = crate::plausible::reflectances(&a.spectra, a.scale, true)?;
     let tabs: Vec<Tabulated<'_>> = named.iter().map(Named::tabulated).collect();
     let (chains, names): (Vec<Vec<usize>>, Vec<String>) = if a.product {
         let name = named

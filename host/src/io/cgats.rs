@@ -30,6 +30,22 @@ pub struct Table {
     pub fields: Vec<String>,
     /// The rows, each with one value per field, and the 1-based line each came from.
     pub rows: Vec<(usize, Vec<String>)>,
+    /// The 1-based line of the identifier, of each keyword (parallel to `keywords`), of
+    /// `BEGIN_DATA_FORMAT` and of `END_DATA`, for messages about what is missing or wrong there.
+    pub lines: TableLines,
+}
+
+/// Where the parts of a [`Table`] are in its file (1-based lines; 0 = not seen).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TableLines {
+    /// The identifier line.
+    pub identifier: usize,
+    /// One per keyword.
+    pub keywords: Vec<usize>,
+    /// `BEGIN_DATA_FORMAT`.
+    pub format: usize,
+    /// `END_DATA`.
+    pub end_data: usize,
 }
 
 /// An error at the declaring line unless a declared count `(count, line)` matches `got`.
@@ -62,6 +78,15 @@ impl Table {
     /// The column of a field.
     pub fn field(&self, name: &str) -> Option<usize> {
         self.fields.iter().position(|f| f == name)
+    }
+
+    /// The line of keyword `name` (else the identifier's line).
+    pub fn keyword_line(&self, name: &str) -> usize {
+        self.keywords
+            .iter()
+            .position(|(k, _)| k == name)
+            .and_then(|i| self.lines.keywords.get(i).copied())
+            .unwrap_or(self.lines.identifier)
     }
 }
 
@@ -138,6 +163,7 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
         if let State::Block(name) = &state {
             if raw.trim() == format!("END_{name}") {
                 t.keywords.push((name.clone(), std::mem::take(&mut block)));
+                t.lines.keywords.push(n);
                 state = State::Header;
             } else {
                 if !block.is_empty() {
@@ -164,6 +190,7 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
                     ));
                 }
                 t.kind = tok[0].clone();
+                t.lines.identifier = n;
                 state = State::Header;
             }
             State::Header => match tok[0].as_str() {
@@ -183,6 +210,7 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
                     if !t.fields.is_empty() {
                         return Err(bad(source, n, "a second BEGIN_DATA_FORMAT in one table"));
                     }
+                    t.lines.format = n;
                     state = State::Format;
                 }
                 "BEGIN_DATA" => {
@@ -203,6 +231,7 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
                 _ => {
                     let value = tok[1..].join(" ");
                     t.keywords.push((tok[0].clone(), value));
+                    t.lines.keywords.push(n);
                 }
             },
             State::Format => {
@@ -220,6 +249,7 @@ pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
                     check_count(source, n_sets, t.rows.len(), |k, got| {
                         format!("NUMBER_OF_SETS is {k} but BEGIN_DATA…END_DATA holds {got} rows")
                     })?;
+                    t.lines.end_data = n;
                     tables.push(std::mem::take(&mut t));
                     n_fields = None;
                     n_sets = None;
@@ -341,21 +371,26 @@ pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
     let t = &tables[0];
     if t.kind == "CTI1" {
         return Err(CliError::data(format!(
-            "{source}: a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes"
+            "{source}:{}: a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes",
+            t.lines.identifier
         )));
     }
     const NEED: [&str; 6] = ["RGB_R", "RGB_G", "RGB_B", "XYZ_X", "XYZ_Y", "XYZ_Z"];
     let mut col = [0usize; 6];
     for (c, name) in col.iter_mut().zip(NEED) {
         *c = t.field(name).ok_or_else(|| {
-            CliError::data(format!(
-                "{source}: the first table has no field {name} (a display .ti3 needs {})",
-                NEED.join(" ")
-            ))
+            bad(
+                source,
+                t.lines.format,
+                format!(
+                    "the first table has no field {name} (a display .ti3 needs {})",
+                    NEED.join(" ")
+                ),
+            )
         })?;
     }
     if t.rows.is_empty() {
-        return Err(CliError::data(format!("{source}: no measurements")));
+        return Err(bad(source, t.lines.end_data, "no measurements"));
     }
     let mut measurements = Vec::with_capacity(t.rows.len());
     let mut lines = Vec::with_capacity(t.rows.len());
@@ -391,9 +426,11 @@ pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
                 .filter(|x| x.is_finite())
                 .collect();
             if parts.len() != 3 || parts[1] <= 0.0 {
-                return Err(CliError::data(format!(
-                    "{source}: LUMINANCE_XYZ_CDM2 `{v}` is not three numbers with Y > 0"
-                )));
+                return Err(bad(
+                    source,
+                    t.keyword_line("LUMINANCE_XYZ_CDM2"),
+                    format!("LUMINANCE_XYZ_CDM2 `{v}` is not three numbers with Y > 0"),
+                ));
             }
             Some([parts[0], parts[1], parts[2]])
         }
@@ -573,7 +610,7 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
 
 /// Reads a .ti3 file.
 pub fn read_ti3_file(path: &std::path::Path) -> Result<Ti3> {
-    let text = crate::io::read::text(std::path::Path::new(path))?;
+    let text = crate::io::read::text_or_latin1(path)?;
     read_ti3(&text, &path.display().to_string())
 }
 

@@ -49,3 +49,19 @@ pub fn text(path: &Path) -> Result<String> {
         ))
     })
 }
+
+/// The text of a file's bytes: UTF-8 without its byte-order mark, or else Latin-1 (ISO 8859-1:
+/// every byte is the character of the same number, so this never fails). For formats that
+/// older tools and spreadsheets write in Latin-1: CSV spectra and CGATS.
+pub fn decode(bytes: Vec<u8>) -> String {
+    let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes[..]);
+    match std::str::from_utf8(body) {
+        Ok(s) => s.to_string(),
+        Err(_) => body.iter().map(|&b| b as char).collect(),
+    }
+}
+
+/// The text of the regular file `path` ([`bytes`]), decoded by [`decode`].
+pub fn text_or_latin1(path: &Path) -> Result<String> {
+    bytes(path).map(decode)
+}

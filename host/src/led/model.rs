@@ -5,7 +5,7 @@
 //! reference in [`crate::led::check`], not by this.
 
 use specpoly_core::{Display, GamutMap, Illuminant, Moments, Observer, Xyz};
-use specpoly_protocol::{ColourReport, Command, DeviceMixer, Reflectance, Reply};
+use specpoly_protocol::{ColourReport, Command, DeviceMixer, ErrorCode, Fault, Reflectance, Reply};
 
 /// A controller's calibration and settings, as the host knows them.
 #[derive(Clone, Debug)]
@@ -38,6 +38,19 @@ impl Model {
             self.map,
             self.max,
         )
+    }
+
+    /// The controller's reply to a colour command (`xyz`, `xyy`, `refl`) whose target is
+    /// `target`: the colour report, or `err not-finite` when a number of the report would not
+    /// be a finite f32 — what the firmware's `Controller` answers (firmware/PROTOCOL.md,
+    /// `not-finite`), so a fake controller built on this model refuses the same inputs.
+    pub fn answer(&self, target: Xyz) -> Reply {
+        let report = self.colour(target);
+        if report.is_finite() {
+            Reply::Colour(report)
+        } else {
+            Reply::Error(Fault::new(ErrorCode::NotFinite))
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 
 pub mod budget;
 pub mod builtin;
+pub mod compare_image;
 pub mod equal_time;
 pub mod geometry;
 pub mod hero;
@@ -192,24 +193,6 @@ pub fn heat(de: f64) -> [u8; 3] {
         }
     }
     c.map(|v| (v * 255.0 + 0.5) as u8)
-}
-
-/// Images side by side (all the same height), separated by `gap` black columns.
-pub fn side_by_side(panels: &[(u32, u32, Vec<u8>)], gap: u32) -> (u32, u32, Vec<u8>) {
-    let h = panels.iter().map(|p| p.1).max().unwrap_or(0);
-    let w: u32 =
-        panels.iter().map(|p| p.0).sum::<u32>() + gap * (panels.len() as u32).saturating_sub(1);
-    let mut out = vec![0u8; (w * h * 3) as usize];
-    let mut x0 = 0u32;
-    for (pw, ph, px) in panels {
-        for y in 0..*ph {
-            let src = &px[(y * pw * 3) as usize..((y + 1) * pw * 3) as usize];
-            let dst = ((y * w + x0) * 3) as usize;
-            out[dst..dst + src.len()].copy_from_slice(src);
-        }
-        x0 += pw + gap;
-    }
-    (w, h, out)
 }
 
 /// One representation's render in a [`Comparison`].

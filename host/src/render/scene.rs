@@ -663,13 +663,23 @@ impl SceneFile {
             if !(m.ior.is_finite() && m.ior > 0.0) {
                 return Err(CliError::data(format!("{} must be positive", w("ior"))));
             }
+            // Every material spectrum is a reflectance (or transmittance): refused with a hint
+            // when it cannot be one (crate::plausible).
+            let reflectance = |spec: &SpectrumSpec, f: &str| -> Result<Option<Named>> {
+                let n = optional(spec, &w(f), self.base.as_deref())?;
+                if let Some(n) = &n {
+                    crate::plausible::reflectance_given(n, crate::plausible::Given::Scene)
+                        .map_err(|e| CliError::data(format!("{}: {e}", w(f))))?;
+                }
+                Ok(n)
+            };
             materials.push(Material {
                 name: name.clone(),
-                diffuse: optional(&m.diffuse, &w("diffuse"), self.base.as_deref())?,
-                specular: optional(&m.specular, &w("specular"), self.base.as_deref())?,
+                diffuse: reflectance(&m.diffuse, "diffuse")?,
+                specular: reflectance(&m.specular, "specular")?,
                 phong: m.phong,
-                mirror: optional(&m.mirror, &w("mirror"), self.base.as_deref())?,
-                transmission: optional(&m.transmission, &w("transmission"), self.base.as_deref())?,
+                mirror: reflectance(&m.mirror, "mirror")?,
+                transmission: reflectance(&m.transmission, "transmission")?,
                 ior: m.ior,
             });
         }

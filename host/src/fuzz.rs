@@ -1,0 +1,203 @@
+//! The parsers' fuzz targets: one function per parser of users' files and devices' replies,
+//! each taking arbitrary bytes. A target returns normally for every input, malformed or not;
+//! it panics only when the parser panics or breaks one of the invariants checked here:
+//!
+//! - what the project writes, its own readers accept, and read back equal (CSV
+//!   [`crate::io::csv::format`], `.ti3` [`crate::io::cgats::write_ti3`], calibration TOML,
+//!   protocol lines [`specpoly_protocol::Command::write`] and [`specpoly_protocol::Reply::write`]);
+//! - no accepted value is non-finite;
+//! - errors are one line (messages end up on one stderr line).
+//!
+//! `fuzz/` (cargo-fuzz, nightly) runs them under libFuzzer; `host/tests/fuzz_corpora.rs`
+//! replays every saved corpus and an `arbitrary`-style random run on stable, in `cargo test`
+//! (docs/reliability.md, "Fuzzing"). The firmware's command handler has its own target in
+//! `firmware/src/fuzz.rs` (it is not a dependency of the host).
+
+use crate::error::CliError;
+
+/// A fuzz target: arbitrary bytes in, a panic only on a bug.
+pub type Target = fn(&[u8]);
+
+/// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpora `fuzz/corpus/NAME/`
+/// call them.
+pub const TARGETS: [(&str, Target); 8] = [
+    ("csv", csv),
+    ("cgats", cgats),
+    ("scene_toml", scene_toml),
+    ("calibration_toml", calibration_toml),
+    ("display_toml", display_toml),
+    ("protocol_line", protocol_line),
+    ("pr655_reply", pr655_reply),
+    ("argyll_ti3", argyll_ti3),
+];
+
+fn one_line(e: &CliError) {
+    let s = e.to_string();
+    assert!(!s.contains('\n'), "a multi-line error: {s:?}");
+}
+
+fn text(data: &[u8]) -> String {
+    crate::io::read::decode(data.to_vec())
+}
+
+/// Spectral CSV ([`crate::io::csv::parse`]): an accepted table is finite, and formatting it
+/// gives a file that reads back equal.
+pub fn csv(data: &[u8]) {
+    let text = text(data);
+    match crate::io::csv::parse(&text, "fuzz.csv") {
+        Err(e) => one_line(&e),
+        Ok(t) => {
+            assert!(t.wavelengths.iter().all(|w| w.is_finite()));
+            assert!(t.wavelengths.windows(2).all(|w| w[0] < w[1]));
+            for (_, v) in &t.columns {
+                assert_eq!(v.len(), t.wavelengths.len());
+                assert!(v.iter().all(|x| x.is_finite()));
+            }
+            let again = crate::io::csv::format(&t);
+            match crate::io::csv::parse(&again, "again.csv") {
+                Ok(u) => assert_eq!(u, t, "{again}"),
+                Err(e) => panic!("the formatted table does not read back: {e}\n{again}"),
+            }
+        }
+    }
+}
+
+/// CGATS ([`crate::io::cgats::parse`], [`crate::io::cgats::read_ti3`],
+/// [`crate::io::ti1::read_ti1`]): a `.ti3` that reads and is written again reads back.
+pub fn cgats(data: &[u8]) {
+    let text = text(data);
+    if let Err(e) = crate::io::cgats::parse(&text, "fuzz.ti3") {
+        one_line(&e);
+    }
+    if let Err(e) = crate::io::ti1::read_ti1(&text, "fuzz.ti1") {
+        one_line(&e);
+    }
+    ti3_roundtrip(&text);
+}
+
+fn ti3_roundtrip(text: &str) {
+    use crate::io::cgats::{read_ti3, write_ti3, Ti3Info};
+    match read_ti3(text, "fuzz.ti3") {
+        Err(e) => one_line(&e),
+        Ok(t) => {
+            for m in &t.measurements {
+                assert!(m.device.iter().chain(&m.xyz).all(|v| v.is_finite()));
+            }
+            let info = Ti3Info {
+                descriptor: "fuzz".into(),
+                ..Ti3Info::default()
+            };
+            // The writer may refuse (out-of-range values); what it writes must read back.
+            if let Ok(out) = write_ti3(&t.measurements, &info) {
+                let back = read_ti3(&out, "again.ti3")
+                    .unwrap_or_else(|e| panic!("a written .ti3 does not read back: {e}\n{out}"));
+                assert_eq!(back.measurements.len(), t.measurements.len());
+            }
+        }
+    }
+}
+
+/// ArgyllCMS's `dispread` output as `calibrate run --instrument argyll` reads it: a `.ti3`
+/// after [`crate::calibrate::instrument::argyll::strip_noise`].
+pub fn argyll_ti3(data: &[u8]) {
+    let text = crate::calibrate::instrument::argyll::strip_noise(&text(data));
+    ti3_roundtrip(&text);
+}
+
+/// A scene file ([`crate::render::scene::SceneFile`]): parsed, resolved (built-in spectra
+/// only, no base folder) and one pixel traced at the smallest size, within the render budget.
+pub fn scene_toml(data: &[u8]) {
+    use crate::render::scene::SceneFile;
+    let text = text(data);
+    let file = match SceneFile::parse(&text, "fuzz.toml") {
+        Ok(f) => f,
+        Err(e) => return one_line(&e),
+    };
+    let mut scene = match file.resolve("fuzz.toml") {
+        Ok(s) => s,
+        Err(e) => return one_line(&e),
+    };
+    scene.render.width = 1;
+    scene.render.height = 1;
+    scene.render.samples = 1;
+    scene.render.spp = scene.render.spp.min(2);
+    if let Err(e) = crate::render::render(&scene, crate::repr::Repr::Rgb, None) {
+        one_line(&e);
+    }
+}
+
+/// A calibration file ([`crate::calibrate::file::Calibration::from_toml`]): one that reads is
+/// written ([`crate::calibrate::file::Calibration::to_toml`]) and reads back equal.
+pub fn calibration_toml(data: &[u8]) {
+    use crate::calibrate::file::Calibration;
+    let text = text(data);
+    match Calibration::from_toml(&text, "fuzz.toml") {
+        Err(e) => one_line(&e),
+        Ok(c) => {
+            let out = c.to_toml().expect("a calibration that reads is written");
+            let back = Calibration::from_toml(&out, "again.toml")
+                .unwrap_or_else(|e| panic!("a written calibration does not read back: {e}\n{out}"));
+            assert_eq!(back.to_toml().ok(), Some(out));
+        }
+    }
+}
+
+/// A display file ([`crate::render::output::parse`]): primaries, luminances, transfer curves.
+pub fn display_toml(data: &[u8]) {
+    if let Err(e) = crate::render::output::parse(&text(data), "fuzz.toml") {
+        one_line(&e);
+    }
+}
+
+/// The LED protocol: a line through the fixed-size [`specpoly_protocol::LineReader`], then
+/// [`specpoly_protocol::Command::parse`] and [`specpoly_protocol::Reply::parse`]; an accepted
+/// command or reply is written and parses back equal.
+pub fn protocol_line(data: &[u8]) {
+    use specpoly_protocol::{Command, LineReader, Reply, MAX_LINE};
+    let mut reader = LineReader::<MAX_LINE>::new();
+    let mut lines: Vec<String> = Vec::new();
+    for &b in data.iter().chain(b"\n") {
+        if let Some(Ok(line)) = reader.push(b) {
+            lines.push(line.to_string());
+        }
+    }
+    for line in &lines {
+        if let Ok(cmd) = Command::parse(line) {
+            let mut s = String::new();
+            cmd.write(&mut s).expect("write to a String");
+            let again = Command::parse(&s);
+            // `refl` is written as its product (one factor): compare the written forms.
+            let mut t = String::new();
+            match again {
+                Ok(c) => c.write(&mut t).expect("write to a String"),
+                Err(f) => panic!("`{line}` → `{s}` does not parse back: {f:?}"),
+            }
+            assert_eq!(s, t, "`{line}`");
+        }
+        if let Ok(reply) = Reply::parse(line) {
+            let mut s = String::new();
+            reply.write(&mut s).expect("write to a String");
+            assert!(
+                !s.starts_with("ok") || !(s.contains("nan") || s.contains("inf")),
+                "`{line}` → `{s}`"
+            );
+            assert_eq!(Reply::parse(&s), Ok(reply), "`{line}` → `{s}`");
+        }
+    }
+}
+
+/// A PR-655 reply line ([`crate::calibrate::instrument::serial::parse_reply`] and
+/// [`crate::calibrate::instrument::serial::find_reply`]): an accepted successful reading is
+/// finite.
+pub fn pr655_reply(data: &[u8]) {
+    use crate::calibrate::instrument::serial::{find_reply, parse_reply};
+    // The instrument link reads lines of at most a few hundred bytes.
+    let text = text(&data[..data.len().min(4096)]);
+    for line in text.lines() {
+        for r in [parse_reply(line), find_reply(line)].into_iter().flatten() {
+            if r.status == 0 {
+                assert!(r.values.iter().all(|v| v.is_finite()), "{line}");
+            }
+        }
+    }
+}
