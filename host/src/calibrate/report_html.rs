@@ -352,6 +352,7 @@ pub const BARS_PER_ROW: usize = 400;
 
 /// One bar per patch, coloured by the patch, in rows of at most [`BARS_PER_ROW`]. The chart is
 /// drawn at its natural size (class `natural`: one unit one CSS pixel, bars at least 2 px wide
+/// and 2 px tall
 /// on whole pixels), so even a single patch's bar shows in its own colour.
 pub fn delta_e_svg(v: &Verification) -> String {
     let n = v.patches.len().max(1);
@@ -400,14 +401,16 @@ pub fn delta_e_svg(v: &Verification) -> String {
             } else {
                 top_value
             };
-            let y = f.py(d.min(top_value));
+            // at least 2 whole pixels tall, so a patch with ΔE00 ≈ 0 still shows its colour
+            let bottom = f.top + f.height;
+            let h = (bottom - f.py(d.min(top_value))).max(2.0).round();
+            let y = bottom - h;
             let _ = write!(
                 s,
                 "<rect class=\"bar\" data-line=\"{line}\" data-delta-e00=\"{de}\" x=\"{x:.0}\" y=\"{y:.2}\" width=\"{bar:.0}\" height=\"{h:.2}\" fill=\"{c}\"><title>line {line}: RGB {r:.4} {g:.4} {b:.4}, ΔE00 {de}</title></rect>",
                 line = p.line,
                 de = num(p.delta_e00, 3),
                 x = f.px(i as f64),
-                h = f.top + f.height - y,
                 c = css_colour(p.device),
                 r = p.device[0],
                 g = p.device[1],
