@@ -100,7 +100,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     if let Some(n) = a.spp {
         scene.render.spp = n;
     }
-    let out = Output::new(&scene, display, a.gamut.into());
+    let out = Output::new(&scene, display, a.gamut.into())
+        .with_model(render::output::interaction_model(&a.display)?);
     let (w, h) = (scene.render.width, scene.render.height);
 
     if a.equal_time {

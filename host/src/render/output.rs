@@ -15,8 +15,10 @@
 
 use super::scene::Scene;
 use super::{scene_white, Image};
+use crate::calibrate::file::Calibration;
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
+use std::sync::Arc;
 use serde::Deserialize;
 use specpoly_core::{bradford, quantize8, Display, GamutMap, Mat3, Transfer, Xyz};
 
@@ -31,6 +33,11 @@ pub struct Output {
     pub exposure: f32,
     /// Chromatic adaptation applied before display (Bradford, scene white → display white).
     pub adapt: Mat3,
+    /// A calibration whose model has channel interaction (`calibrate fit`'s lattice): device
+    /// values then come from its exact inverse ([`Calibration::inverse`]), so the full model
+    /// emits what the matrix model [`Self::display`] maps the colour to (gamut mapping stays
+    /// the matrix model's). `None`: the matrix model alone.
+    pub exact: Option<Arc<Calibration>>,
 }
 
 impl Output {
@@ -49,14 +56,33 @@ impl Output {
             gamut,
             exposure: scene.render.exposure,
             adapt,
+            exact: None,
+        }
+    }
+
+    /// The output with the full model of `cal` (see [`Self::exact`]).
+    pub fn with_model(mut self, cal: Option<Calibration>) -> Self {
+        self.exact = cal.map(Arc::new);
+        self
+    }
+
+    /// One pixel's device values in `[0, 1]`, before quantisation.
+    pub fn device(&self, xyz: Xyz) -> [f32; 3] {
+        let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
+        let e = self.display.encode_relative(a, self.gamut);
+        match &self.exact {
+            Some(cal) => {
+                // what the matrix model emits for the mapped colour, made exact by the full model
+                let target = self.display.device_to_xyz(e.device).to_array().map(f64::from);
+                cal.inverse(target).map(|v| v as f32)
+            }
+            None => e.device,
         }
     }
 
     /// One pixel's 8-bit device values.
     pub fn encode(&self, xyz: Xyz) -> [u8; 3] {
-        let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
-        let e = self.display.encode_relative(a, self.gamut);
-        e.device.map(quantize8)
+        self.device(xyz).map(quantize8)
     }
 }
 
@@ -110,6 +136,29 @@ pub fn load(spec: &str) -> Result<Display> {
         return crate::calibrate::file::load_display(path);
     }
     parse(&text, spec)
+}
+
+/// The calibration behind `--display SPEC` when its model has channel interaction (for
+/// [`Output::with_model`]); `None` for sRGB, display TOML files, ICC profiles and matrix-only
+/// calibrations.
+pub fn interaction_model(spec: &str) -> Result<Option<Calibration>> {
+    let path = std::path::Path::new(spec);
+    if spec.eq_ignore_ascii_case("srgb")
+        || !path.is_file()
+        || crate::calibrate::icc_read::is_icc_file(path)
+    {
+        return Ok(None);
+    }
+    let text = crate::io::read::text(path)?;
+    let is_calibration = text
+        .parse::<toml::Table>()
+        .map(|t| t.contains_key("format"))
+        .unwrap_or(false);
+    if !is_calibration {
+        return Ok(None);
+    }
+    let cal = crate::calibrate::file::load(path)?;
+    Ok(cal.has_interaction().then_some(cal))
 }
 
 /// Parses a display TOML; `source` names it in errors.
