@@ -93,14 +93,6 @@ impl Output {
         Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()))
     }
 
-    /// One pixel's display device values in `[0, 1]`.
-    #[inline]
-    pub fn device(&self, xyz: Xyz) -> [f32; 3] {
-        self.display
-            .encode_relative(self.adapted(xyz), self.gamut)
-            .device
-    }
-
     /// One pixel's linear display RGB, unclipped, the display white at `(1, 1, 1)`.
     #[inline]
     pub fn linear(&self, xyz: Xyz) -> [f32; 3] {

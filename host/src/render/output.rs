@@ -66,7 +66,8 @@ impl Output {
         self
     }
 
-    /// One pixel's device values in `[0, 1]`, before quantisation.
+    /// One pixel's display device values in `[0, 1]`, before quantisation (8- and 16-bit PNG).
+    #[inline]
     pub fn device(&self, xyz: Xyz) -> [f32; 3] {
         let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
         let e = self.display.encode_relative(a, self.gamut);
