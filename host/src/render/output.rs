@@ -18,9 +18,9 @@ use super::{scene_white, Image};
 use crate::calibrate::file::Calibration;
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
-use std::sync::Arc;
 use serde::Deserialize;
 use specpoly_core::{bradford, quantize8, Display, GamutMap, Mat3, Transfer, Xyz};
+use std::sync::Arc;
 
 /// How XYZ pixels become display values.
 #[derive(Clone, Debug)]
@@ -34,9 +34,10 @@ pub struct Output {
     /// Chromatic adaptation applied before display (Bradford, scene white → display white).
     pub adapt: Mat3,
     /// A calibration whose model has channel interaction (`calibrate fit`'s lattice): device
-    /// values then come from its exact inverse ([`Calibration::inverse`]), so the full model
-    /// emits what the matrix model [`Self::display`] maps the colour to (gamut mapping stays
-    /// the matrix model's). `None`: the matrix model alone.
+    /// values then come from its inverse ([`Calibration::inverse`]), so the full model emits
+    /// what the matrix model [`Self::display`] maps the colour to (gamut mapping stays the
+    /// matrix model's); where the inverse misses by more than the matrix model's own values,
+    /// those are kept. `None`: the matrix model alone.
     pub exact: Option<Arc<Calibration>>,
 }
 
@@ -73,9 +74,26 @@ impl Output {
         let e = self.display.encode_relative(a, self.gamut);
         match &self.exact {
             Some(cal) => {
-                // what the matrix model emits for the mapped colour, made exact by the full model
-                let target = self.display.device_to_xyz(e.device).to_array().map(f64::from);
-                cal.inverse(target).map(|v| v as f32)
+                // what the matrix model emits for the mapped colour, made exact by the full
+                // model; the solver can stop in a local minimum (or the colour be outside the
+                // full model's gamut), so the matrix model's values stay when they are closer
+                let target = self
+                    .display
+                    .device_to_xyz(e.device)
+                    .to_array()
+                    .map(f64::from);
+                let white = cal.predict([1.0; 3]);
+                let miss = |d: [f64; 3]| {
+                    crate::calibrate::verify::delta_e00(cal.predict(d), target, white)
+                };
+                let exact = cal.inverse(target);
+                let matrix = e.device.map(f64::from);
+                let best = if miss(exact) <= miss(matrix) {
+                    exact
+                } else {
+                    matrix
+                };
+                best.map(|v| v as f32)
             }
             None => e.device,
         }
