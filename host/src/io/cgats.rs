@@ -505,19 +505,19 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     for (i, m) in meas.iter().enumerate() {
         if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
             return Err(CliError::data(format!(
-                "cannot write a .ti3: reading {} (device {:?}, XYZ {:?}) has the non-finite \
+                "cannot write a .ti3: reading {} (device {}, XYZ {}) has the non-finite \
                  value {v}, which no .ti3 reader accepts",
                 i + 1,
-                m.device,
-                m.xyz
+                crate::io::stdout::values(&m.device),
+                crate::io::stdout::values(&m.xyz)
             )));
         }
         if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
             return Err(CliError::data(format!(
                 "cannot write a .ti3: reading {} has the device value {v} outside 0–1 \
-                 (device {:?})",
+                 (device {})",
                 i + 1,
-                m.device
+                crate::io::stdout::values(&m.device)
             )));
         }
     }
@@ -547,7 +547,8 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     let scale = match white {
         Some(w) if w.iter().any(|v| !v.is_finite()) => {
             return Err(CliError::data(format!(
-                "cannot write a .ti3: the white patch averages to the non-finite XYZ {w:?}"
+                "cannot write a .ti3: the white patch averages to the non-finite XYZ {}",
+                crate::io::stdout::values(&w)
             )));
         }
         Some(w) if w[1] > 0.0 => {
@@ -585,11 +586,11 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
         // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
         if let Some(v) = row.iter().find(|v| !v.is_finite()) {
             return Err(CliError::data(format!(
-                "cannot write a .ti3: reading {} overflows to {v} when scaled (device {:?}, \
-                 XYZ {:?})",
+                "cannot write a .ti3: reading {} overflows to {v} when scaled (device {}, \
+                 XYZ {})",
                 i + 1,
-                m.device,
-                m.xyz
+                crate::io::stdout::values(&m.device),
+                crate::io::stdout::values(&m.xyz)
             )));
         }
         let _ = writeln!(

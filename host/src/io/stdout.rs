@@ -21,3 +21,9 @@ pub fn print_json<T: serde::Serialize + ?Sized>(value: &T) -> Result<()> {
         serde_json::to_string_pretty(value).map_err(|e| CliError::data(format!("JSON: {e}")))?;
     print(&format!("{s}\n"))
 }
+
+/// Values separated by spaces (`0.5 0.25 1`), as messages show a triple: never Rust's `Debug`
+/// form (`[0.5, 0.25, 1.0]`).
+pub fn values<T: std::fmt::Display>(v: &[T]) -> String {
+    v.iter().map(T::to_string).collect::<Vec<_>>().join(" ")
+}

@@ -102,8 +102,12 @@ impl PatchDisplay for LedControllerDisplay {
         let want = rgb.map(|v| (v * self.max as f64).round() as i64);
         if (0..3).any(|k| (c.duty[k] as i64 - want[k]).abs() > 1) {
             return Err(CliError::data(format!(
-                "LED display: {}: drove duties {:?} for device {:?}, expected {:?} (of {})",
-                self.name, c.duty, rgb, want, self.max
+                "LED display: {}: drove duties {} for device {}, expected {} (of {})",
+                self.name,
+                crate::io::stdout::values(&c.duty),
+                crate::io::stdout::values(&rgb),
+                crate::io::stdout::values(&want),
+                self.max
             )));
         }
         Ok(())
