@@ -236,6 +236,14 @@ pub struct CalibrationData {
     pub provenance: Provenance,
 }
 
+/// Whether `text` is a calibration file (a TOML table with a `format` key), as opposed to
+/// another TOML file given where a display is expected (a display file of primaries).
+pub fn is_calibration_text(text: &str) -> bool {
+    text.parse::<toml::Table>()
+        .map(|t| t.contains_key("format"))
+        .unwrap_or(false)
+}
+
 /// A validated calibration: its file contents and the display model built from them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Calibration {

@@ -214,10 +214,7 @@ pub fn colour_tag(display_spec: &str) -> Result<ColourTag> {
         return Ok(ColourTag::Icc(crate::io::read::bytes(path)?));
     }
     let text = crate::io::read::text(path)?;
-    let is_calibration = text
-        .parse::<toml::Table>()
-        .map(|t| t.contains_key("format"))
-        .unwrap_or(false);
+    let is_calibration = crate::calibrate::file::is_calibration_text(&text);
     if !is_calibration {
         return Ok(ColourTag::None);
     }

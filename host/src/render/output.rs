@@ -147,10 +147,7 @@ pub fn load(spec: &str) -> Result<Display> {
         return crate::calibrate::file::load_display(path);
     }
     let text = crate::io::read::text(std::path::Path::new(path))?;
-    let is_calibration = text
-        .parse::<toml::Table>()
-        .map(|t| t.contains_key("format"))
-        .unwrap_or(false);
+    let is_calibration = crate::calibrate::file::is_calibration_text(&text);
     if is_calibration {
         return crate::calibrate::file::load_display(path);
     }
@@ -169,10 +166,7 @@ pub fn interaction_model(spec: &str) -> Result<Option<Calibration>> {
         return Ok(None);
     }
     let text = crate::io::read::text(path)?;
-    let is_calibration = text
-        .parse::<toml::Table>()
-        .map(|t| t.contains_key("format"))
-        .unwrap_or(false);
+    let is_calibration = crate::calibrate::file::is_calibration_text(&text);
     if !is_calibration {
         return Ok(None);
     }
