@@ -1,18 +1,9 @@
 //! `fit`, `plot` and `table1` end to end through the real binary, asserting real numbers.
 
-use std::process::Command;
+#[path = "common/cli.rs"]
+mod cli;
 
-fn specpoly(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("run specpoly");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use cli::specpoly;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (code, out, err) = specpoly(args);

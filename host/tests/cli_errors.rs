@@ -1,26 +1,12 @@
 //! Bad input through the real binary: one clear line on stderr, exit code 2 for usage and 1 for
 //! data errors, no panic, nothing on stdout, and no output file (not even a partial one).
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use std::path::Path;
-use std::process::Command;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn specpoly(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("run specpoly");
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
+use cli::{run as specpoly, Run};
 
 /// Asserts a clean failure with `code` whose one stderr line mentions every `needles`.
 fn fails(r: &Run, code: i32, needles: &[&str]) {

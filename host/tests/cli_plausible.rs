@@ -4,26 +4,12 @@
 //! result with inf or NaN. Independent check: the hint's fix (`--scale 0.01`, `scale = 0.01`)
 //! gives the same output as the same data written in 0–1.
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use std::path::Path;
-use std::process::Command;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn specpoly(args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("run specpoly");
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
+use cli::{run as specpoly, Run};
 
 fn fails(r: &Run, needle: &str) {
     assert_eq!(r.code, 1, "stderr: {}", r.stderr);

@@ -3,21 +3,13 @@
 //! (end values held: the ColorChecker stops at 730 nm), multiplied, summed in f64 over
 //! 380–780 nm, CIELAB by the CIE 015 formula, CIEDE2000 from the `palette` crate.
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use palette::color_difference::Ciede2000;
 use palette::white_point::D65 as PD65;
-use std::process::Command;
 
-fn specpoly(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("run specpoly");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use cli::specpoly;
 
 fn csv(path: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     let p = format!("{}/../data/{path}", env!("CARGO_MANIFEST_DIR"));

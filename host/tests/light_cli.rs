@@ -3,19 +3,22 @@
 //! tolerances as `core/tests/light_colour_science.rs`), the mix's chromaticity against a 1 nm
 //! f64 sum of the channel files done here, and clean failures on bad input.
 
-use std::process::Command;
+#[path = "common/cli.rs"]
+mod cli;
 
 fn specpoly(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .current_dir(format!("{}/..", env!("CARGO_MANIFEST_DIR")))
-        .output()
-        .expect("run specpoly");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    cli::run_in(cli::ROOT, args).parts()
+}
+
+/// `specpoly mix --channel C… --target TARGET MORE…`.
+fn mix(channels: &[&str], target: &str, more: &[&str]) -> (i32, String, String) {
+    let mut args = vec!["mix"];
+    for c in channels {
+        args.extend(["--channel", c]);
+    }
+    args.extend(["--target", target]);
+    args.extend(more);
+    specpoly(&args)
 }
 
 fn colour_science(name: &str) -> Vec<f64> {
@@ -115,22 +118,20 @@ fn mix_hits_the_target() {
         ("data/leds/rgbwa.csv", "amber"),
     ];
     let ch: Vec<String> = files.iter().map(|(f, c)| format!("{c}={f}#{c}")).collect();
-    let mut args = vec!["mix"];
-    for c in &ch {
-        args.extend(["--channel", c.as_str()]);
-    }
-    args.extend([
-        "--target",
+    let ch: Vec<&str> = ch.iter().map(String::as_str).collect();
+    let (code, out, err) = mix(
+        &ch,
         "xy:0.3457,0.3585",
-        "--luminance",
-        "0.7",
-        "--optimize",
-        "rf",
-        "--bits",
-        "16",
-        "--json",
-    ]);
-    let (code, out, err) = specpoly(&args);
+        &[
+            "--luminance",
+            "0.7",
+            "--optimize",
+            "rf",
+            "--bits",
+            "16",
+            "--json",
+        ],
+    );
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     for k in [
@@ -163,92 +164,25 @@ fn mix_errors() {
     let tw = |c: &str| format!("{c}=data/leds/tunable_white.csv#{c}");
     let (w, c, r) = (tw("warm"), tw("cool"), tw("red"));
     // outside the gamut: data error, one line
-    let (code, out, err) = specpoly(&[
-        "mix",
-        "--channel",
-        &w,
-        "--channel",
-        &c,
-        "--channel",
-        &r,
-        "--target",
-        "xy:0.2,0.7",
-    ]);
+    let (code, out, err) = mix(&[&w, &c, &r], "xy:0.2,0.7", &[]);
     assert_eq!(code, 1, "{err}");
     assert!(out.is_empty());
     assert!(err.contains("outside the gamut"), "{err}");
     assert_eq!(err.lines().count(), 1);
     // usage errors
     for bad in [
-        vec![
-            "mix",
-            "--channel",
-            &w,
-            "--channel",
-            &c,
-            "--target",
-            "cct:3000",
-        ],
-        vec![
-            "mix",
-            "--channel",
-            &w,
-            "--channel",
-            &c,
-            "--channel",
-            &r,
-            "--target",
-            "cct:90",
-        ],
-        vec![
-            "mix",
-            "--channel",
-            &w,
-            "--channel",
-            &c,
-            "--channel",
-            &r,
-            "--target",
-            "hsv:1",
-        ],
-        vec![
-            "mix",
-            "--channel",
-            &w,
-            "--channel",
-            &c,
-            "--channel",
-            &r,
-            "--target",
-            "cct:3000",
-            "--luminance",
-            "2",
-        ],
-        vec![
-            "mix",
-            "--channel",
-            "nameless",
-            "--channel",
-            &c,
-            "--channel",
-            &r,
-            "--target",
-            "cct:3000",
-        ],
-        vec![
-            "mix",
-            "--channel",
-            "x=no-such.csv",
-            "--channel",
-            &c,
-            "--channel",
-            &r,
-            "--target",
-            "cct:3000",
-        ],
-    ] {
-        let (code, out, err) = specpoly(&bad);
-        assert_eq!(code, 2, "{bad:?}: {err}");
+        mix(&[&w, &c], "cct:3000", &[]),
+        mix(&[&w, &c, &r], "cct:90", &[]),
+        mix(&[&w, &c, &r], "hsv:1", &[]),
+        mix(&[&w, &c, &r], "cct:3000", &["--luminance", "2"]),
+        mix(&["nameless", &c, &r], "cct:3000", &[]),
+        mix(&["x=no-such.csv", &c, &r], "cct:3000", &[]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let (i, (code, out, err)) = bad;
+        assert_eq!(code, 2, "usage case {i}: {err}");
         assert!(out.is_empty() && !err.contains("panicked"), "{err}");
     }
     // malformed SPD file: data error
