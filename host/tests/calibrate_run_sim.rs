@@ -7,29 +7,7 @@ mod common;
 
 use specpoly::calibrate::sim::SimModel;
 use specpoly::calibrate::{file, patches};
-use specpoly::io::cgats;
-use std::path::Path;
 use std::time::Duration;
-
-/// Rows of a .ti3 in cd/m² (A's reader): `[R, G, B (0–100), X, Y, Z]`.
-fn ti3_rows(path: &Path) -> Vec<[f64; 6]> {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let t = cgats::read_ti3(&text, &path.display().to_string()).unwrap();
-    let (m, absolute) = t.best_units();
-    assert!(absolute || m.len() < 2, "{}: not in cd/m²", path.display());
-    m.iter()
-        .map(|m| {
-            [
-                m.device[0] * 100.0,
-                m.device[1] * 100.0,
-                m.device[2] * 100.0,
-                m.xyz[0],
-                m.xyz[1],
-                m.xyz[2],
-            ]
-        })
-        .collect()
-}
 
 fn xyy(p: [f64; 3]) -> [f64; 3] {
     let s = p[0] + p[1] + p[2];
@@ -60,7 +38,7 @@ const NOISY: &str = "sim:crt,noise=0.001,black=0.2,flare=0.1,seed=42";
 fn readings_give_the_primaries_of_the_simulated_crt() {
     let (dir, done) = run_sim(NOISY, &[]);
     assert_eq!(done.code, Some(0), "{done:?}");
-    let rows = ti3_rows(&dir.path().join("crt.ti3"));
+    let rows = common::ti3_rows(&dir.path().join("crt.ti3"));
     assert_eq!(rows.len(), patches::standard(9, 16).unwrap().len());
     let truth = SimModel::parse(NOISY.trim_start_matches("sim:")).unwrap();
     let black = rows
@@ -134,8 +112,8 @@ fn same_seed_same_readings() {
     let a = std::fs::read_to_string(d1.path().join("crt.ti3")).unwrap();
     let b = std::fs::read_to_string(d2.path().join("crt.ti3")).unwrap();
     assert_eq!(
-        ti3_rows(&d1.path().join("crt.ti3")),
-        ti3_rows(&d2.path().join("crt.ti3"))
+        common::ti3_rows(&d1.path().join("crt.ti3")),
+        common::ti3_rows(&d2.path().join("crt.ti3"))
     );
     assert!(!a.is_empty() && !b.is_empty());
 }
@@ -164,7 +142,7 @@ fn manual_display_waits_for_enter() {
     assert_eq!(done.code, Some(0), "{done:?}");
     assert!(done.stderr.contains("patch 1: set RGB 0 0 0"), "{done:?}");
     assert!(done.stderr.contains("set RGB 255 255 255"), "{done:?}");
-    assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), n);
+    assert_eq!(common::ti3_rows(&dir.path().join("m.ti3")).len(), n);
 
     // `q` stops; what was measured stays (--force: the first run's readings go to m.ti3.1)
     let mut run = common::start(&[
@@ -183,8 +161,8 @@ fn manual_display_waits_for_enter() {
     assert_eq!(done.code, Some(1), "{done:?}");
     assert!(done.stderr.contains("stopped by the user"), "{done:?}");
     assert!(done.stderr.contains("3 readings kept in"), "{done:?}");
-    assert_eq!(ti3_rows(&dir.path().join("m.ti3")).len(), 3);
-    assert_eq!(ti3_rows(&dir.path().join("m.ti3.1")).len(), n);
+    assert_eq!(common::ti3_rows(&dir.path().join("m.ti3")).len(), 3);
+    assert_eq!(common::ti3_rows(&dir.path().join("m.ti3.1")).len(), n);
 }
 
 #[test]

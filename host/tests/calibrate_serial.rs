@@ -7,14 +7,17 @@
 mod common;
 #[path = "common/pr655.rs"]
 mod pr655;
+#[path = "common/pr655_rig.rs"]
+mod rig;
 
 use pr655::Faults;
+use rig::{assert_readings_match, emulated, emulated_screen, measure_standard, open_and_measure};
 use specpoly::calibrate::instrument::serial::{Pr6xx, SerialOptions};
 use specpoly::calibrate::instrument::Instrument;
 use specpoly::calibrate::patch_display::sim::SimDisplay;
 use specpoly::calibrate::patches;
 use specpoly::calibrate::run::measure_all;
-use specpoly::calibrate::sim::{SimHandle, SimModel};
+use specpoly::calibrate::sim::SimModel;
 use std::time::{Duration, Instant};
 
 fn quick() -> SerialOptions {
@@ -26,13 +29,9 @@ fn quick() -> SerialOptions {
     }
 }
 
-fn sim() -> SimHandle {
-    SimHandle::new(SimModel::parse("crt,black=0.3").unwrap())
-}
-
-fn emulate(h: &SimHandle, f: Faults) -> pr655::Emulator {
-    let h = h.clone();
-    pr655::spawn(move || h.read(), f)
+/// [`quick`] with `retries`.
+fn retrying(retries: u32) -> SerialOptions {
+    SerialOptions { retries, ..quick() }
 }
 
 #[test]
@@ -44,8 +43,7 @@ fn c_exponent_format() {
 
 #[test]
 fn readings_through_the_pty_match_the_display() {
-    let h = sim();
-    let emu = emulate(&h, Faults::default());
+    let (h, emu) = emulated(Faults::default());
     let mut inst = Pr6xx::open(&emu.path, quick()).unwrap();
     assert!(inst.describe().contains(&emu.path));
     let set = patches::standard(3, 2).unwrap();
@@ -57,88 +55,44 @@ fn readings_through_the_pty_match_the_display() {
         Ok(())
     })
     .unwrap();
-    assert_eq!(got.len(), set.len());
-    let model = h.model();
-    for (m, p) in got.iter().zip(&set) {
-        assert_eq!(m.device, p.device);
-        let t = model.xyz(p.device);
-        for k in 0..3 {
-            // the PR-655 reports four significant digits
-            assert!(
-                (m.xyz[k] - t[k]).abs() <= 5e-4 * t[k].abs() + 1e-9,
-                "{m:?} vs {t:?}"
-            );
-        }
-    }
-    assert_eq!(
-        emu.measurements.load(std::sync::atomic::Ordering::SeqCst),
-        set.len()
-    );
+    assert_readings_match(&h, &set, &got);
+    assert_eq!(emu.measured(), set.len());
 }
 
 #[test]
 fn transient_faults_are_retried() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            garbage_on: vec![2],
-            slow_on: vec![(4, Duration::from_millis(1500))],
-            status_on: vec![(7, 18)],
-            ..Faults::default()
-        },
-    );
-    let mut inst = Pr6xx::open(&emu.path, quick()).unwrap();
-    let set = patches::standard(3, 0).unwrap();
-    let mut disp = SimDisplay::new(h.clone());
-    let got = measure_all(&mut disp, &mut inst, &set, Duration::ZERO, |_| Ok(())).unwrap();
-    assert_eq!(got.len(), set.len());
-    let model = h.model();
-    for (m, p) in got.iter().zip(&set) {
-        let t = model.xyz(p.device);
-        assert!(
-            (m.xyz[1] - t[1]).abs() <= 5e-4 * t[1] + 1e-9,
-            "{m:?} vs {t:?}"
-        );
-    }
+    let (h, emu) = emulated(Faults {
+        garbage_on: vec![2],
+        slow_on: vec![(4, Duration::from_millis(1500))],
+        status_on: vec![(7, 18)],
+        ..Faults::default()
+    });
+    let (set, got) = open_and_measure(&h, &emu, quick(), 3, 0);
+    assert_readings_match(&h, &set, &got.unwrap());
     // three failed M1s were repeated
-    assert!(emu.measurements.load(std::sync::atomic::Ordering::SeqCst) >= set.len() + 3);
+    assert!(emu.measured() >= set.len() + 3);
 }
 
 #[test]
 fn a_slow_reply_within_the_timeout_is_waited_for() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            slow_on: vec![(1, Duration::from_millis(400))],
-            ..Faults::default()
-        },
-    );
+    let (h, emu) = emulated(Faults {
+        slow_on: vec![(1, Duration::from_millis(400))],
+        ..Faults::default()
+    });
     let mut inst = Pr6xx::open(&emu.path, quick()).unwrap();
     h.set([1.0; 3]);
     let xyz = inst.measure().unwrap();
     assert!((xyz[1] - 100.3).abs() < 0.1, "{xyz:?}");
-    assert_eq!(
-        emu.measurements.load(std::sync::atomic::Ordering::SeqCst),
-        1
-    );
+    assert_eq!(emu.measured(), 1);
 }
 
 #[test]
 fn persistent_garbage_stops_the_run_with_the_readings_so_far() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            garbage_from: Some(3),
-            ..Faults::default()
-        },
-    );
-    let mut inst = Pr6xx::open(&emu.path, quick()).unwrap();
-    let set = patches::standard(3, 0).unwrap();
-    let mut disp = SimDisplay::new(h);
-    let e = measure_all(&mut disp, &mut inst, &set, Duration::ZERO, |_| Ok(())).unwrap_err();
+    let (h, emu) = emulated(Faults {
+        garbage_from: Some(3),
+        ..Faults::default()
+    });
+    let e = open_and_measure(&h, &emu, quick(), 3, 0).1.unwrap_err();
     assert_eq!(e.taken.len(), 2);
     let msg = e.error.to_string();
     assert!(msg.contains("patch 3 of"), "{msg}");
@@ -149,17 +103,11 @@ fn persistent_garbage_stops_the_run_with_the_readings_so_far() {
 
 #[test]
 fn an_error_status_that_persists_is_reported_with_its_code() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            status_on: vec![(1, 18), (2, 18)],
-            ..Faults::default()
-        },
-    );
-    let mut o = quick();
-    o.retries = 1;
-    let mut inst = Pr6xx::open(&emu.path, o).unwrap();
+    let (_h, emu) = emulated(Faults {
+        status_on: vec![(1, 18), (2, 18)],
+        ..Faults::default()
+    });
+    let mut inst = Pr6xx::open(&emu.path, retrying(1)).unwrap();
     let msg = inst.measure().unwrap_err().to_string();
     assert!(
         msg.contains("instrument error 0018 (light too low)"),
@@ -169,18 +117,14 @@ fn an_error_status_that_persists_is_reported_with_its_code() {
 
 #[test]
 fn no_instrument_on_the_port() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            silent: true,
-            ..Faults::default()
-        },
-    );
+    let (_h, emu) = emulated(Faults {
+        silent: true,
+        ..Faults::default()
+    });
     let t = Instant::now();
-    let mut o = quick();
-    o.retries = 1;
-    let e = Pr6xx::open(&emu.path, o).err().expect("no instrument");
+    let e = Pr6xx::open(&emu.path, retrying(1))
+        .err()
+        .expect("no instrument");
     let msg = e.to_string();
     assert!(msg.contains("no instrument answered on"), "{msg}");
     assert!(msg.contains("PHOTO"), "{msg}");
@@ -202,19 +146,13 @@ fn a_missing_port() {
 
 #[test]
 fn the_port_disappears_mid_run() {
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            vanish_on: Some(4),
-            ..Faults::default()
-        },
-    );
+    let (h, emu) = emulated(Faults {
+        vanish_on: Some(4),
+        ..Faults::default()
+    });
     let mut inst = Pr6xx::open(&emu.path, quick()).unwrap();
-    let set = patches::standard(3, 0).unwrap();
-    let mut disp = SimDisplay::new(h);
     let t = Instant::now();
-    let e = measure_all(&mut disp, &mut inst, &set, Duration::ZERO, |_| Ok(())).unwrap_err();
+    let e = measure_standard(&h, &mut inst, 3, 0).1.unwrap_err();
     assert_eq!(e.taken.len(), 3);
     let msg = e.error.to_string();
     assert!(msg.contains("serial port failed"), "{msg}");
@@ -234,30 +172,24 @@ struct BinRun {
 fn binary_run(faults: Faults, serial_opts: &str) -> BinRun {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("cal.toml");
-    let model = SimModel::parse("crt,black=0.3").unwrap();
     // the emulator measures what the (fake) browser shows
-    let shown = std::sync::Arc::new(std::sync::Mutex::new([0.0f64; 3]));
-    let (s, m) = (shown.clone(), model.clone());
-    let emu = pr655::spawn(move || m.xyz(*s.lock().unwrap()), faults);
+    let (model, shown, emu) = emulated_screen(faults);
     let inst = format!("serial:{}{serial_opts}", emu.path);
-    let mut run = common::start(&[
-        "calibrate",
-        "run",
-        "--display",
-        "web,wait=20,timeout=10",
-        "--instrument",
-        &inst,
-        "--ramp-steps",
-        "4",
-        "--verify",
-        "2",
-        "--settle",
-        "0",
-        "-o",
-        cal.to_str().unwrap(),
-    ]);
-    let url = run.web_url();
-    let browser = common::fake_browser_into(&url, shown);
+    let (run, browser) = common::start_web(
+        &[
+            "--instrument",
+            &inst,
+            "--ramp-steps",
+            "4",
+            "--verify",
+            "2",
+            "--settle",
+            "0",
+            "-o",
+            cal.to_str().unwrap(),
+        ],
+        shown,
+    );
     let done = run.finish(Duration::from_secs(90));
     drop(browser);
     drop(emu);
@@ -269,32 +201,12 @@ fn binary_run(faults: Faults, serial_opts: &str) -> BinRun {
     }
 }
 
-/// Rows of a .ti3 in cd/m² (A's reader): `[R, G, B (0–100), X, Y, Z]`.
-fn ti3_rows(path: &std::path::Path) -> Vec<Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let t = specpoly::io::cgats::read_ti3(&text, &path.display().to_string()).unwrap();
-    t.best_units()
-        .0
-        .iter()
-        .map(|m| {
-            vec![
-                m.device[0] * 100.0,
-                m.device[1] * 100.0,
-                m.device[2] * 100.0,
-                m.xyz[0],
-                m.xyz[1],
-                m.xyz[2],
-            ]
-        })
-        .collect()
-}
-
 #[test]
 fn binary_full_run_over_the_pty() {
     let r = binary_run(Faults::default(), ",timeout=1,measure-timeout=1");
     assert_eq!(r.done.code, Some(0), "{:?}", r.done);
     assert!(r.cal.is_file());
-    let rows = ti3_rows(&r.cal.with_extension("ti3"));
+    let rows = common::ti3_rows(&r.cal.with_extension("ti3"));
     assert_eq!(rows.len(), patches::standard(4, 2).unwrap().len());
     // RGB 0–100 then XYZ: the readings are the display's truth to the PR-655's 4 digits
     for row in &rows {
@@ -323,7 +235,7 @@ fn binary_port_disappears_keeps_the_readings() {
     assert!(err.contains("serial port failed"), "{err}");
     assert!(err.contains("5 readings kept in"), "{err}");
     assert!(!r.cal.exists());
-    assert_eq!(ti3_rows(&r.cal.with_extension("ti3")).len(), 5);
+    assert_eq!(common::ti3_rows(&r.cal.with_extension("ti3")).len(), 5);
 }
 
 #[test]
@@ -339,21 +251,17 @@ fn binary_garbage_reply_keeps_the_readings() {
     let err = r.done.stderr.trim();
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("garbled reply"), "{err}");
-    assert_eq!(ti3_rows(&r.cal.with_extension("ti3")).len(), 3);
+    assert_eq!(common::ti3_rows(&r.cal.with_extension("ti3")).len(), 3);
 }
 
 #[test]
 fn binary_no_instrument() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("cal.toml");
-    let h = sim();
-    let emu = emulate(
-        &h,
-        Faults {
-            silent: true,
-            ..Faults::default()
-        },
-    );
+    let (_h, emu) = emulated(Faults {
+        silent: true,
+        ..Faults::default()
+    });
     let inst = format!("serial:{},timeout=0.3,retries=0", emu.path);
     let done = common::run(
         &[

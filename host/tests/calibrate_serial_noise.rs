@@ -8,18 +8,13 @@
 mod common;
 #[path = "common/pr655.rs"]
 mod pr655;
+#[path = "common/pr655_rig.rs"]
+mod rig;
 
 use pr655::Faults;
-use specpoly::calibrate::instrument::serial::{Pr6xx, SerialOptions};
-use specpoly::calibrate::patch_display::sim::SimDisplay;
-use specpoly::calibrate::patches;
-use specpoly::calibrate::run::measure_all;
-use specpoly::calibrate::sim::{SimHandle, SimModel};
-use std::sync::atomic::Ordering;
+use rig::{assert_readings_match, emulated, emulated_screen, open_and_measure};
+use specpoly::calibrate::instrument::serial::SerialOptions;
 use std::time::Duration;
-
-/// The PR-655 reports four significant digits.
-const REL: f64 = 5e-4;
 
 fn opts() -> SerialOptions {
     SerialOptions {
@@ -31,29 +26,14 @@ fn opts() -> SerialOptions {
 }
 
 fn full_run(f: Faults) {
-    let h = SimHandle::new(SimModel::parse("crt,black=0.3").unwrap());
-    let hh = h.clone();
-    let emu = pr655::spawn(move || hh.read(), f);
-    // no retries: every exchange must succeed at once, through the echo or the noise
-    let mut inst = Pr6xx::open(&emu.path, opts()).unwrap();
-    let set = patches::standard(4, 3).unwrap();
-    let mut disp = SimDisplay::new(h.clone());
-    let got = measure_all(&mut disp, &mut inst, &set, Duration::ZERO, |_| Ok(())).unwrap();
-    assert_eq!(got.len(), set.len());
-    let model = h.model();
-    for (m, p) in got.iter().zip(&set) {
-        let t = model.xyz(p.device);
-        for k in 0..3 {
-            assert!(
-                (m.xyz[k] - t[k]).abs() <= REL * t[k].abs() + 1e-9,
-                "{m:?} vs {t:?}"
-            );
-        }
-    }
-    assert_eq!(emu.measurements.load(Ordering::SeqCst), set.len());
-    drop(inst);
+    let (h, emu) = emulated(f);
+    // no retries: every exchange must succeed at once, through the echo or the noise (the
+    // port is closed, sending `Q`, when the measuring is done)
+    let (set, got) = open_and_measure(&h, &emu, opts(), 4, 3);
+    assert_readings_match(&h, &set, &got.unwrap());
+    assert_eq!(emu.measured(), set.len());
     std::thread::sleep(Duration::from_millis(100));
-    assert_eq!(emu.quits.load(Ordering::SeqCst), 1, "Q on close");
+    assert_eq!(emu.quitted(), 1, "Q on close");
 }
 
 #[test]
@@ -85,34 +65,25 @@ fn echo_and_noise_together() {
 fn ctrl_c_returns_the_instrument_to_local_mode_and_keeps_the_readings() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("cal.toml");
-    let model = SimModel::parse("crt,black=0.3").unwrap();
-    let shown = std::sync::Arc::new(std::sync::Mutex::new([0.0f64; 3]));
-    let (s, m) = (shown.clone(), model.clone());
-    let emu = pr655::spawn(
-        move || m.xyz(*s.lock().unwrap()),
-        Faults {
-            integration: Duration::from_millis(150),
-            echo: true,
-            ..Faults::default()
-        },
-    );
+    let (_model, shown, emu) = emulated_screen(Faults {
+        integration: Duration::from_millis(150),
+        echo: true,
+        ..Faults::default()
+    });
     let inst = format!("serial:{},timeout=2,measure-timeout=2", emu.path);
-    let mut run = common::start(&[
-        "calibrate",
-        "run",
-        "--display",
-        "web,wait=20,timeout=10",
-        "--instrument",
-        &inst,
-        "--settle",
-        "0",
-        "-o",
-        cal.to_str().unwrap(),
-    ]);
-    let url = run.web_url();
-    let browser = common::fake_browser_into(&url, shown);
+    let (run, browser) = common::start_web(
+        &[
+            "--instrument",
+            &inst,
+            "--settle",
+            "0",
+            "-o",
+            cal.to_str().unwrap(),
+        ],
+        shown,
+    );
     let t = std::time::Instant::now();
-    while emu.measurements.load(Ordering::SeqCst) < 4 && t.elapsed() < Duration::from_secs(30) {
+    while emu.measured() < 4 && t.elapsed() < Duration::from_secs(30) {
         std::thread::sleep(Duration::from_millis(10));
     }
     let ok = std::process::Command::new("kill")
@@ -130,14 +101,10 @@ fn ctrl_c_returns_the_instrument_to_local_mode_and_keeps_the_readings() {
     assert!(e.contains("readings kept in"), "{e}");
     // the emulator may still be integrating the interrupted M1 when Q arrives
     let t = std::time::Instant::now();
-    while emu.quits.load(Ordering::SeqCst) == 0 && t.elapsed() < Duration::from_secs(3) {
+    while emu.quitted() == 0 && t.elapsed() < Duration::from_secs(3) {
         std::thread::sleep(Duration::from_millis(10));
     }
-    assert_eq!(emu.quits.load(Ordering::SeqCst), 1, "Q sent on Ctrl-C");
-    let text = std::fs::read_to_string(cal.with_extension("ti3")).unwrap();
-    let n = specpoly::io::cgats::read_ti3(&text, "cal.ti3")
-        .unwrap()
-        .measurements
-        .len();
+    assert_eq!(emu.quitted(), 1, "Q sent on Ctrl-C");
+    let n = common::ti3_rows(&cal.with_extension("ti3")).len();
     assert!((3..=5).contains(&n), "{n} readings");
 }

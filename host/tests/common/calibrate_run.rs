@@ -5,7 +5,7 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -146,6 +146,17 @@ pub fn run(args: &[&str], timeout: Duration) -> Finished {
     start(args).finish(timeout)
 }
 
+/// Starts `specpoly calibrate run --display web,wait=20,timeout=10 ARGS` with a fake browser
+/// as the screen, writing each patch it is shown into `shown`.
+pub fn start_web(args: &[&str], shown: Arc<Mutex<[f64; 3]>>) -> (Running, FakeBrowser) {
+    let mut all = vec!["calibrate", "run", "--display", "web,wait=20,timeout=10"];
+    all.extend_from_slice(args);
+    let mut run = start(&all);
+    let url = run.web_url();
+    let browser = fake_browser_into(&url, shown);
+    (run, browser)
+}
+
 /// One HTTP GET on the loopback; the body.
 pub fn http_get(base: &str, path: &str) -> Option<String> {
     let hostport = base.trim_start_matches("http://").trim_end_matches('/');
@@ -260,4 +271,24 @@ pub fn chromium_args(profile: &std::path::Path) -> Vec<String> {
     .map(|s| s.to_string())
     .chain([format!("--user-data-dir={}", profile.display())])
     .collect()
+}
+
+/// Rows of a .ti3 in cd/m² (read by the crate's reader): `[R, G, B (0–100), X, Y, Z]`.
+pub fn ti3_rows(path: &Path) -> Vec<[f64; 6]> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let t = specpoly::io::cgats::read_ti3(&text, &path.display().to_string()).unwrap();
+    let (m, absolute) = t.best_units();
+    assert!(absolute || m.len() < 2, "{}: not in cd/m²", path.display());
+    m.iter()
+        .map(|m| {
+            [
+                m.device[0] * 100.0,
+                m.device[1] * 100.0,
+                m.device[2] * 100.0,
+                m.xyz[0],
+                m.xyz[1],
+                m.xyz[2],
+            ]
+        })
+        .collect()
 }

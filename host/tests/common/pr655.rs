@@ -59,6 +59,18 @@ impl Drop for Emulator {
     }
 }
 
+impl Emulator {
+    /// `M1` commands received so far.
+    pub fn measured(&self) -> usize {
+        self.measurements.load(Ordering::SeqCst)
+    }
+
+    /// `Q` commands received so far.
+    pub fn quitted(&self) -> usize {
+        self.quits.load(Ordering::SeqCst)
+    }
+}
+
 /// C's `%.3e`: `1.234e+002`, the PR-655's number format.
 pub fn c_exp(v: f64) -> String {
     let s = format!("{v:.3e}");
