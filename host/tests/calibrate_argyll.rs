@@ -21,6 +21,9 @@
 //! (`unshare -m`, root): what a machine with a USB bus and no instrument on it looks like.
 //! Without that, `dispread` hangs — which `no_instrument_…_within_30_s` uses on purpose.
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use specpoly::io::{cgats, ti1};
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -122,6 +125,13 @@ fn run(mut cmd: Command, dir: &Path, timeout: Duration) -> Done {
     }
 }
 
+/// `program ARGS`, not contained.
+fn command(program: impl AsRef<std::ffi::OsStr>, args: &[&str]) -> Command {
+    let mut c = Command::new(program);
+    c.args(args);
+    c
+}
+
 fn specpoly() -> PathBuf {
     PathBuf::from(env!("CARGO_BIN_EXE_specpoly"))
 }
@@ -164,16 +174,7 @@ fn fake_device_end_to_end() {
     // the command of docs/calibration.md, with ArgyllCMS's fake device for the display
     let done = specpoly_run(
         dir.path(),
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "argyll:fake",
-            "--instrument",
-            "argyll",
-            "-o",
-            "fake.toml",
-        ],
+        &cli::calibrate_run("argyll:fake", "argyll", &[], "fake.toml"),
         Duration::from_secs(120),
     );
     assert_eq!(done.code, Some(0), "{done:?}");
@@ -238,16 +239,7 @@ fn fake_device_end_to_end() {
     // running again refuses to overwrite the readings
     let again = specpoly_run(
         dir.path(),
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "argyll:fake",
-            "--instrument",
-            "argyll",
-            "-o",
-            "fake.toml",
-        ],
+        &cli::calibrate_run("argyll:fake", "argyll", &[], "fake.toml"),
         Duration::from_secs(60),
     );
     assert_eq!(again.code, Some(2), "{again:?}");
@@ -258,11 +250,7 @@ fn fake_device_end_to_end() {
 fn targen_patch_set_measured_through_dispread() {
     let dir = tempfile::tempdir().unwrap();
     let g = run(
-        {
-            let mut c = Command::new("targen");
-            c.args(["-d3", "-f24", "set"]);
-            c
-        },
+        command("targen", &["-d3", "-f24", "set"]),
         dir.path(),
         Duration::from_secs(60),
     );
@@ -275,18 +263,12 @@ fn targen_patch_set_measured_through_dispread() {
     assert_eq!(set.len(), 24);
     let done = specpoly_run(
         dir.path(),
-        &[
-            "calibrate",
-            "run",
-            "--display",
+        &cli::calibrate_run(
             "argyll:fake",
-            "--instrument",
             "argyll:batch=5",
-            "--patches",
-            "set.ti1",
-            "-o",
+            &["--patches", "set.ti1"],
             "t.toml",
-        ],
+        ),
         Duration::from_secs(120),
     );
     assert_eq!(done.code, Some(0), "{done:?}");
@@ -299,11 +281,10 @@ fn targen_patch_set_measured_through_dispread() {
     }
     // a CTI1 given as measurements is refused
     let fit = run(
-        {
-            let mut c = Command::new(specpoly());
-            c.args(["calibrate", "fit", "--ti3", "set.ti1", "-o", "x.toml"]);
-            c
-        },
+        command(
+            specpoly(),
+            &["calibrate", "fit", "--ti3", "set.ti1", "-o", "x.toml"],
+        ),
         dir.path(),
         Duration::from_secs(30),
     );
@@ -317,9 +298,9 @@ fn targen_patch_set_measured_through_dispread() {
 fn our_ti1_is_read_by_dispread() {
     let dir = tempfile::tempdir().unwrap();
     let w = run(
-        {
-            let mut c = Command::new(specpoly());
-            c.args([
+        command(
+            specpoly(),
+            &[
                 "calibrate",
                 "patches",
                 "--ramp-steps",
@@ -328,9 +309,8 @@ fn our_ti1_is_read_by_dispread() {
                 "2",
                 "-o",
                 "ours.ti1",
-            ]);
-            c
-        },
+            ],
+        ),
         dir.path(),
         Duration::from_secs(30),
     );
@@ -348,17 +328,11 @@ fn our_ti1_is_read_by_dispread() {
 #[test]
 fn argyll_not_installed_is_one_line_naming_the_package() {
     let dir = tempfile::tempdir().unwrap();
-    let mut c = Command::new(specpoly());
-    c.env("PATH", dir.path()).args([
-        "calibrate",
-        "run",
-        "--display",
-        "argyll:fake",
-        "--instrument",
-        "argyll",
-        "-o",
-        "x.toml",
-    ]);
+    let mut c = command(
+        specpoly(),
+        &cli::calibrate_run("argyll:fake", "argyll", &[], "x.toml"),
+    );
+    c.env("PATH", dir.path());
     let done = run(c, dir.path(), Duration::from_secs(30));
     assert_eq!(done.code, Some(1), "{done:?}");
     let e = done.stderr.trim();
@@ -372,17 +346,10 @@ fn no_instrument_is_a_clear_error_within_30_s() {
     // not contained: on a machine without a USB bus ArgyllCMS's scan blocks on a serial
     // port, and the watchdog stops it; elsewhere dispread finds no instrument and says so
     let dir = tempfile::tempdir().unwrap();
-    let mut c = Command::new(specpoly());
-    c.args([
-        "calibrate",
-        "run",
-        "--display",
-        "argyll:dummy",
-        "--instrument",
-        "argyll:timeout=5",
-        "-o",
-        "x.toml",
-    ]);
+    let c = command(
+        specpoly(),
+        &cli::calibrate_run("argyll:dummy", "argyll:timeout=5", &[], "x.toml"),
+    );
     let done = run(c, dir.path(), Duration::from_secs(60));
     assert_eq!(done.code, Some(1), "{done:?}");
     assert!(done.took < Duration::from_secs(30), "{done:?}");
@@ -401,16 +368,7 @@ fn no_instrument_contained_is_argylls_own_error() {
     let dir = tempfile::tempdir().unwrap();
     let done = specpoly_run(
         dir.path(),
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "argyll:dummy",
-            "--instrument",
-            "argyll:timeout=25",
-            "-o",
-            "x.toml",
-        ],
+        &cli::calibrate_run("argyll:dummy", "argyll:timeout=25", &[], "x.toml"),
         Duration::from_secs(60),
     );
     assert_eq!(done.code, Some(1), "{done:?}");
@@ -465,16 +423,7 @@ fn instrument_error_mid_run_keeps_finished_batches_and_resume_completes() {
     let dir = tempfile::tempdir().unwrap();
     let meter = callout(dir.path(), 11);
     let inst = format!("argyll:batch=4,arg=-M,arg={}", meter.display());
-    let args = [
-        "calibrate",
-        "run",
-        "--display",
-        "argyll:fake",
-        "--instrument",
-        &inst,
-        "-o",
-        "m.toml",
-    ];
+    let args = cli::calibrate_run("argyll:fake", &inst, &[], "m.toml");
     let done = specpoly_run(dir.path(), &args, Duration::from_secs(120));
     assert_eq!(done.code, Some(1), "{done:?}");
     let e = done.stderr.trim();

@@ -74,6 +74,26 @@ fn command(args: &[&str]) -> Command {
     c
 }
 
+/// `calibrate run --display DISPLAY --instrument INSTRUMENT MORE… -o OUT`.
+pub fn calibrate_run<'a>(
+    display: &'a str,
+    instrument: &'a str,
+    more: &[&'a str],
+    out: &'a str,
+) -> Vec<&'a str> {
+    let mut a = vec![
+        "calibrate",
+        "run",
+        "--display",
+        display,
+        "--instrument",
+        instrument,
+    ];
+    a.extend_from_slice(more);
+    a.extend(["-o", out]);
+    a
+}
+
 /// Bytes as text (lossy).
 pub fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
