@@ -8,7 +8,11 @@
 //! Each iteration is a whole frame: converting the scene's spectra, precomputing the lights and
 //! tracing every pixel.
 
+#[path = "../tests/common/scenes.rs"]
+mod scenes;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use scenes::{camera, environment, ground, material, path_render, sphere_obj};
 use specpoly::render;
 use specpoly::repr::Repr;
 use std::time::Duration;
@@ -64,59 +68,24 @@ fn frames(c: &mut Criterion) {
 /// triangles) written as an OBJ file and loaded through the scene file, on a grey floor under
 /// a rectangle light and the environment.
 fn mesh_scene(dir: &std::path::Path) -> specpoly::render::scene::Scene {
-    use std::fmt::Write;
-    let n = 160usize;
-    let mut obj = String::new();
-    let p = |i: usize, j: usize| {
-        let th = std::f32::consts::PI * i as f32 / n as f32;
-        let ph = std::f32::consts::PI * j as f32 / n as f32;
-        [th.sin() * ph.cos(), 1.0 + th.cos(), th.sin() * ph.sin()]
-    };
-    for i in 0..=n {
-        for j in 0..=2 * n {
-            let v = p(i, j);
-            writeln!(obj, "v {} {} {}", v[0], v[1], v[2]).unwrap();
-        }
-    }
-    let idx = |i: usize, j: usize| i * (2 * n + 1) + j + 1;
-    for i in 0..n {
-        for j in 0..2 * n {
-            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-            writeln!(obj, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
-        }
-    }
-    std::fs::write(dir.join("sphere.obj"), obj).unwrap();
-    let toml = r#"
-[render]
-width = 128
-height = 128
-integrator = "path"
-spp = 4
-max_depth = 4
-[camera]
-position = [0.0, 1.5, -4.0]
-look_at = [0.0, 1.0, 0.0]
-[environment]
-spectrum = "D65"
-radiance = 0.3
-[materials.paint]
-diffuse = "colorchecker#orange"
-[materials.floor]
-diffuse = "colorchecker#neutral 5"
-[[area_light]]
-spectrum = "FL11"
-radiance = 8.0
-corner = [-1.0, 4.0, -1.0]
-u = [2.0, 0.0, 0.0]
-v = [0.0, 0.0, 2.0]
-[[mesh]]
-file = "sphere.obj"
-material = "paint"
-[[plane]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "floor"
-"#;
+    std::fs::write(
+        dir.join("sphere.obj"),
+        sphere_obj(160, [0.0, 1.0, 0.0], 1.0),
+    )
+    .unwrap();
+    let toml = [
+        path_render(128, 128, 4, 4),
+        camera([0.0, 1.5, -4.0], [0.0, 1.0, 0.0]),
+        environment("D65", 0.3),
+        material("paint", "\"colorchecker#orange\""),
+        material("floor", "\"colorchecker#neutral 5\""),
+        "[[area_light]]\nspectrum = \"FL11\"\nradiance = 8.0\ncorner = [-1.0, 4.0, -1.0]\n\
+         u = [2.0, 0.0, 0.0]\nv = [0.0, 0.0, 2.0]\n"
+            .into(),
+        "[[mesh]]\nfile = \"sphere.obj\"\nmaterial = \"paint\"\n".into(),
+        ground("floor"),
+    ]
+    .concat();
     let path = dir.join("mesh.toml");
     std::fs::write(&path, toml).unwrap();
     render::load(path.to_str().unwrap()).unwrap()

@@ -10,44 +10,33 @@
 //!   triangulated sphere light lights a plane as Lambert's sphere, `ρ·L·(R/d)²`, within the
 //!   tessellation's error plus [`MC_TOL`].
 
-use specpoly::render::{self, scene::SceneFile};
+#[path = "common/scenes.rs"]
+mod scenes;
+
+use scenes::{
+    camera_above, environment, ground, material, path_render, scene, sphere_obj, white_y,
+};
+use specpoly::render;
 use specpoly::repr::Repr;
 use specpoly_core::Observer;
 
 /// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts used.
 const MC_TOL: f64 = 0.01;
 
-fn scene(text: &str) -> render::scene::Scene {
-    SceneFile::parse(text, "test.toml")
-        .unwrap()
-        .resolve("test.toml")
-        .unwrap()
+/// A plane of ColorChecker red under an environment of FL11 at radiance 1.
+fn furnace() -> String {
+    [
+        path_render(4, 4, 4096, 1),
+        camera_above(),
+        environment("FL11", 1.0),
+        material("red", "\"colorchecker#red\""),
+        ground("red"),
+    ]
+    .concat()
 }
-
-const FURNACE: &str = r#"
-[render]
-width = 4
-height = 4
-integrator = "path"
-spp = 4096
-max_depth = 1
-[camera]
-position = [0.0, 2.0, -4.0]
-look_at = [0.0, 0.0, 0.0]
-[environment]
-spectrum = "FL11"
-radiance = 1.0
-[materials.red]
-diffuse = "colorchecker#red"
-[[plane]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "red"
-"#;
-
 #[test]
 fn hero_sampling_converges_to_the_1nm_sum() {
-    let s = scene(FURNACE);
+    let s = scene(&furnace());
     let fl11 = specpoly_core::Illuminant::FL11.tabulated();
     let red = specpoly::spectrum_names::resolve("colorchecker#red")
         .unwrap()
@@ -102,38 +91,6 @@ fn hero_sampling_traces_the_same_paths() {
     assert!((a - b).abs() < 5.0 * MC_TOL * a, "mean Y {b} vs {a}");
 }
 
-/// A latitude–longitude sphere of `n × 2n` quads as OBJ text, outward-facing or not (the
-/// emitter is two-sided).
-fn sphere_obj(n: usize, c: [f32; 3], r: f32) -> String {
-    use std::fmt::Write;
-    let mut obj = String::new();
-    for i in 0..=n {
-        for j in 0..=2 * n {
-            let th = std::f32::consts::PI * i as f32 / n as f32;
-            let ph = std::f32::consts::PI * j as f32 / n as f32;
-            let v = [
-                c[0] + r * th.sin() * ph.cos(),
-                c[1] + r * th.cos(),
-                c[2] + r * th.sin() * ph.sin(),
-            ];
-            writeln!(obj, "v {} {} {}", v[0], v[1], v[2]).unwrap();
-        }
-    }
-    let idx = |i: usize, j: usize| i * (2 * n + 1) + j + 1;
-    for i in 0..n {
-        for j in 0..2 * n {
-            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-            writeln!(obj, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
-        }
-    }
-    obj
-}
-
-fn white_y() -> f64 {
-    let e = specpoly_core::Illuminant::E.tabulated();
-    specpoly_core::exact_xyz(Observer::Cie1931, &e, |_| 1.0).1[1]
-}
-
 #[test]
 fn emissive_sphere_mesh_lights_like_the_analytic_sphere() {
     let dir = tempfile::tempdir().unwrap();
@@ -143,30 +100,17 @@ fn emissive_sphere_mesh_lights_like_the_analytic_sphere() {
         sphere_obj(n, [0.0, 3.0, 0.0], 1.0),
     )
     .unwrap();
-    let text = r#"
-[render]
-width = 1
-height = 1
-integrator = "path"
-spp = 65536
-max_depth = 1
-[camera]
-position = [0.0, 2.0, -4.0]
-look_at = [0.0, 0.0, 0.0]
-fov = 0.2
-[materials.grey]
-diffuse = 0.8
-[[area_light]]
-spectrum = "E"
-radiance = 1.0
-mesh = "ball.obj"
-[[plane]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "grey"
-"#;
+    let text = [
+        path_render(1, 1, 65536, 1),
+        camera_above(),
+        "fov = 0.2\n".into(),
+        material("grey", "0.8"),
+        "[[area_light]]\nspectrum = \"E\"\nradiance = 1.0\nmesh = \"ball.obj\"\n".into(),
+        ground("grey"),
+    ]
+    .concat();
     let path = dir.path().join("s.toml");
-    std::fs::write(&path, text).unwrap();
+    std::fs::write(&path, &text).unwrap();
     let s = render::load(path.to_str().unwrap()).unwrap();
     let img = render::render(&s, Repr::DEFAULT, None).unwrap();
     let y = img.xyz[0].y as f64;

@@ -9,51 +9,32 @@
 //!
 //! Colours are checked against the 1 nm sum of the same spectra (`specpoly_core::exact_xyz`).
 
-use specpoly::render::{self, scene::SceneFile};
+#[path = "common/scenes.rs"]
+mod scenes;
+
+use scenes::{
+    camera_above, environment, ground, material, path_render, scene, sphere_light, white_y,
+};
+use specpoly::render;
 use specpoly::repr::Repr;
-use specpoly_core::Observer;
 
 /// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts used.
 const MC_TOL: f64 = 0.01;
 
-fn scene(text: &str) -> render::scene::Scene {
-    SceneFile::parse(text, "test.toml")
-        .unwrap()
-        .resolve("test.toml")
-        .unwrap()
+/// A grey (0.5) plane under an environment of illuminant E at radiance 1.
+fn furnace() -> String {
+    [
+        path_render(6, 4, 4, 4),
+        camera_above(),
+        environment("E", 1.0),
+        material("grey", "0.5"),
+        ground("grey"),
+    ]
+    .concat()
 }
-
-/// Y of a flat reflectance `rho` under illuminant E at radiance 1 (Y = 100 for white), by the
-/// 1 nm sum.
-fn white_y() -> f64 {
-    let e = specpoly_core::Illuminant::E.tabulated();
-    specpoly_core::exact_xyz(Observer::Cie1931, &e, |_| 1.0).1[1]
-}
-
-const FURNACE: &str = r#"
-[render]
-width = 6
-height = 4
-integrator = "path"
-spp = 4
-max_depth = 4
-[camera]
-position = [0.0, 2.0, -4.0]
-look_at = [0.0, 0.0, 0.0]
-[environment]
-spectrum = "E"
-radiance = 1.0
-[materials.grey]
-diffuse = 0.5
-[[plane]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "grey"
-"#;
-
 #[test]
 fn furnace_plane_under_the_environment_reflects_rho_l() {
-    let s = scene(FURNACE);
+    let s = scene(&furnace());
     for repr in [Repr::DEFAULT, Repr::Exact, Repr::Rgb] {
         let img = render::render(&s, repr, None).unwrap();
         // every pixel sees the plane (camera looks down at it)
@@ -64,36 +45,24 @@ fn furnace_plane_under_the_environment_reflects_rho_l() {
     }
 }
 
-const SPHERE_LIGHT: &str = r#"
-[render]
-width = 1
-height = 1
-integrator = "path"
-spp = 4096
-max_depth = 3
-light_samples = 16
-[camera]
-position = [0.0, 2.0, -4.0]
-look_at = [0.0, 0.0, 0.0]
-fov = 0.2
-[materials.grey]
-diffuse = 0.8
-[[area_light]]
-spectrum = "E"
-radiance = 1.0
-center = [0.0, 3.0, 0.0]
-radius = 1.0
-[[plane]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "grey"
-"#;
-
+/// A grey (0.8) plane under a sphere light of illuminant E at radiance 1, radius 1, 3 above it.
+fn sphere_light_scene() -> String {
+    [
+        path_render(1, 1, 4096, 3),
+        "light_samples = 16\n".into(),
+        camera_above(),
+        "fov = 0.2\n".into(),
+        material("grey", "0.8"),
+        sphere_light("E", 1.0, [0.0, 3.0, 0.0], 1.0),
+        ground("grey"),
+    ]
+    .concat()
+}
 #[test]
 fn sphere_light_over_a_plane_matches_lambert() {
     let exact = 0.8 * white_y() / 9.0;
     for integrator in ["path", "whitted"] {
-        let text = SPHERE_LIGHT.replace(
+        let text = sphere_light_scene().replace(
             "integrator = \"path\"",
             &format!("integrator = \"{integrator}\""),
         );
