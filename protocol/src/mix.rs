@@ -4,7 +4,7 @@
 //! the two cannot answer differently.
 
 use crate::command::{write_curve, Command, Words};
-use crate::number::{parse_u16, write_f32, write_int};
+use crate::number::{parse_u16, write_f32, write_f32_list, write_int, write_int_list};
 use crate::{ErrorCode, Fault, Reply};
 use core::fmt::{self, Write};
 use specpoly_core::light::channels::{Channel, Curve, Goal, MixError, Mixer};
@@ -271,32 +271,13 @@ pub fn answer(mixer: &mut DeviceMixer, cmd: &Command, max: u16) -> Option<Reply>
     }))
 }
 
-fn write_floats<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
-    w.write_char(' ')?;
-    w.write_str(key)?;
-    w.write_char('=')?;
-    for (i, c) in v.iter().enumerate() {
-        if i > 0 {
-            w.write_char(',')?;
-        }
-        write_f32(w, *c)?;
-    }
-    Ok(())
-}
-
 /// Writes `ok mix xy=x,y lum=L light=… duty=… max=M steps=K`.
 pub(crate) fn write_report<W: Write>(w: &mut W, r: &MixReport) -> fmt::Result {
     w.write_str("ok mix")?;
-    write_floats(w, "xy", &r.xy)?;
-    write_floats(w, "lum", &[r.lum])?;
-    write_floats(w, "light", r.light())?;
-    w.write_str(" duty=")?;
-    for (i, d) in r.duty().iter().enumerate() {
-        if i > 0 {
-            w.write_char(',')?;
-        }
-        write_int(w, *d as i64)?;
-    }
+    write_f32_list(w, "xy", &r.xy)?;
+    write_f32_list(w, "lum", &[r.lum])?;
+    write_f32_list(w, "light", r.light())?;
+    write_int_list(w, "duty", r.duty())?;
     w.write_str(" max=")?;
     write_int(w, r.max as i64)?;
     w.write_str(" steps=")?;

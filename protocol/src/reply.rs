@@ -5,7 +5,7 @@
 //! keys without breaking older hosts.
 
 use crate::command::{map_name, write_curve};
-use crate::number::{parse_f32, parse_u16, write_f32, write_int};
+use crate::number::{parse_f32, parse_u16, write_f32_list, write_int, write_int_list};
 use crate::{ErrorCode, Fault, PROTOCOL_VERSION};
 use core::fmt::{self, Write};
 use specpoly_core::{Drive, GamutMap, Observer, Transfer, Xyz};
@@ -139,27 +139,8 @@ pub const SETTINGS: [&str; 8] = [
     "cal", "trc", "map", "observer", "save", "load", "channel", "fade",
 ];
 
-fn write_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
-    w.write_char(' ')?;
-    w.write_str(key)?;
-    w.write_char('=')?;
-    for (i, c) in v.iter().enumerate() {
-        if i > 0 {
-            w.write_char(',')?;
-        }
-        write_f32(w, *c)?;
-    }
-    Ok(())
-}
-
 fn write_duty<W: Write>(w: &mut W, duty: [u16; 3], max: u16) -> fmt::Result {
-    w.write_str(" duty=")?;
-    for (i, d) in duty.iter().enumerate() {
-        if i > 0 {
-            w.write_char(',')?;
-        }
-        write_int(w, *d as i64)?;
-    }
+    write_int_list(w, "duty", &duty)?;
     w.write_str(" max=")?;
     write_int(w, max as i64)
 }
@@ -194,9 +175,9 @@ impl Reply {
             }
             Reply::Colour(c) => {
                 w.write_str("ok colour")?;
-                write_list(w, "xyz", &c.xyz.to_array())?;
-                write_list(w, "led", &c.led.to_array())?;
-                write_list(w, "linear", &c.linear)?;
+                write_f32_list(w, "xyz", &c.xyz.to_array())?;
+                write_f32_list(w, "led", &c.led.to_array())?;
+                write_f32_list(w, "linear", &c.linear)?;
                 write_duty(w, c.duty, c.max)?;
                 w.write_str(" gamut=")?;
                 w.write_str(gamut_name(c.gamut))
@@ -208,7 +189,7 @@ impl Reply {
                 for i in 0..9 {
                     p[i] = s.primaries[i / 3][i % 3];
                 }
-                write_list(w, "primaries", &p)?;
+                write_f32_list(w, "primaries", &p)?;
                 w.write_str(" trc=")?;
                 for (i, c) in s.trc.iter().enumerate() {
                     if i > 0 {
