@@ -13,29 +13,35 @@ pub struct Builtin {
     pub about: &'static str,
 }
 
+impl Builtin {
+    /// The file `text` called `name` on the command line, described by `about`.
+    pub const fn new(name: &'static str, text: &'static str, about: &'static str) -> Self {
+        Builtin { name, text, about }
+    }
+}
+
 /// Every built-in table besides the illuminants.
 pub const TABLES: &[Builtin] = &[
-    Builtin {
-        name: "colorchecker",
-        text: include_str!("../../data/reflectances/colorchecker_babelcolor_average.csv"),
-        about: "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
-    },
-    Builtin {
-        name: "cornell",
-        text: include_str!("../../data/cornell/cornell_box_reflectance.csv"),
-        about: "the Cornell box's measured white, green, red wall reflectances, 400-700 nm @ 4 nm",
-    },
-    Builtin {
-        name: "cornell_light",
-        text: include_str!("../../data/cornell/cornell_box_light.csv"),
-        about: "the Cornell box light's emission spectrum, 400-700 nm @ 100 nm",
-    },
-    Builtin {
-        name: "crt",
-        text: include_str!("../../data/displays/crt_brainard_1997.csv"),
-        about:
-            "a typical CRT's red, green, blue phosphor spectra (Brainard 1997), 380-780 nm @ 5 nm",
-    },
+    Builtin::new(
+        "colorchecker",
+        include_str!("../../data/reflectances/colorchecker_babelcolor_average.csv"),
+        "24 ColorChecker reflectances, BabelColor average, 380-730 nm @ 10 nm",
+    ),
+    Builtin::new(
+        "cornell",
+        include_str!("../../data/cornell/cornell_box_reflectance.csv"),
+        "the Cornell box's measured white, green, red wall reflectances, 400-700 nm @ 4 nm",
+    ),
+    Builtin::new(
+        "cornell_light",
+        include_str!("../../data/cornell/cornell_box_light.csv"),
+        "the Cornell box light's emission spectrum, 400-700 nm @ 100 nm",
+    ),
+    Builtin::new(
+        "crt",
+        include_str!("../../data/displays/crt_brainard_1997.csv"),
+        "a typical CRT's red, green, blue phosphor spectra (Brainard 1997), 380-780 nm @ 5 nm",
+    ),
 ];
 
 /// The shipped ArgyllCMS .ti3 measurements of a real LCD (see data/README.md).

@@ -5,26 +5,26 @@ use crate::data::Builtin;
 
 /// Every built-in scene.
 pub const SCENES: &[Builtin] = &[
-    Builtin {
-        name: "example1",
-        text: include_str!("../../../scenes/example1.toml"),
-        about: "the paper's Example 1: two highly specular red spheres (red paint, Phong 60), D65",
-    },
-    Builtin {
-        name: "example2",
-        text: include_str!("../../../scenes/example2.toml"),
-        about: "the paper's Example 2: the red spheres inside a transparent blue filter cube, D65",
-    },
-    Builtin {
-        name: "interreflection",
-        text: include_str!("../../../scenes/interreflection.toml"),
-        about: "the paper's Figures 1-2: an orange sphere seen in a cyan mirror under FL11",
-    },
-    Builtin {
-        name: "cornell",
-        text: include_str!("../../../scenes/cornell.toml"),
-        about: "the Cornell box with its measured reflectances and light spectrum, path traced",
-    },
+    Builtin::new(
+        "example1",
+        include_str!("../../../scenes/example1.toml"),
+        "the paper's Example 1: two highly specular red spheres (red paint, Phong 60), D65",
+    ),
+    Builtin::new(
+        "example2",
+        include_str!("../../../scenes/example2.toml"),
+        "the paper's Example 2: the red spheres inside a transparent blue filter cube, D65",
+    ),
+    Builtin::new(
+        "interreflection",
+        include_str!("../../../scenes/interreflection.toml"),
+        "the paper's Figures 1-2: an orange sphere seen in a cyan mirror under FL11",
+    ),
+    Builtin::new(
+        "cornell",
+        include_str!("../../../scenes/cornell.toml"),
+        "the Cornell box with its measured reflectances and light spectrum, path traced",
+    ),
 ];
 
 /// The built-in called `name` (case-insensitive).
