@@ -15,6 +15,7 @@ use crate::render::tracer::Integrator;
 use crate::render::{self, builtin, Output};
 use crate::repr::Repr;
 use crate::size::Size;
+use crate::stats::Stats;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -188,14 +189,7 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         let modes: Vec<_> = c
             .modes
             .iter()
-            .map(|m| {
-                serde_json::json!({
-                    "mode": m.repr.to_string(),
-                    "seconds": m.seconds,
-                    "rays": m.image.rays,
-                    "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
-                })
-            })
+            .map(|m| mode_json(m.repr, m.seconds, m.image.rays, &m.stats))
             .collect();
         print_json(&serde_json::json!({
             "scene": a.scene,
@@ -247,4 +241,15 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         render::HEAT_MAX
     );
     Ok(())
+}
+
+/// One mode of a comparison as JSON: its name, time, rays traced and ΔE00 against the 1 nm
+/// reference (mean, 95th percentile, maximum).
+pub(super) fn mode_json(repr: Repr, seconds: f64, rays: u64, s: &Stats) -> serde_json::Value {
+    serde_json::json!({
+        "mode": repr.to_string(),
+        "seconds": seconds,
+        "rays": rays,
+        "delta_e00": { "mean": s.mean, "p95": s.p95, "max": s.max },
+    })
 }

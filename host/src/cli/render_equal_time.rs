@@ -4,7 +4,7 @@
 //! (mean / 95th / max; `--json` for JSON) and writes the images (top row: each mode and the
 //! reference) above their ΔE00 heat maps.
 
-use super::render::RenderArgs;
+use super::render::{mode_json, RenderArgs};
 use crate::error::{CliError, Result};
 use crate::io::progress;
 use crate::io::stdout::{print, print_json};
@@ -68,13 +68,9 @@ pub fn run(a: &RenderArgs, scene: &Scene, out: &Output) -> Result<()> {
             .modes
             .iter()
             .map(|m| {
-                serde_json::json!({
-                    "mode": m.repr.to_string(),
-                    "paths_per_pixel": m.spp,
-                    "seconds": m.seconds,
-                    "rays": m.image.rays,
-                    "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
-                })
+                let mut v = mode_json(m.repr, m.seconds, m.image.rays, &m.stats);
+                v["paths_per_pixel"] = m.spp.into();
+                v
             })
             .collect();
         print_json(&serde_json::json!({
