@@ -314,7 +314,7 @@ impl Meter for Rig {
                     .iter()
                     .map(|d| Patch {
                         kind: PatchKind::Mixed,
-                        device: lut.as_ref().map_or(*d, |l| l.apply(*d)),
+                        device: through(lut, *d),
                     })
                     .collect();
                 let m = measure_all(
@@ -328,10 +328,7 @@ impl Meter for Rig {
                 Ok(m.into_iter().map(|m| m.xyz).collect())
             }
             Rig::Argyll { reader, lut } => {
-                let through: Vec<[f64; 3]> = devices
-                    .iter()
-                    .map(|d| lut.as_ref().map_or(*d, |l| l.apply(*d)))
-                    .collect();
+                let through: Vec<[f64; 3]> = devices.iter().map(|d| through(lut, *d)).collect();
                 let mut out = Vec::with_capacity(devices.len());
                 for chunk in through.chunks(reader.batch().max(1)) {
                     out.extend(reader.measure(chunk)?);
@@ -340,6 +337,11 @@ impl Meter for Rig {
             }
         }
     }
+}
+
+/// The device values sent for `d`: through the video LUT, if one is loaded.
+fn through(lut: &Option<VideoLut>, d: [f64; 3]) -> [f64; 3] {
+    lut.as_ref().map_or(d, |l| l.apply(d))
 }
 
 /// Measures the patches `session` lacks: one at a time with `--display` and `--instrument`
@@ -376,9 +378,7 @@ pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Re
                 .iter()
                 .map(|&i| Patch {
                     kind: set[i].kind,
-                    device: lut
-                        .as_ref()
-                        .map_or(set[i].device, |l| l.apply(set[i].device)),
+                    device: through(lut, set[i].device),
                 })
                 .collect();
             measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, |m| {
@@ -392,13 +392,8 @@ pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Re
             let bar = progress::bar(missing.len() as u64, "measuring", "patches");
             let total = set.len();
             for chunk in missing.chunks(reader.batch()) {
-                let devices: Vec<[f64; 3]> = chunk
-                    .iter()
-                    .map(|&i| {
-                        lut.as_ref()
-                            .map_or(set[i].device, |l| l.apply(set[i].device))
-                    })
-                    .collect();
+                let devices: Vec<[f64; 3]> =
+                    chunk.iter().map(|&i| through(lut, set[i].device)).collect();
                 let first = chunk[0] + 1;
                 let last = chunk[chunk.len() - 1] + 1;
                 let xyz = reader.measure(&devices).map_err(|e| {

@@ -174,20 +174,15 @@ pub fn run(a: &RunArgs) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
-    if let Some(p) = raw_primaries(&set, &taken) {
+    let primaries = raw_primaries(&set, &taken).map(|p| (p, "reading − black"));
+    for (p, what) in primaries
+        .into_iter()
+        .chain(truth.map(|m| (m, "simulation's truth")))
+    {
         for (name, p) in ["red", "green", "blue"].iter().zip(p) {
             let c = xyy(p);
             line(&format!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (reading − black)",
-                c[0], c[1], c[2]
-            ))?;
-        }
-    }
-    if let Some(m) = truth {
-        for (name, p) in ["red", "green", "blue"].iter().zip(m) {
-            let c = xyy(p);
-            line(&format!(
-                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² (simulation's truth)",
+                "  {name:<5} x {:.4}  y {:.4}  Y {:.3} cd/m² ({what})",
                 c[0], c[1], c[2]
             ))?;
         }
