@@ -155,6 +155,30 @@ pub fn cosine_direction(n: V3, u1: f32, u2: f32) -> V3 {
     (t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
 }
 
+/// The sample from `p` (unit shading normal `n`) toward the point `q` of an area light of
+/// `area` whose cosine toward `dir` is `cos_l(dir)`: weight `cos θ · cos θ_l · A / d²`; `None`
+/// if `q` cannot light `p`.
+#[inline]
+fn toward_area(p: V3, n: V3, q: V3, area: f32, cos_l: impl Fn(V3) -> f32) -> Option<LightSample> {
+    let to = q - p;
+    let d2 = to.dot(to);
+    if d2 <= 0.0 {
+        return None;
+    }
+    let dist = d2.sqrt();
+    let dir = to * (1.0 / dist);
+    let cos = n.dot(dir);
+    let cos_l = cos_l(dir);
+    if cos <= 0.0 || cos_l <= 0.0 {
+        return None;
+    }
+    Some(LightSample {
+        dir,
+        dist,
+        weight: cos * cos_l * area / d2,
+    })
+}
+
 impl Emitter {
     /// Samples a direction from `p` (unit shading normal `n`) toward the light from
     /// `(u1, u2) ∈ [0, 1)²`; `None` if the sample cannot light `p` (behind the light, or
@@ -164,45 +188,13 @@ impl Emitter {
         match *self {
             Emitter::Mesh(ref m) => {
                 let (q, nl) = m.point(u1, u2);
-                let to = q - p;
-                let d2 = to.dot(to);
-                if d2 <= 0.0 {
-                    return None;
-                }
-                let dist = d2.sqrt();
-                let dir = to * (1.0 / dist);
-                let cos = n.dot(dir);
-                let cos_l = nl.dot(dir).abs();
-                if cos <= 0.0 || cos_l <= 0.0 {
-                    return None;
-                }
-                Some(LightSample {
-                    dir,
-                    dist,
-                    weight: cos * cos_l * m.area / d2,
-                })
+                toward_area(p, n, q, m.area, |dir| nl.dot(dir).abs())
             }
             Emitter::Rect { corner, u, v } => {
                 let q = corner + u * u1 + v * u2;
-                let to = q - p;
-                let d2 = to.dot(to);
-                if d2 <= 0.0 {
-                    return None;
-                }
-                let dist = d2.sqrt();
-                let dir = to * (1.0 / dist);
-                let cos = n.dot(dir);
                 let nl = u.cross(v);
                 let area = nl.length();
-                let cos_l = -(nl * (1.0 / area)).dot(dir);
-                if cos <= 0.0 || cos_l <= 0.0 {
-                    return None;
-                }
-                Some(LightSample {
-                    dir,
-                    dist,
-                    weight: cos * cos_l * area / d2,
-                })
+                toward_area(p, n, q, area, |dir| -(nl * (1.0 / area)).dot(dir))
             }
             Emitter::Sphere { center, radius } => {
                 let to = center - p;
