@@ -176,6 +176,13 @@ pub fn criteria_table(outcomes: &[Outcome], level: Level) -> String {
     t
 }
 
+/// The opening tag of a figure `id` with a view box of `width × height`.
+fn svg_open(id: &str, width: u32, height: u32) -> String {
+    format!(
+        "<svg id=\"{id}\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {width} {height}\" role=\"img\">"
+    )
+}
+
 /// Plot area of a figure: `(left, top, width, height)` inside its view box.
 struct Frame {
     left: f64,
@@ -187,6 +194,18 @@ struct Frame {
 }
 
 impl Frame {
+    /// A plot area of `width × height` at (60, 15) (room for the axes' labels) showing `x` and
+    /// `y`.
+    fn new(width: f64, height: f64, x: (f64, f64), y: (f64, f64)) -> Frame {
+        Frame {
+            left: 60.0,
+            top: 15.0,
+            width,
+            height,
+            x,
+            y,
+        }
+    }
     fn px(&self, x: f64) -> f64 {
         self.left + (x - self.x.0) / (self.x.1 - self.x.0) * self.width
     }
@@ -248,17 +267,8 @@ impl Frame {
 
 /// The u′v′ diagram: spectral locus, the display's gamut, sRGB and Display P3, the white.
 pub fn gamut_svg(cal: &Calibration) -> String {
-    let f = Frame {
-        left: 60.0,
-        top: 15.0,
-        width: 520.0,
-        height: 480.0,
-        x: (0.0, 0.65),
-        y: (0.0, 0.6),
-    };
-    let mut s = String::from(
-        "<svg id=\"gamut\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 880 550\" role=\"img\">",
-    );
+    let f = Frame::new(520.0, 480.0, (0.0, 0.65), (0.0, 0.6));
+    let mut s = svg_open("gamut", 880, 550);
     s.push_str(&f.axes((0.1, 0.1), ("u′", "v′"), 1));
     // the spectral locus from the observer table, closed by the purple line
     let t = Observer::Cie1931.table();
@@ -476,17 +486,8 @@ pub fn ramp(v: &Verification, channel: Option<usize>) -> Vec<(f64, f64)> {
 
 /// Measured tone curves against the target.
 pub fn tone_svg(v: &Verification, target: &Transfer) -> String {
-    let f = Frame {
-        left: 60.0,
-        top: 15.0,
-        width: 480.0,
-        height: 400.0,
-        x: (0.0, 1.0),
-        y: (0.0, 1.0),
-    };
-    let mut s = String::from(
-        "<svg id=\"tone\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 760 470\" role=\"img\">",
-    );
+    let f = Frame::new(480.0, 400.0, (0.0, 1.0), (0.0, 1.0));
+    let mut s = svg_open("tone", 760, 470);
     s.push_str(&f.axes(
         (0.2, 0.2),
         ("device value", "relative luminance above black"),
