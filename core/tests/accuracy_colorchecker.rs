@@ -6,6 +6,10 @@
 //! over 380–780 nm; products of reflectances taken at 1 nm. The crate under test fits each
 //! reflectance, multiplies with degree reduction, and integrates against the light's moments.
 
+#[path = "common/reference_1nm.rs"]
+mod reference_1nm;
+
+use reference_1nm::{cmf_1nm, light_1nm, read, to_1nm};
 use specpoly_core::{
     delta_e2000, Illuminant, Lab, Layout, Moments, Observer, Paper, Spectrum, Tabulated, Uniform,
 };
@@ -17,46 +21,15 @@ struct Data {
     raw: Vec<Vec<f32>>,
 }
 
-fn read(path: &str) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text =
-        std::fs::read_to_string(format!("{}/../data/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap();
-    let mut lines = text.lines();
-    let head = lines.next().unwrap().split(',').map(String::from).collect();
-    let rows = lines
-        .map(|l| l.split(',').map(|c| c.trim().parse().unwrap()).collect())
-        .collect();
-    (head, rows)
-}
-
-fn interp(x: &[f64], y: &[f64], nm: f64) -> f64 {
-    if nm <= x[0] {
-        return y[0];
-    }
-    if nm >= x[x.len() - 1] {
-        return y[y.len() - 1];
-    }
-    let i = x.iter().position(|v| *v > nm).unwrap();
-    y[i - 1] + (y[i] - y[i - 1]) * (nm - x[i - 1]) / (x[i] - x[i - 1])
-}
-
 fn data() -> Data {
-    let (_, c) = read("cmf/cie1964_10deg_1nm.csv");
-    let cmf = (380..=780)
-        .map(|nm| {
-            let r = c.iter().find(|r| r[0] as i32 == nm).unwrap();
-            [r[1], r[2], r[3]]
-        })
-        .collect();
+    let cmf = cmf_1nm("cie1964_10deg_1nm.csv");
     let (head, rows) = read("reflectances/colorchecker_babelcolor_average.csv");
     let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
     let mut refl = Vec::new();
     let mut raw = Vec::new();
     for (j, name) in head.iter().enumerate().skip(1) {
         let y: Vec<f64> = rows.iter().map(|r| r[j]).collect();
-        refl.push((
-            name.clone(),
-            (380..=780).map(|nm| interp(&x, &y, nm as f64)).collect(),
-        ));
+        refl.push((name.clone(), to_1nm(&x, &y)));
         raw.push(y.iter().map(|v| *v as f32).collect());
     }
     Data {
@@ -65,13 +38,6 @@ fn data() -> Data {
         wl: x.iter().map(|v| *v as f32).collect(),
         raw,
     }
-}
-
-fn light_1nm(file: &str) -> Vec<f64> {
-    let (_, rows) = read(&format!("illuminants/{file}.csv"));
-    let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-    let y: Vec<f64> = rows.iter().map(|r| r[1]).collect();
-    (380..=780).map(|nm| interp(&x, &y, nm as f64)).collect()
 }
 
 /// Reference XYZ and white of a 1 nm reflectance under a 1 nm light.

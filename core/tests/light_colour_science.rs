@@ -6,6 +6,10 @@
 //! colour-science integrates 5 nm data at 5 nm (CRI after Sprague interpolation to 1 nm) with the
 //! tabulated samples; we integrate the linear interpolant at 1 nm with fitted samples.
 
+#[path = "common/light_data.rs"]
+mod light_data;
+
+use light_data::{csv, lamp_spds, table};
 use specpoly_core::light::{cct, cri::cri, tm30::tm30, Samples, Source};
 use specpoly_core::Tabulated;
 
@@ -21,20 +25,6 @@ const R9_TOL: f64 = 2.0;
 const RF_TOL: f64 = 0.5;
 const RG_TOL: f64 = 0.5;
 
-fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut lines = text
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
-    let head = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines.map(split_row).collect();
-    (head, rows)
-}
-
 /// Splits a row whose first field may hold commas (`rgbwa:0.2,0.1,...`): the last 8 fields are
 /// numbers.
 fn split_row(l: &str) -> Vec<String> {
@@ -46,24 +36,6 @@ fn split_row(l: &str) -> Vec<String> {
     let mut v = vec![parts[..k].join(",")];
     v.extend(parts[k..].iter().map(|s| s.to_string()));
     v
-}
-
-fn table(text: &str) -> (Vec<f32>, Vec<(String, Vec<f32>)>) {
-    let (head, rows) = csv(text);
-    let rows: Vec<Vec<String>> = rows
-        .into_iter()
-        .map(|r| r.join(",").split(',').map(str::to_string).collect())
-        .collect();
-    let nm = rows.iter().map(|r| r[0].parse().unwrap()).collect();
-    let cols = (1..head.len())
-        .map(|c| {
-            (
-                head[c].clone(),
-                rows.iter().map(|r| r[c].parse().unwrap()).collect(),
-            )
-        })
-        .collect();
-    (nm, cols)
 }
 
 /// The SPD a reference row names: a lamp, a built-in illuminant, or `SET:d1,d2,…` (a mix of the
@@ -92,14 +64,16 @@ fn spd(name: &str) -> (Vec<f32>, Vec<f32>) {
         let t = i.tabulated();
         return (t.wavelengths().to_vec(), t.values().to_vec());
     }
-    let (nm, cols) = table(include_str!("data/light_spds_5nm.csv"));
+    let (nm, cols) = lamp_spds();
     let v = cols.into_iter().find(|(n, _)| n == name).unwrap().1;
     (nm, v)
 }
 
 #[test]
 fn agrees_with_colour_science() {
+    // a row's first field may hold commas
     let (_, rows) = csv(include_str!("data/light_colour_science.csv"));
+    let rows: Vec<Vec<String>> = rows.iter().map(|r| split_row(&r.join(","))).collect();
     let tcs = Samples::cie13_3();
     let ces = Samples::cie224();
     let mut worst = [0.0f64; 8];

@@ -3,6 +3,10 @@
 //! calculator's example lamp) and the ANSI/IES TM-30-18 calculator (FL2: Rf, Rg, CCT, Duv).
 //! Data and sources: `data/light_published.csv`; the lamps' SPDs: `data/light_spds_5nm.csv`.
 
+#[path = "common/light_data.rs"]
+mod light_data;
+
+use light_data::{csv, lamp_spds};
 use specpoly_core::light::{cri::cri, tm30::tm30, Samples, Source};
 use specpoly_core::Tabulated;
 
@@ -17,39 +21,9 @@ const RG_TOL: f64 = 0.5 + 0.25;
 const CCT_TOL: f64 = 1.5;
 const DUV_TOL: f64 = 0.00015;
 
-fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut lines = text
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
-    let head = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(|c| c.trim().to_string()).collect())
-        .collect();
-    (head, rows)
-}
-
-fn spds() -> (Vec<f32>, Vec<(String, Vec<f32>)>) {
-    let (head, rows) = csv(include_str!("data/light_spds_5nm.csv"));
-    let nm = rows.iter().map(|r| r[0].parse().unwrap()).collect();
-    let cols = (1..head.len())
-        .map(|c| {
-            (
-                head[c].clone(),
-                rows.iter().map(|r| r[c].parse().unwrap()).collect(),
-            )
-        })
-        .collect();
-    (nm, cols)
-}
-
 #[test]
 fn published_ra_rf_rg_cct() {
-    let (nm, lights) = spds();
+    let (nm, lights) = lamp_spds();
     let (head, rows) = csv(include_str!("data/light_published.csv"));
     let tcs = Samples::cie13_3();
     let ces = Samples::cie224();

@@ -27,7 +27,7 @@ mod cli;
 use specpoly::io::{cgats, ti1};
 use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
 /// Chromaticity tolerance of the fake device's primaries (its noise is ≤ 0.04 cd/m² on
@@ -87,13 +87,8 @@ fn contained(program: &Path, fakebus: &Path) -> Command {
 /// Runs `cmd` in `dir` with a deadline, collecting its output.
 fn run(mut cmd: Command, dir: &Path, timeout: Duration) -> Done {
     let t = Instant::now();
-    let mut child = cmd
-        .current_dir(dir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start the command");
+    let mut child = cli::spawn_piped(cmd.current_dir(dir));
+    drop(child.stdin.take());
     let mut out = child.stdout.take().unwrap();
     let mut err = child.stderr.take().unwrap();
     let o = std::thread::spawn(move || {

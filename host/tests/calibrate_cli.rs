@@ -1,30 +1,13 @@
 //! `specpoly calibrate fit/show/predict/verify/icc` through the real binary, and bad input:
 //! one line on stderr, exit 1 (2 for usage), no panic, no partial output file.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
-const ACER: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
-);
+#[path = "common/cli.rs"]
+mod cli;
 
-fn specpoly(args: &[&str], stdin: &str) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    c.stdin.take().unwrap().write_all(stdin.as_bytes()).unwrap();
-    c.wait_with_output().unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use cli::{output_with_stdin as specpoly, s, ACER};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).to_string()

@@ -2,43 +2,30 @@
 //! run; its panel levels and dithered RGB565 codes must equal the Rust transform's on a sample
 //! of pixels. The Rust form is compiled by the firmware's build (firmware/build.rs, QEMU tests).
 
+#[path = "common/cli.rs"]
+mod cli;
+
+use cli::s;
 use specpoly::calibrate::file;
 use specpoly_core::pixel::{Dither, Options, PanelTransform, Source, White};
 use specpoly_core::GamutMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn specpoly(args: &[&std::ffi::OsStr]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("specpoly runs")
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
-}
-
+/// A calibration fitted to the Acer's readings, in `dir`.
 fn acer_calibration(dir: &Path) -> PathBuf {
     let toml = dir.join("acer.toml");
-    let ti3 = repo().join("data/ti3/acer-xb271hu-unit1_dispread_2068.ti3");
-    let out = specpoly(&[
-        "calibrate".as_ref(),
-        "fit".as_ref(),
-        "--ti3".as_ref(),
-        ti3.as_os_str(),
-        "-o".as_ref(),
-        toml.as_os_str(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let r = cli::run(&["calibrate", "fit", "--ti3", cli::ACER, "-o", s(&toml)]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
     toml
+}
+
+/// `specpoly calibrate export --calibration CAL ARGS… -o OUT`.
+fn export(cal: &Path, args: &[&str], out: &Path) -> cli::Run {
+    let mut all = vec!["calibrate", "export", "--calibration", s(cal)];
+    all.extend_from_slice(args);
+    all.extend(["-o", s(out)]);
+    cli::run(&all)
 }
 
 const MAIN_C: &str = r#"
@@ -63,26 +50,13 @@ fn c_tables_compute_what_the_rust_transform_computes() {
     let dir = tempfile::tempdir().unwrap();
     let toml = acer_calibration(dir.path());
     let header = dir.path().join("acer.h");
-    let out = specpoly(&[
-        "calibrate".as_ref(),
-        "export".as_ref(),
-        "--calibration".as_ref(),
-        toml.as_os_str(),
-        "--source".as_ref(),
-        "p3".as_ref(),
-        "--format".as_ref(),
-        "c-table".as_ref(),
-        "--name".as_ref(),
-        "acer".as_ref(),
-        "-o".as_ref(),
-        header.as_os_str(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let out = export(
+        &toml,
+        &["--source", "p3", "--format", "c-table", "--name", "acer"],
+        &header,
     );
-    assert!(String::from_utf8_lossy(&out.stderr).starts_with("wrote "));
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(out.stderr.starts_with("wrote "));
 
     std::fs::write(dir.path().join("main.c"), MAIN_C).unwrap();
     let exe = dir.path().join("levels");
@@ -128,58 +102,24 @@ fn rust_source_and_bad_arguments() {
     let dir = tempfile::tempdir().unwrap();
     let toml = acer_calibration(dir.path());
     let rs = dir.path().join("panel.rs");
-    let out = specpoly(&[
-        "calibrate".as_ref(),
-        "export".as_ref(),
-        "--calibration".as_ref(),
-        toml.as_os_str(),
-        "--format".as_ref(),
-        "rust".as_ref(),
-        "--bits".as_ref(),
-        "rgb888".as_ref(),
-        "-o".as_ref(),
-        rs.as_os_str(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = export(&toml, &["--format", "rust", "--bits", "rgb888"], &rs);
+    assert_eq!(out.code, 0, "{}", out.stderr);
     let text = std::fs::read_to_string(&rs).unwrap();
     assert!(text.contains("pub static PANEL: specpoly_core::pixel::PixelTransform<1088, 256, 448>"));
     assert!(text.contains("bits: [8, 8, 8]"));
 
     // a name that is no identifier: usage error, nothing written
     let bad = dir.path().join("bad.h");
-    let out = specpoly(&[
-        "calibrate".as_ref(),
-        "export".as_ref(),
-        "--calibration".as_ref(),
-        toml.as_os_str(),
-        "--format".as_ref(),
-        "c-table".as_ref(),
-        "--name".as_ref(),
-        "9lives".as_ref(),
-        "-o".as_ref(),
-        bad.as_os_str(),
-    ]);
-    assert_eq!(out.status.code(), Some(2));
+    let out = export(&toml, &["--format", "c-table", "--name", "9lives"], &bad);
+    assert_eq!(out.code, 2);
     assert!(!bad.exists());
     // a missing calibration: a usage error (as in every command), nothing written
-    let out = specpoly(&[
-        "calibrate".as_ref(),
-        "export".as_ref(),
-        "--calibration".as_ref(),
-        dir.path().join("none.toml").as_os_str(),
-        "--format".as_ref(),
-        "c-table".as_ref(),
-        "-o".as_ref(),
-        bad.as_os_str(),
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert_eq!(
-        String::from_utf8_lossy(&out.stderr).trim().lines().count(),
-        1
+    let out = export(
+        &dir.path().join("none.toml"),
+        &["--format", "c-table"],
+        &bad,
     );
+    assert_eq!(out.code, 2);
+    assert_eq!(out.stderr.trim().lines().count(), 1);
     assert!(!bad.exists());
 }

@@ -5,6 +5,10 @@
 //! predicts its patches within a mean ΔE00 of [`ARGYLL_DE`] (an independent model of the same
 //! display); broken and non-display profiles are one-line errors.
 
+#[path = "common/cli.rs"]
+mod cli;
+
+use cli::{output as specpoly, s};
 use specpoly::calibrate::file::{self, Calibration};
 use specpoly::calibrate::fit::{fit, FitOptions, InteractionChoice};
 use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
@@ -19,17 +23,6 @@ const RGB: f64 = 2e-3;
 const RGB_TABLES: f64 = 5e-3;
 /// Mean ΔE00 over the .ti3's patches of the display read from an ArgyllCMS profile.
 const ARGYLL_DE: f64 = 1.0;
-
-fn specpoly(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 /// The matrix model (what a `Display` and a matrix/TRC profile hold).
 fn acer() -> Calibration {
@@ -56,6 +49,14 @@ fn rgb_of(display: &Path) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// The largest difference of any component between `got` and `want`.
+fn max_difference(got: &[[f64; 3]], want: &[[f64; 3]]) -> f64 {
+    got.iter()
+        .zip(want)
+        .flat_map(|(g, w)| (0..3).map(move |k| (g[k] - w[k]).abs()))
+        .fold(0.0, f64::max)
+}
+
 #[test]
 fn our_profiles_give_the_calibrations_device_values() {
     let dir = tempfile::tempdir().unwrap();
@@ -76,12 +77,7 @@ fn our_profiles_give_the_calibrations_device_values() {
         )
         .unwrap();
         std::fs::write(&p, b).unwrap();
-        let got = rgb_of(&p);
-        let worst = got
-            .iter()
-            .zip(&want)
-            .flat_map(|(g, w)| (0..3).map(move |k| (g[k] - w[k]).abs()))
-            .fold(0.0, f64::max);
+        let worst = max_difference(&rgb_of(&p), &want);
         eprintln!("{version:?}: max |ΔRGB| {worst:.2e}");
         assert!(worst < RGB, "{version:?}: {worst}");
         // the LED controller's lines come from the same loader
@@ -110,12 +106,7 @@ fn our_profiles_give_the_calibrations_device_values() {
     }
     let p = dir.path().join("tables.icc");
     std::fs::write(&p, b).unwrap();
-    let got = rgb_of(&p);
-    let worst = got
-        .iter()
-        .zip(&want)
-        .flat_map(|(g, w)| (0..3).map(move |k| (g[k] - w[k]).abs()))
-        .fold(0.0, f64::max);
+    let worst = max_difference(&rgb_of(&p), &want);
     eprintln!("tables only: max |ΔRGB| {worst:.2e}");
     assert!(worst < RGB_TABLES, "{worst}");
 }

@@ -6,119 +6,86 @@
 #[path = "common/calibrate_run.rs"]
 mod common;
 
-use serialport::{SerialPort, TTYPort};
+#[path = "common/pty.rs"]
+mod pty;
+
+use pty::{Answer, FakePort};
 use specpoly::calibrate::patches;
 use specpoly::led::Model;
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
 use specpoly_protocol::{Command, Reply};
-use std::io::{ErrorKind, Read, Write};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 const MAX: u16 = 4095;
 
-/// A fake controller; returns its port and the duties it drove.
-fn fake_controller(stop: Arc<AtomicBool>) -> (String, TTYPort, Arc<Mutex<Vec<[u16; 3]>>>) {
-    let (master, slave) = TTYPort::pair().unwrap();
-    let mut port = master.try_clone_native().unwrap();
-    drop(master);
-    port.set_timeout(Duration::from_millis(20)).unwrap();
-    let path = slave.name().unwrap();
+/// A fake controller; returns it and the duties it drove.
+fn fake_controller() -> (FakePort, Arc<Mutex<Vec<[u16; 3]>>>) {
     let duties = Arc::new(Mutex::new(Vec::new()));
     let d = duties.clone();
-    std::thread::spawn(move || {
+    let port = pty::spawn(move |port, stop| {
         let mut xy = [[0.64f32, 0.33], [0.3, 0.6], [0.15, 0.06]];
         let mut lum = [0.2126f32, 0.7152, 0.0722];
         let mut trc = [Transfer::Srgb, Transfer::Srgb, Transfer::Srgb];
         let mut map = GamutMap::Clip;
-        let mut buf = Vec::new();
-        while !stop.load(Ordering::SeqCst) {
-            let mut b = [0u8; 256];
-            match port.read(&mut b) {
-                Ok(n) => buf.extend_from_slice(&b[..n]),
-                Err(e) if e.kind() == ErrorKind::TimedOut => continue,
-                Err(_) => {
-                    std::thread::sleep(Duration::from_millis(10));
-                    continue;
+        pty::serve_lines(port, stop, |text| {
+            let reply = match Command::parse(text.trim()) {
+                Ok(Command::Hello) => Reply::hello(MAX),
+                Ok(Command::Calibrate { xy: x, luminance }) => {
+                    xy = x;
+                    lum = luminance;
+                    Reply::Done("cal")
                 }
-            }
-            while let Some(i) = buf.iter().position(|c| *c == b'\n') {
-                let l: Vec<u8> = buf.drain(..=i).collect();
-                let text = String::from_utf8_lossy(&l).trim().to_string();
-                let reply = match Command::parse(&text) {
-                    Ok(Command::Hello) => Reply::hello(MAX),
-                    Ok(Command::Calibrate { xy: x, luminance }) => {
-                        xy = x;
-                        lum = luminance;
-                        Reply::Done("cal")
-                    }
-                    Ok(Command::Transfer { channels, curve }) => {
-                        for (k, t) in trc.iter_mut().enumerate() {
-                            if channels.includes(k) {
-                                *t = curve.clone();
-                            }
+                Ok(Command::Transfer { channels, curve }) => {
+                    for (k, t) in trc.iter_mut().enumerate() {
+                        if channels.includes(k) {
+                            *t = curve.clone();
                         }
-                        Reply::Done("trc")
                     }
-                    Ok(Command::Map(m)) => {
-                        map = m;
-                        Reply::Done("map")
-                    }
-                    Ok(Command::Xyz(x)) => {
-                        let display =
-                            Display::from_primaries(xy, lum, Xyz::default(), trc.clone()).unwrap();
-                        let model = Model {
-                            display,
-                            map,
-                            observer: Observer::Cie1931,
-                            max: MAX,
-                        };
-                        let c = model.colour(x);
-                        d.lock().unwrap().push(c.duty);
-                        Reply::Colour(c)
-                    }
-                    Ok(other) => panic!("unexpected command {other:?}"),
-                    Err(f) => Reply::Error(f),
-                };
-                let mut s = String::new();
-                reply.write(&mut s).unwrap();
-                s.push('\n');
-                let _ = port.write_all(s.as_bytes());
-                let _ = port.flush();
-            }
-        }
+                    Reply::Done("trc")
+                }
+                Ok(Command::Map(m)) => {
+                    map = m;
+                    Reply::Done("map")
+                }
+                Ok(Command::Xyz(x)) => {
+                    let display =
+                        Display::from_primaries(xy, lum, Xyz::default(), trc.clone()).unwrap();
+                    let model = Model {
+                        display,
+                        map,
+                        observer: Observer::Cie1931,
+                        max: MAX,
+                    };
+                    let c = model.colour(x);
+                    d.lock().unwrap().push(c.duty);
+                    Reply::Colour(c)
+                }
+                Ok(other) => panic!("unexpected command {other:?}"),
+                Err(f) => Reply::Error(f),
+            };
+            let mut s = String::new();
+            reply.write(&mut s).unwrap();
+            Answer::Line(s)
+        })
     });
-    (path, slave, duties)
+    (port, duties)
 }
 
 #[test]
 fn led_controller_as_the_display() {
-    let stop = Arc::new(AtomicBool::new(false));
-    let (path, _slave, duties) = fake_controller(stop.clone());
+    let (fake, duties) = fake_controller();
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("led.toml");
-    let display = format!("led:{path}");
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            &display,
-            "--instrument",
-            "sim:crt,noise=0.001",
-            "--ramp-steps",
-            "5",
-            "--verify",
-            "4",
-            "--settle",
-            "0",
-            "-o",
-            cal.to_str().unwrap(),
-        ],
+    let display = format!("led:{}", fake.path);
+    let done = common::calibrate(
+        &display,
+        "sim:crt,noise=0.001",
+        &["--ramp-steps", "5", "--verify", "4", "--settle", "0"],
+        cal.to_str().unwrap(),
         Duration::from_secs(60),
     );
-    stop.store(true, Ordering::SeqCst);
+    drop(fake);
     assert_eq!(done.code, Some(0), "{done:?}");
     assert!(done.stdout.contains("LED controller on"), "{done:?}");
     assert!(cal.is_file());
@@ -141,17 +108,11 @@ fn led_controller_as_the_display() {
 fn no_controller_on_the_port() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("led.toml");
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "led:/dev/specpoly-no-such-port",
-            "--instrument",
-            "sim:crt",
-            "-o",
-            cal.to_str().unwrap(),
-        ],
+    let done = common::calibrate(
+        "led:/dev/specpoly-no-such-port",
+        "sim:crt",
+        &[],
+        cal.to_str().unwrap(),
         Duration::from_secs(30),
     );
     assert_eq!(done.code, Some(1), "{done:?}");

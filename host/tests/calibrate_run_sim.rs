@@ -17,18 +17,13 @@ fn xyy(p: [f64; 3]) -> [f64; 3] {
 fn run_sim(display: &str, extra: &[&str]) -> (tempfile::TempDir, common::Finished) {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("crt.toml");
-    let mut args = vec![
-        "calibrate",
-        "run",
-        "--display",
+    let done = common::calibrate(
         display,
-        "--instrument",
         "sim",
-        "-o",
+        extra,
         cal.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let done = common::run(&args, Duration::from_secs(120));
+        Duration::from_secs(120),
+    );
     (dir, done)
 }
 
@@ -123,20 +118,12 @@ fn manual_display_waits_for_enter() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("m.toml");
     let n = patches::standard(3, 1).unwrap().len();
-    let mut run = common::start(&[
-        "calibrate",
-        "run",
-        "--display",
+    let mut run = common::start(&common::calibrate_args(
         "manual",
-        "--instrument",
         "sim:crt",
-        "--ramp-steps",
-        "3",
-        "--verify",
-        "1",
-        "-o",
+        &["--ramp-steps", "3", "--verify", "1"],
         cal.to_str().unwrap(),
-    ]);
+    ));
     run.stdin(&"\n".repeat(n));
     let done = run.finish(Duration::from_secs(60));
     assert_eq!(done.code, Some(0), "{done:?}");
@@ -145,17 +132,12 @@ fn manual_display_waits_for_enter() {
     assert_eq!(common::ti3_rows(&dir.path().join("m.ti3")).len(), n);
 
     // `q` stops; what was measured stays (--force: the first run's readings go to m.ti3.1)
-    let mut run = common::start(&[
-        "calibrate",
-        "run",
-        "--display",
+    let mut run = common::start(&common::calibrate_args(
         "manual",
-        "--instrument",
         "sim:crt",
-        "--force",
-        "-o",
+        &["--force"],
         cal.to_str().unwrap(),
-    ]);
+    ));
     run.stdin("\n\n\nq\n");
     let done = run.finish(Duration::from_secs(60));
     assert_eq!(done.code, Some(1), "{done:?}");
@@ -180,17 +162,11 @@ fn usage_errors_exit_2() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let cal = dir.path().join("x.toml");
-        let done = common::run(
-            &[
-                "calibrate",
-                "run",
-                "--display",
-                display,
-                "--instrument",
-                instrument,
-                "-o",
-                cal.to_str().unwrap(),
-            ],
+        let done = common::calibrate(
+            display,
+            instrument,
+            &[],
+            cal.to_str().unwrap(),
             Duration::from_secs(30),
         );
         assert_eq!(done.code, Some(2), "{display} {instrument}: {done:?}");
@@ -200,19 +176,11 @@ fn usage_errors_exit_2() {
         );
         assert_eq!(done.stderr.trim().lines().count(), 1, "{done:?}");
     }
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "sim:crt",
-            "--instrument",
-            "sim",
-            "--ramp-steps",
-            "1",
-            "-o",
-            "x.toml",
-        ],
+    let done = common::calibrate(
+        "sim:crt",
+        "sim",
+        &["--ramp-steps", "1"],
+        "x.toml",
         Duration::from_secs(30),
     );
     assert_eq!(done.code, Some(2), "{done:?}");

@@ -263,17 +263,11 @@ fn binary_no_instrument() {
         ..Faults::default()
     });
     let inst = format!("serial:{},timeout=0.3,retries=0", emu.path);
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "sim:crt",
-            "--instrument",
-            &inst,
-            "-o",
-            cal.to_str().unwrap(),
-        ],
+    let done = common::calibrate(
+        "sim:crt",
+        &inst,
+        &[],
+        cal.to_str().unwrap(),
         Duration::from_secs(30),
     );
     assert_eq!(done.code, Some(1), "{done:?}");
@@ -282,17 +276,11 @@ fn binary_no_instrument() {
         "{done:?}"
     );
     assert_eq!(done.stderr.trim().lines().count(), 1, "{done:?}");
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            "sim:crt",
-            "--instrument",
-            "serial:/dev/specpoly-no-such-port",
-            "-o",
-            cal.to_str().unwrap(),
-        ],
+    let done = common::calibrate(
+        "sim:crt",
+        "serial:/dev/specpoly-no-such-port",
+        &[],
+        cal.to_str().unwrap(),
         Duration::from_secs(30),
     );
     assert_eq!(done.code, Some(1), "{done:?}");

@@ -187,19 +187,11 @@ fn the_cli_writes_the_cal_the_ti3_and_the_calibration() {
     let cal = dir.path().join("warm.toml");
     let spec = "sim:crt,white_xy=0.345:0.357,black=0.2,noise=0.001,seed=11";
     let t = "white=D65,gamma=2.2,luminance=70";
-    let done = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            spec,
-            "--instrument",
-            "sim",
-            "--target",
-            t,
-            "-o",
-            cal.to_str().unwrap(),
-        ],
+    let done = common::calibrate(
+        spec,
+        "sim",
+        &["--target", t],
+        cal.to_str().unwrap(),
         Duration::from_secs(120),
     );
     assert_eq!(done.code, Some(0), "{done:?}");
@@ -236,19 +228,11 @@ fn the_cli_writes_the_cal_the_ti3_and_the_calibration() {
     }
     assert!(dir.path().join("warm.native.ti3").exists());
     // a bad target is a usage error
-    let bad = common::run(
-        &[
-            "calibrate",
-            "run",
-            "--display",
-            spec,
-            "--instrument",
-            "sim",
-            "--target",
-            "gamma=12",
-            "-o",
-            dir.path().join("x.toml").to_str().unwrap(),
-        ],
+    let bad = common::calibrate(
+        spec,
+        "sim",
+        &["--target", "gamma=12"],
+        dir.path().join("x.toml").to_str().unwrap(),
         Duration::from_secs(30),
     );
     assert_eq!(bad.code, Some(2), "{bad:?}");

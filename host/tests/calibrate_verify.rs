@@ -8,6 +8,10 @@
 #[path = "common/calibrate_run.rs"]
 mod common;
 
+#[path = "common/cli.rs"]
+mod cli;
+
+use cli::{output as specpoly, s, ACER};
 use specpoly::calibrate::criteria::CRITERIA;
 use specpoly_core::{de2000_terms, Lab};
 use std::io::Write;
@@ -18,11 +22,6 @@ use std::time::{Duration, Instant};
 /// Sharma's table is published to 4 decimals; our terms must agree to that rounding (one unit
 /// in the last place, as the inputs are rounded too).
 const TABLE_TOL: f64 = 1e-4;
-
-const ACER: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
-);
 
 /// One row of Sharma's Table 1.
 struct Row {
@@ -121,22 +120,6 @@ fn grey_balance_term_of_a_neutral_reference_has_its_closed_form() {
     }
 }
 
-fn specpoly(args: &[&str]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let _ = c.stdin.take();
-    c.wait_with_output().unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
 /// The Acer's calibration, fitted once per test run (into Cargo's per-target temporary folder).
 fn fitted() -> PathBuf {
     static CAL: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
@@ -172,6 +155,13 @@ fn lab_of(xyz: [f64; 3], white: [f64; 3]) -> [f64; 3] {
     [l.l, l.a, l.b]
 }
 
+/// `specpoly calibrate verify --calibration CAL --ti3 TI3 MORE…`.
+fn verify(cal: &Path, ti3: &str, more: &[&str]) -> Output {
+    let mut a = vec!["calibrate", "verify", "--calibration", s(cal), "--ti3", ti3];
+    a.extend_from_slice(more);
+    specpoly(&a)
+}
+
 fn arr(v: &serde_json::Value) -> [f64; 3] {
     let a = v.as_array().expect("an array");
     [0, 1, 2].map(|k| a[k].as_f64().expect("a number"))
@@ -180,15 +170,7 @@ fn arr(v: &serde_json::Value) -> [f64; 3] {
 #[test]
 fn verify_json_agrees_with_palette_and_passes_on_its_own_data() {
     let cal = fitted();
-    let o = specpoly(&[
-        "calibrate",
-        "verify",
-        "--calibration",
-        s(&cal),
-        "--ti3",
-        ACER,
-        "--json",
-    ]);
+    let o = verify(&cal, ACER, &["--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
     assert_eq!(v["pass"], true);
@@ -270,14 +252,7 @@ fn a_failed_tolerance_exits_1_after_the_table() {
     }
     let bad = dir.path().join("cast.ti3");
     std::fs::write(&bad, out).unwrap();
-    let o = specpoly(&[
-        "calibrate",
-        "verify",
-        "--calibration",
-        s(&cal),
-        "--ti3",
-        s(&bad),
-    ]);
+    let o = verify(&cal, s(&bad), &[]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
@@ -296,17 +271,7 @@ fn a_failed_tolerance_exits_1_after_the_table() {
 fn report(dir: &Path) -> (String, serde_json::Value) {
     let cal = fitted();
     let html = dir.join("report.html");
-    let o = specpoly(&[
-        "calibrate",
-        "verify",
-        "--calibration",
-        s(&cal),
-        "--ti3",
-        ACER,
-        "--report",
-        s(&html),
-        "--json",
-    ]);
+    let o = verify(&cal, ACER, &["--report", s(&html), "--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains(&format!("wrote {}", html.display())), "{err}");

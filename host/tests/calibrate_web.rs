@@ -122,22 +122,12 @@ fn live_page_follows_the_patches() {
 fn calibrate_run_with_chromium_as_the_screen() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("cal.toml");
-    let mut run = common::start(&[
-        "calibrate",
-        "run",
-        "--display",
+    let mut run = common::start(&common::calibrate_args(
         "web,wait=60,timeout=20",
-        "--instrument",
         "sim:crt,noise=0.0005",
-        "--ramp-steps",
-        "4",
-        "--verify",
-        "3",
-        "--settle",
-        "0",
-        "-o",
+        &["--ramp-steps", "4", "--verify", "3", "--settle", "0"],
         cal.to_str().unwrap(),
-    ]);
+    ));
     let url = run.web_url();
     let _b = open_live(&url, &dir.path().join("profile"));
     let done = run.finish(Duration::from_secs(120));

@@ -4,29 +4,18 @@
 //! on one line — clap's and TOML's included — without Rust `Debug` forms, and `calibrate predict`
 //! answering each line of a pipe as it arrives.
 
+#[path = "common/cli.rs"]
+mod cli;
+
+use cli::{text, ACER, ROOT};
 use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
-const ACER: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
-);
-
 fn specpoly(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .current_dir(ROOT)
-        .stdin(Stdio::null())
-        .output()
-        .expect("run specpoly")
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
+    cli::output_in(ROOT, args)
 }
 
 /// Exit `code`, exactly one line on stderr starting `specpoly: error: `, nothing on stdout,
@@ -316,18 +305,6 @@ fn json_everywhere_results_are_printed() {
         ),
         ("calibrate show", vec!["calibrate", "show", &cal, "--json"]),
         (
-            "calibrate verify",
-            vec![
-                "calibrate",
-                "verify",
-                "--calibration",
-                &cal,
-                "--ti3",
-                ACER,
-                "--json",
-            ],
-        ),
-        (
             "render",
             vec![
                 "render",
@@ -346,21 +323,12 @@ fn json_everywhere_results_are_printed() {
     }
     // calibrate run: progress on stderr, the result as JSON on stdout
     let run_cal = dir.path().join("crt.toml");
-    let r = specpoly(&[
-        "calibrate",
-        "run",
-        "--display",
+    let r = specpoly(&cli::calibrate_run(
         "sim:crt,seed=1",
-        "--instrument",
         "sim",
-        "--ramp-steps",
-        "3",
-        "--verify",
-        "2",
-        "-o",
+        &["--ramp-steps", "3", "--verify", "2", "--json"],
         run_cal.to_str().unwrap(),
-        "--json",
-    ]);
+    ));
     let v = json(&r, "calibrate run");
     for k in [
         "readings",
@@ -376,6 +344,7 @@ fn json_everywhere_results_are_printed() {
         err.contains(&format!("wrote {}", run_cal.display())),
         "{err}"
     );
+    // calibrate verify (with the other commands' checks of its JSON)
     let v = json(
         &specpoly(&[
             "calibrate",
@@ -386,7 +355,7 @@ fn json_everywhere_results_are_printed() {
             ACER,
             "--json",
         ]),
-        "verify",
+        "calibrate verify",
     );
     for k in [
         "delta_e00",

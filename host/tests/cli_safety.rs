@@ -2,25 +2,18 @@
 //! each bad input ends promptly with one error line and exit code 1 or 2 (never a panic, exit
 //! 101, or a signal), or, where the input is legitimate, succeeds.
 
-use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::Duration;
+#[path = "common/cli.rs"]
+mod cli;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
+use cli::{s, Run};
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
 
 /// Runs specpoly, killing it (and failing the test) after `limit`.
 fn specpoly_within(args: &[&str], limit: Duration) -> Run {
-    let child = Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run specpoly");
+    let mut child = cli::spawn_piped(Command::new(env!("CARGO_BIN_EXE_specpoly")).args(args));
+    drop(child.stdin.take());
     let pid = child.id();
     let (tx, rx) = std::sync::mpsc::channel();
     std::thread::spawn(move || tx.send(child.wait_with_output()));
@@ -28,12 +21,7 @@ fn specpoly_within(args: &[&str], limit: Duration) -> Run {
         let _ = Command::new("kill").args(["-9", &pid.to_string()]).status();
         panic!("specpoly {args:?} still running after {limit:?}");
     };
-    let out = out.unwrap();
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
+    out.unwrap().into()
 }
 
 fn specpoly(args: &[&str]) -> Run {
@@ -46,10 +34,6 @@ fn fails(r: &Run, code: i32, needle: &str) {
     assert!(!r.stderr.contains("panicked"), "{}", r.stderr);
     assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
     assert!(r.stderr.contains(needle), "`{needle}` not in: {}", r.stderr);
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// A one-column spectral CSV, 380–780 nm every 10 nm, every value `v`.
@@ -107,29 +91,16 @@ fn huge_waits_and_timeouts_are_usage_errors() {
     let dir = tempfile::tempdir().unwrap();
     let cal = dir.path().join("cal.toml");
     for display in ["web,wait=1e20", "web,timeout=3e19"] {
-        let r = specpoly(&[
-            "calibrate",
-            "run",
-            "--display",
-            display,
-            "--instrument",
-            "sim",
-            "-o",
-            s(&cal),
-        ]);
+        let r = specpoly(&cli::calibrate_run(display, "sim", &[], s(&cal)));
         assert!(r.code == 1 || r.code == 2, "{}", r.stderr);
         fails(&r, r.code, "86400");
     }
-    let r = specpoly(&[
-        "calibrate",
-        "run",
-        "--display",
+    let r = specpoly(&cli::calibrate_run(
         "manual",
-        "--instrument",
         "sim,measure-timeout=1e300",
-        "-o",
+        &[],
         s(&cal),
-    ]);
+    ));
     assert!(r.code == 1 || r.code == 2, "{}", r.stderr);
     assert!(!r.stderr.contains("panicked"), "{}", r.stderr);
     let r = specpoly(&[

@@ -5,83 +5,38 @@
 
 #[path = "common/cli.rs"]
 mod cli;
+#[path = "../../core/tests/common/reference_1nm.rs"]
+mod reference_1nm;
 
 use palette::color_difference::Ciede2000;
 use palette::white_point::D65 as PD65;
 
 use cli::specpoly;
-
-fn csv(path: &str) -> (Vec<String>, Vec<Vec<f64>>) {
-    let p = format!("{}/../data/{path}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&p).expect(&p);
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let head = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(|s| s.trim().to_string())
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(|c| c.trim().parse().unwrap()).collect())
-        .collect();
-    (head, rows)
-}
-
-/// Linear interpolation at 380..=780 nm, holding the end values.
-fn to_1nm(x: &[f64], y: &[f64]) -> Vec<f64> {
-    (380..=780)
-        .map(|nm| {
-            let nm = nm as f64;
-            if nm <= x[0] {
-                return y[0];
-            }
-            if nm >= x[x.len() - 1] {
-                return y[y.len() - 1];
-            }
-            let i = x.iter().position(|v| *v > nm).unwrap();
-            y[i - 1] + (y[i] - y[i - 1]) * (nm - x[i - 1]) / (x[i] - x[i - 1])
-        })
-        .collect()
-}
+use reference_1nm::{cmf_1nm, column_at, light_1nm, read, to_1nm};
 
 fn cmf(observer: &str) -> Vec<[f64; 3]> {
-    let file = if observer == "1931" {
-        "cmf/cie1931_2deg_1nm.csv"
+    cmf_1nm(if observer == "1931" {
+        "cie1931_2deg_1nm.csv"
     } else {
-        "cmf/cie1964_10deg_1nm.csv"
-    };
-    let (_, rows) = csv(file);
-    (380..=780)
-        .map(|nm| {
-            let r = rows.iter().find(|r| r[0] as i32 == nm).unwrap();
-            [r[1], r[2], r[3]]
-        })
-        .collect()
-}
-
-fn light(name: &str) -> Vec<f64> {
-    let (_, rows) = csv(&format!("illuminants/{name}.csv"));
-    let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-    let y: Vec<f64> = rows.iter().map(|r| r[1]).collect();
-    to_1nm(&x, &y)
+        "cie1964_10deg_1nm.csv"
+    })
 }
 
 fn patch(name: &str) -> Vec<f64> {
-    let (head, rows) = csv("reflectances/colorchecker_babelcolor_average.csv");
+    let (head, rows) = read("reflectances/colorchecker_babelcolor_average.csv");
     let j = head
         .iter()
         .position(|h| h == name)
         .or_else(|| head.iter().position(|h| h.starts_with(&format!("{name} "))))
         .expect(name);
-    let x: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-    let y: Vec<f64> = rows.iter().map(|r| r[j]).collect();
+    let (x, y) = column_at(&rows, j);
     to_1nm(&x, &y)
 }
 
 /// Independent reference: (XYZ, Lab) of the product of `patches` under `illum`.
 fn reference(patches: &[&str], illum: &str, observer: &str) -> ([f64; 3], [f64; 3]) {
     let c = cmf(observer);
-    let s = light(illum);
+    let s = light_1nm(illum);
     let r: Vec<Vec<f64>> = patches.iter().map(|p| patch(p)).collect();
     let (mut xyz, mut w) = ([0.0; 3], [0.0; 3]);
     for i in 0..401 {

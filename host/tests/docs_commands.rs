@@ -17,15 +17,18 @@
 //!   - `<!-- docs-test: fake-led PORT -->`: `PORT` is replaced by a pseudo-terminal on which a
 //!     fake LED controller answers as the firmware does (the host's [`specpoly::led::Model`]).
 
-use serialport::{SerialPort, TTYPort};
+#[path = "common/pty.rs"]
+mod pty;
+
+use pty::{Answer, FakePort};
+use serialport::TTYPort;
 use specpoly::led::{MixModel, Model};
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
-use specpoly_protocol::{Command, CurveSummary, LineReader, Reply, StateReport, MAX_LINE};
-use std::io::{ErrorKind, Read, Write};
+use specpoly_protocol::{Command, CurveSummary, Reply, StateReport};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// A fenced command block.
 #[derive(Debug)]
@@ -152,114 +155,66 @@ fn copy_tree(from: &Path, to: &Path) {
 
 /// A fake LED controller on a pseudo-terminal, answering as the firmware does (Rec. 709
 /// primaries, linear curves, 65 535 ticks), until dropped.
-struct FakeLed {
-    path: String,
-    stop: Arc<AtomicBool>,
-    thread: Option<std::thread::JoinHandle<()>>,
-    _slave: TTYPort,
+fn fake_led() -> FakePort {
+    pty::spawn(serve)
 }
 
-impl Drop for FakeLed {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::SeqCst);
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
-    }
-}
-
-fn fake_led() -> FakeLed {
-    let (master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
-    let mut master = master.try_clone_native().expect("clone the master");
-    master.set_timeout(Duration::from_millis(20)).unwrap();
-    let path = slave.name().expect("the slave's name");
-    let stop = Arc::new(AtomicBool::new(false));
-    let s = stop.clone();
-    let thread = std::thread::spawn(move || serve(master, s));
-    FakeLed {
-        path,
-        stop,
-        thread: Some(thread),
-        _slave: slave,
-    }
-}
-
-fn serve(mut port: TTYPort, stop: Arc<AtomicBool>) {
+fn serve(port: TTYPort, stop: Arc<AtomicBool>) {
     let srgb = Display::srgb();
     let (mut xy, mut lum) = srgb.primaries();
     let mut map = GamutMap::Clip;
     let mut mix = MixModel::new(u16::MAX);
-    let mut lines = LineReader::<MAX_LINE>::new();
-    while !stop.load(Ordering::SeqCst) {
-        let mut buf = [0u8; 256];
-        let n = match port.read(&mut buf) {
-            Ok(n) => n,
-            Err(e) if e.kind() == ErrorKind::TimedOut => continue,
-            Err(_) => {
-                std::thread::sleep(Duration::from_millis(10));
-                continue;
-            }
-        };
-        for byte in &buf[..n] {
-            let Some(line) = lines.push(*byte) else {
-                continue;
-            };
-            let Ok(line) = line.map(str::to_owned) else {
-                continue;
-            };
-            if line.trim().is_empty() {
-                continue;
-            }
-            let t = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
-            let model = Model {
-                display: Display::from_primaries(xy, lum, Xyz::default(), t).unwrap(),
-                map,
-                observer: Observer::Cie1931,
-                max: u16::MAX,
-            };
-            let parsed = Command::parse(&line);
-            // the mixing commands (`channel`, `xy`, `cct`, `fade`) as the firmware's mixer
-            let mixed = parsed.as_ref().ok().and_then(|c| mix.answer(c));
-            let reply = match (mixed, parsed) {
-                (Some(r), _) => r,
-                (None, Err(f)) => Reply::Error(f),
-                (None, Ok(c)) => match c {
-                    Command::Hello => Reply::hello(model.max),
-                    Command::State => Reply::State(StateReport {
-                        protocol: 1,
-                        primaries: [0, 1, 2].map(|i| [xy[i][0], xy[i][1], lum[i]]),
-                        trc: [CurveSummary::Linear; 3],
-                        map,
-                        observer: model.observer,
-                        duty: [0; 3],
-                        max: model.max,
-                    }),
-                    Command::Calibrate { xy: x, luminance } => {
-                        xy = x;
-                        lum = luminance;
-                        Reply::Done("cal")
-                    }
-                    Command::Map(m) => {
-                        map = m;
-                        Reply::Done("map")
-                    }
-                    Command::Xyz(v) => model.answer(v),
-                    Command::Reflect {
-                        illuminant,
-                        product,
-                        ..
-                    } => model.answer(model.reflectance_xyz(illuminant, &product)),
-                    Command::Transfer { .. } => Reply::Done("trc"),
-                    _ => Reply::Done("ok"),
-                },
-            };
-            let mut s = String::new();
-            reply.write(&mut s).unwrap();
-            s.push('\n');
-            let _ = port.write_all(s.as_bytes());
-            let _ = port.flush();
+    pty::serve_lines(port, stop, |line| {
+        if line.trim().is_empty() {
+            return Answer::Nothing;
         }
-    }
+        let t = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
+        let model = Model {
+            display: Display::from_primaries(xy, lum, Xyz::default(), t).unwrap(),
+            map,
+            observer: Observer::Cie1931,
+            max: u16::MAX,
+        };
+        let parsed = Command::parse(line);
+        // the mixing commands (`channel`, `xy`, `cct`, `fade`) as the firmware's mixer
+        let mixed = parsed.as_ref().ok().and_then(|c| mix.answer(c));
+        let reply = match (mixed, parsed) {
+            (Some(r), _) => r,
+            (None, Err(f)) => Reply::Error(f),
+            (None, Ok(c)) => match c {
+                Command::Hello => Reply::hello(model.max),
+                Command::State => Reply::State(StateReport {
+                    protocol: 1,
+                    primaries: [0, 1, 2].map(|i| [xy[i][0], xy[i][1], lum[i]]),
+                    trc: [CurveSummary::Linear; 3],
+                    map,
+                    observer: model.observer,
+                    duty: [0; 3],
+                    max: model.max,
+                }),
+                Command::Calibrate { xy: x, luminance } => {
+                    xy = x;
+                    lum = luminance;
+                    Reply::Done("cal")
+                }
+                Command::Map(m) => {
+                    map = m;
+                    Reply::Done("map")
+                }
+                Command::Xyz(v) => model.answer(v),
+                Command::Reflect {
+                    illuminant,
+                    product,
+                    ..
+                } => model.answer(model.reflectance_xyz(illuminant, &product)),
+                Command::Transfer { .. } => Reply::Done("trc"),
+                _ => Reply::Done("ok"),
+            },
+        };
+        let mut s = String::new();
+        reply.write(&mut s).unwrap();
+        Answer::Line(s)
+    })
 }
 
 #[test]
@@ -291,7 +246,7 @@ fn every_command_in_the_docs_runs_as_written() {
         }
         let n = copies.iter().position(|f| *f == b.file).unwrap() + 1;
         let root = tmp.path().join(n.to_string());
-        let mut replace: Option<(String, FakeLed)> = None;
+        let mut replace: Option<(String, FakePort)> = None;
         match b.directive.as_deref() {
             None => {}
             Some(d) if d.starts_with("skip") => {

@@ -3,16 +3,17 @@
 //! silent device, a device that goes away, no such port — each a one-line error, exit code 1,
 //! no panic. (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
 
-use serialport::{SerialPort, TTYPort};
+#[path = "common/pty.rs"]
+mod pty;
+
+use pty::{Answer, FakePort};
+use serialport::TTYPort;
 use specpoly::led::{MixModel, Model};
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
-use specpoly_protocol::{Command, CurveSummary, LineReader, Reply, StateReport, MAX_LINE};
-use std::io::{ErrorKind, Read, Write};
+use specpoly_protocol::{Command, CurveSummary, Reply, StateReport};
 use std::process::Output;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
-use std::thread::JoinHandle;
-use std::time::Duration;
 
 #[derive(Clone, Copy)]
 enum Behaviour {
@@ -30,39 +31,8 @@ enum Behaviour {
     Unplug,
 }
 
-struct Fake {
-    path: String,
-    stop: Arc<AtomicBool>,
-    thread: Option<JoinHandle<()>>,
-    _slave: TTYPort,
-}
-
-impl Drop for Fake {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::SeqCst);
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
-    }
-}
-
-fn fake(b: Behaviour) -> Fake {
-    let (master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
-    // a clone with close-on-exec, so the `specpoly` child does not keep the pty up
-    let mut master = master.try_clone_native().expect("clone the master");
-    master
-        .set_timeout(Duration::from_millis(20))
-        .expect("master timeout");
-    let path = slave.name().expect("the slave's name");
-    let stop = Arc::new(AtomicBool::new(false));
-    let s = stop.clone();
-    let thread = std::thread::spawn(move || serve(master, b, s));
-    Fake {
-        path,
-        stop,
-        thread: Some(thread),
-        _slave: slave,
-    }
+fn fake(b: Behaviour) -> FakePort {
+    pty::spawn(move |port, stop| serve(port, b, stop))
 }
 
 fn srgb_model() -> Model {
@@ -130,40 +100,17 @@ fn answer(b: Behaviour, model: &Model, mix: &mut MixModel, line: &str) -> String
     s
 }
 
-fn serve(mut port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
+fn serve(port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
     let model = srgb_model();
     let mut mix = MixModel::new(model.max);
-    let mut lines = LineReader::<MAX_LINE>::new();
-    while !stop.load(Ordering::SeqCst) {
-        let mut buf = [0u8; 256];
-        let n = match port.read(&mut buf) {
-            Ok(n) => n,
-            Err(e) if e.kind() == ErrorKind::TimedOut => continue,
-            Err(_) => {
-                std::thread::sleep(Duration::from_millis(10));
-                continue;
-            }
-        };
-        for byte in &buf[..n] {
-            let Some(line) = lines.push(*byte) else {
-                continue;
-            };
-            let Ok(line) = line.map(str::to_owned) else {
-                continue;
-            };
-            if matches!(b, Behaviour::Silent) {
-                continue;
-            }
-            let out = answer(b, &model, &mut mix, &line);
-            let _ = port.write_all(out.as_bytes());
-            let _ = port.write_all(b"\r\n");
-            let _ = port.flush();
-            if matches!(b, Behaviour::Unplug) && line == "hello" {
-                // dropping the only master hangs the pty up
-                return;
-            }
+    pty::serve_lines(port, stop, |line| match b {
+        Behaviour::Silent => Answer::Nothing,
+        // dropping the only master hangs the pty up
+        Behaviour::Unplug if line == "hello" => {
+            Answer::LineThenHangUp(answer(b, &model, &mut mix, line))
         }
-    }
+        _ => Answer::Line(answer(b, &model, &mut mix, line)),
+    })
 }
 
 fn specpoly(args: &[&str]) -> Output {

@@ -11,43 +11,12 @@
 //! summed here at 1 nm over 380–780 nm from the data files themselves (linear interpolation,
 //! end values held), independently of the library's own sums.
 
+#[path = "../../core/tests/common/reference_1nm.rs"]
+mod reference_1nm;
+
+use reference_1nm::{column, interp};
 use specpoly::render;
 use specpoly::repr::Repr;
-use std::path::PathBuf;
-
-fn data(rel: &str) -> String {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../data")
-        .join(rel);
-    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-}
-
-/// `(wavelengths, column)` of a CSV.
-fn column(text: &str, name: &str) -> (Vec<f64>, Vec<f64>) {
-    let mut lines = text
-        .lines()
-        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let k = header.iter().position(|h| h.trim() == name).unwrap();
-    let (mut w, mut v) = (Vec::new(), Vec::new());
-    for l in lines {
-        let c: Vec<f64> = l.split(',').map(|x| x.trim().parse().unwrap()).collect();
-        w.push(c[0]);
-        v.push(c[k]);
-    }
-    (w, v)
-}
-
-fn lerp(w: &[f64], v: &[f64], nm: f64) -> f64 {
-    if nm <= w[0] {
-        return v[0];
-    }
-    if nm >= w[w.len() - 1] {
-        return v[v.len() - 1];
-    }
-    let i = w.iter().position(|x| *x > nm).unwrap();
-    v[i - 1] + (v[i] - v[i - 1]) * (nm - w[i - 1]) / (w[i] - w[i - 1])
-}
 
 const SCENE: &str = r#"
 [render]
@@ -73,26 +42,22 @@ material = "paint"
 
 #[test]
 fn centre_pixel_matches_a_hand_derived_1nm_sum() {
-    let refl = column(
-        &data("reflectances/colorchecker_babelcolor_average.csv"),
-        "orange",
-    );
-    let light = column(&data("illuminants/FL2.csv"), "relative_power");
-    let cmf_text = data("cmf/cie1931_2deg_1nm.csv");
+    let refl = column("reflectances/colorchecker_babelcolor_average.csv", "orange");
+    let light = column("illuminants/FL2.csv", "relative_power");
     let cmf: Vec<(Vec<f64>, Vec<f64>)> = ["x_bar", "y_bar", "z_bar"]
         .iter()
-        .map(|n| column(&cmf_text, n))
+        .map(|n| column("cmf/cie1931_2deg_1nm.csv", n))
         .collect();
     let mut sum = [0.0f64; 3];
     let mut white_y = 0.0;
     for nm in 380..=780 {
         let nm = nm as f64;
-        let s = lerp(&light.0, &light.1, nm);
-        let r = lerp(&refl.0, &refl.1, nm);
+        let s = interp(&light.0, &light.1, nm);
+        let r = interp(&refl.0, &refl.1, nm);
         for k in 0..3 {
-            sum[k] += r * s * lerp(&cmf[k].0, &cmf[k].1, nm);
+            sum[k] += r * s * interp(&cmf[k].0, &cmf[k].1, nm);
         }
-        white_y += s * lerp(&cmf[1].0, &cmf[1].1, nm);
+        white_y += s * interp(&cmf[1].0, &cmf[1].1, nm);
     }
     let geometry = 0.8 * 0.6;
     let expected = sum.map(|v| geometry * 100.0 * v / white_y);

@@ -1,19 +1,18 @@
 //! `specpoly render` through the real binary: outputs, determinism, and scene errors as one
 //! line on stderr with the right exit code and no output file left behind.
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn specpoly(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
+    cli::output_in(dir, args)
 }
 
 fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    cli::text(&o.stderr)
 }
 
 const GOOD: &str = r#"

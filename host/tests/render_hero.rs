@@ -14,29 +14,21 @@
 mod scenes;
 
 use scenes::{
-    camera_above, environment, ground, material, path_render, scene, sphere_obj, white_y,
+    camera_above, furnace, ground, material, path_render, scene, sphere_obj, white_y, MC_TOL,
 };
 use specpoly::render;
 use specpoly::repr::Repr;
 use specpoly_core::Observer;
 
-/// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts used.
-const MC_TOL: f64 = 0.01;
-
-/// A plane of ColorChecker red under an environment of FL11 at radiance 1.
-fn furnace() -> String {
-    [
-        path_render(4, 4, 4096, 1),
-        camera_above(),
-        environment("FL11", 1.0),
-        material("red", "\"colorchecker#red\""),
-        ground("red"),
-    ]
-    .concat()
-}
 #[test]
 fn hero_sampling_converges_to_the_1nm_sum() {
-    let s = scene(&furnace());
+    let s = scene(&furnace(
+        (4, 4),
+        4096,
+        1,
+        "FL11",
+        ("red", "\"colorchecker#red\""),
+    ));
     let fl11 = specpoly_core::Illuminant::FL11.tabulated();
     let red = specpoly::spectrum_names::resolve("colorchecker#red")
         .unwrap()

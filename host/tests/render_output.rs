@@ -3,20 +3,12 @@
 //! ICC profile in `iCCP` (byte-identical to `specpoly calibrate icc`), and an unknown extension
 //! as a usage error that leaves no file.
 
+#[path = "common/cli.rs"]
+mod cli;
+
+use cli::{output as specpoly, ACER};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-const ACER: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
-);
-
-fn specpoly(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn ok(args: &[&str]) -> Output {
     let o = specpoly(args);

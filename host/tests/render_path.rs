@@ -13,28 +13,14 @@
 mod scenes;
 
 use scenes::{
-    camera_above, environment, ground, material, path_render, scene, sphere_light, white_y,
+    camera_above, furnace, ground, material, path_render, scene, sphere_light, white_y, MC_TOL,
 };
 use specpoly::render;
 use specpoly::repr::Repr;
 
-/// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts used.
-const MC_TOL: f64 = 0.01;
-
-/// A grey (0.5) plane under an environment of illuminant E at radiance 1.
-fn furnace() -> String {
-    [
-        path_render(6, 4, 4, 4),
-        camera_above(),
-        environment("E", 1.0),
-        material("grey", "0.5"),
-        ground("grey"),
-    ]
-    .concat()
-}
 #[test]
 fn furnace_plane_under_the_environment_reflects_rho_l() {
-    let s = scene(&furnace());
+    let s = scene(&furnace((6, 4), 4, 4, "E", ("grey", "0.5")));
     for repr in [Repr::DEFAULT, Repr::Exact, Repr::Rgb] {
         let img = render::render(&s, repr, None).unwrap();
         // every pixel sees the plane (camera looks down at it)

@@ -6,11 +6,17 @@
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Command};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+
+#[path = "cli.rs"]
+mod cli;
+
+#[allow(unused_imports)]
+pub use cli::calibrate_run as calibrate_args;
 
 /// The binary under test.
 pub fn bin() -> Command {
@@ -38,13 +44,7 @@ pub struct Running {
 
 /// Starts `specpoly ARGS` with piped stdout/stderr (and stdin).
 pub fn start(args: &[&str]) -> Running {
-    let mut child = bin()
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start specpoly");
+    let mut child = cli::spawn_piped(bin().args(args));
     let out = child.stdout.take().unwrap();
     let mut err = child.stderr.take().unwrap();
     let (tx, rx) = mpsc::channel();
@@ -155,6 +155,18 @@ pub fn start_web(args: &[&str], shown: Arc<Mutex<[f64; 3]>>) -> (Running, FakeBr
     let url = run.web_url();
     let browser = fake_browser_into(&url, shown);
     (run, browser)
+}
+
+/// `specpoly calibrate run --display DISPLAY --instrument INSTRUMENT MORE… -o OUT` to the end
+/// (at most `timeout`).
+pub fn calibrate(
+    display: &str,
+    instrument: &str,
+    more: &[&str],
+    out: &str,
+    timeout: Duration,
+) -> Finished {
+    run(&cli::calibrate_run(display, instrument, more, out), timeout)
 }
 
 /// One HTTP GET on the loopback; the body.

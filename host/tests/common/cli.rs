@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 
 /// The repository's root (the data files' paths in the docs are relative to it).
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
@@ -53,6 +53,14 @@ pub fn output_in(dir: impl AsRef<Path>, args: &[&str]) -> Output {
         .expect("run specpoly")
 }
 
+/// `specpoly ARGS` in the crate's folder with `stdin` on its standard input.
+pub fn output_with_stdin(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    let mut c = spawn_piped(Command::new(env!("CARGO_BIN_EXE_specpoly")).args(args));
+    c.stdin.take().unwrap().write_all(stdin.as_bytes()).unwrap();
+    c.wait_with_output().unwrap()
+}
+
 /// `specpoly ARGS` in the crate's folder, as a [`Run`].
 pub fn run(args: &[&str]) -> Run {
     output(args).into()
@@ -66,6 +74,15 @@ pub fn run_in(dir: impl AsRef<Path>, args: &[&str]) -> Run {
 /// `specpoly ARGS` in the crate's folder: `(code, stdout, stderr)`.
 pub fn specpoly(args: &[&str]) -> (i32, String, String) {
     run(args).parts()
+}
+
+/// Starts `c` with its stdin, stdout and stderr piped to the test.
+pub fn spawn_piped(c: &mut Command) -> Child {
+    c.stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("start {c:?}: {e}"))
 }
 
 fn command(args: &[&str]) -> Command {

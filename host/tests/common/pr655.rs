@@ -4,8 +4,12 @@
 //! (the XYZ of the patch on screen). Faults make it misbehave on given measurements.
 #![allow(dead_code)]
 
-use serialport::{SerialPort, TTYPort};
-use std::io::{ErrorKind, Read, Write};
+#[path = "pty.rs"]
+mod pty;
+
+use pty::FakePort;
+use serialport::TTYPort;
+use std::io::Write;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
@@ -36,27 +40,15 @@ pub struct Faults {
     pub noise: bool,
 }
 
-/// A running emulator.
+/// A running emulator; stops when dropped.
 pub struct Emulator {
     /// The port to open (`/dev/pts/N`).
     pub path: String,
-    stop: Arc<AtomicBool>,
     /// `M1` commands received so far.
     pub measurements: Arc<AtomicUsize>,
     /// `Q` commands (back to local mode) received so far.
     pub quits: Arc<AtomicUsize>,
-    thread: Option<std::thread::JoinHandle<()>>,
-    // held open so the pty stays up between the driver's open and close
-    _slave: TTYPort,
-}
-
-impl Drop for Emulator {
-    fn drop(&mut self) {
-        self.stop.store(true, Ordering::SeqCst);
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
-    }
+    _port: FakePort,
 }
 
 impl Emulator {
@@ -81,27 +73,15 @@ pub fn c_exp(v: f64) -> String {
 
 /// Starts an emulator measuring `source`.
 pub fn spawn(source: impl Fn() -> [f64; 3] + Send + 'static, faults: Faults) -> Emulator {
-    let (master, slave) = TTYPort::pair().expect("a pseudo-terminal pair");
-    // `pair` opens the master without close-on-exec: a `specpoly` started by the test would
-    // inherit it and keep the pty up after the emulator "unplugs". The clone is
-    // close-on-exec (F_DUPFD_CLOEXEC); the original is closed at once.
-    let mut master = master.try_clone_native().expect("clone the master");
-    let path = slave.name().expect("the slave's name");
-    master
-        .set_timeout(Duration::from_millis(20))
-        .expect("master timeout");
-    let stop = Arc::new(AtomicBool::new(false));
     let count = Arc::new(AtomicUsize::new(0));
     let quits = Arc::new(AtomicUsize::new(0));
-    let (s, c, q) = (stop.clone(), count.clone(), quits.clone());
-    let thread = std::thread::spawn(move || run(master, source, faults, s, c, q));
+    let (c, q) = (count.clone(), quits.clone());
+    let port = pty::spawn(move |master, stop| run(master, source, faults, stop, c, q));
     Emulator {
-        path,
-        stop,
+        path: port.path.clone(),
         measurements: count,
         quits,
-        thread: Some(thread),
-        _slave: slave,
+        _port: port,
     }
 }
 
@@ -115,6 +95,7 @@ fn run(
 ) {
     let mut buf: Vec<u8> = Vec::new();
     let mut last = [0.0f64; 3];
+    let mut b = [0u8; 256];
     let noise = f.noise;
     let echo = f.echo;
     let echo_back = |port: &mut TTYPort, cmd: &[u8]| {
@@ -133,15 +114,9 @@ fn run(
         let _ = port.flush();
     };
     while !stop.load(Ordering::SeqCst) {
-        let mut b = [0u8; 256];
-        match port.read(&mut b) {
-            Ok(n) => buf.extend_from_slice(&b[..n]),
-            Err(e) if e.kind() == ErrorKind::TimedOut => continue,
-            Err(_) => {
-                // nobody has the slave open at the moment
-                std::thread::sleep(Duration::from_millis(10));
-                continue;
-            }
+        match pty::read_some(&mut port, &mut b) {
+            Some(bytes) => buf.extend_from_slice(bytes),
+            None => continue,
         }
         if f.silent {
             buf.clear();

@@ -8,6 +8,10 @@
 use specpoly::render::scene::{Scene, SceneFile};
 use specpoly_core::Observer;
 
+/// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts the
+/// render tests use.
+pub const MC_TOL: f64 = 0.01;
+
 /// A scene from its TOML text (names resolve against the working directory).
 pub fn scene(text: &str) -> Scene {
     SceneFile::parse(text, "test.toml")
@@ -59,6 +63,25 @@ pub fn ground(material: &str) -> String {
     format!(
         "[[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\nmaterial = \"{material}\"\n"
     )
+}
+
+/// The furnace: the ground of material `name` (`diffuse` as in [`material`]) under a uniform
+/// environment of `spectrum` at radiance 1, seen from above by the path tracer.
+pub fn furnace(
+    (width, height): (u32, u32),
+    spp: u32,
+    max_depth: u32,
+    spectrum: &str,
+    (name, diffuse): (&str, &str),
+) -> String {
+    [
+        path_render(width, height, spp, max_depth),
+        camera_above(),
+        environment(spectrum, 1.0),
+        material(name, diffuse),
+        ground(name),
+    ]
+    .concat()
 }
 
 /// A latitude–longitude sphere of `n × 2n` quads (two triangles each) around `c` of radius `r`,
