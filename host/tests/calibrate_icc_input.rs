@@ -15,7 +15,7 @@ use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
 use specpoly::calibrate::verify::delta_e00;
 use specpoly::io::cgats::read_ti3;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
 /// Device values from our profile against those from the calibration itself.
 const RGB: f64 = 2e-3;

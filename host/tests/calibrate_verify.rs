@@ -8,10 +8,7 @@
 #[path = "common/calibrate_run.rs"]
 mod common;
 
-#[path = "common/cli.rs"]
-mod cli;
-
-use cli::{output as specpoly, s, ACER};
+use common::cli::{output as specpoly, s, ACER};
 use specpoly::calibrate::criteria::CRITERIA;
 use specpoly_core::{de2000_terms, Lab};
 use std::io::Write;

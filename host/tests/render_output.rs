@@ -8,7 +8,7 @@ mod cli;
 
 use cli::{output as specpoly, ACER};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn ok(args: &[&str]) -> Output {
     let o = specpoly(args);

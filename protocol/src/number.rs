@@ -625,6 +625,34 @@ pub fn parse_u16(s: &str) -> Option<u16> {
     u16::try_from(v).ok()
 }
 
+/// Writes ` KEY=v1,v2,…`, each value as [`write_f32`] does.
+pub(crate) fn write_f32_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
+    write_list(w, key, v, |w, x| write_f32(w, *x))
+}
+
+/// Writes ` KEY=n1,n2,…`, each value as [`write_int`] does.
+pub(crate) fn write_int_list<W: Write>(w: &mut W, key: &str, v: &[u16]) -> fmt::Result {
+    write_list(w, key, v, |w, n| write_int(w, *n as i64))
+}
+
+fn write_list<W: Write, T>(
+    w: &mut W,
+    key: &str,
+    v: &[T],
+    mut item: impl FnMut(&mut W, &T) -> fmt::Result,
+) -> fmt::Result {
+    w.write_char(' ')?;
+    w.write_str(key)?;
+    w.write_char('=')?;
+    for (i, x) in v.iter().enumerate() {
+        if i > 0 {
+            w.write_char(',')?;
+        }
+        item(w, x)?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -774,32 +802,4 @@ mod tests {
             proptest::prop_assert_eq!(count(&fmt(v)), count(&std_s), "{} {}", fmt(v), std_s);
         }
     }
-}
-
-/// Writes ` KEY=v1,v2,…`, each value as [`write_f32`] does.
-pub(crate) fn write_f32_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
-    write_list(w, key, v, |w, x| write_f32(w, *x))
-}
-
-/// Writes ` KEY=n1,n2,…`, each value as [`write_int`] does.
-pub(crate) fn write_int_list<W: Write>(w: &mut W, key: &str, v: &[u16]) -> fmt::Result {
-    write_list(w, key, v, |w, n| write_int(w, *n as i64))
-}
-
-fn write_list<W: Write, T>(
-    w: &mut W,
-    key: &str,
-    v: &[T],
-    mut item: impl FnMut(&mut W, &T) -> fmt::Result,
-) -> fmt::Result {
-    w.write_char(' ')?;
-    w.write_str(key)?;
-    w.write_char('=')?;
-    for (i, x) in v.iter().enumerate() {
-        if i > 0 {
-            w.write_char(',')?;
-        }
-        item(w, x)?;
-    }
-    Ok(())
 }

@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 #[path = "cli.rs"]
-mod cli;
+pub mod cli;
 
 #[allow(unused_imports)]
 pub use cli::calibrate_run as calibrate_args;
