@@ -19,8 +19,27 @@ pub struct LightArgs {
     pub json: bool,
 }
 
-fn opt(v: Option<f64>, prec: usize) -> String {
+/// `v` to `prec` decimals, `-` for none.
+pub(crate) fn opt(v: Option<f64>, prec: usize) -> String {
     v.map_or("-".to_string(), |v| format!("{v:.prec$}"))
+}
+
+/// The heads of the chromaticity columns the light and mix tables share.
+pub(crate) fn chromaticity_head() -> String {
+    format!(
+        "{:>7} {:>7} {:>7} {:>7} {:>8} {:>8}",
+        "x", "y", "u'", "v'", "cct", "duv"
+    )
+}
+
+/// The cells under [`chromaticity_head`]: x, y, u′, v′ (`xyuv`), CCT and Duv.
+pub(crate) fn chromaticity_cells(xyuv: [f64; 4], cct: Option<f64>, duv: Option<f64>) -> String {
+    let [x, y, u, v] = xyuv;
+    format!(
+        "{x:>7.4} {y:>7.4} {u:>7.4} {v:>7.4} {:>8} {:>8}",
+        opt(cct, 1),
+        opt(duv, 5)
+    )
 }
 
 /// Formats the text output.
@@ -33,21 +52,23 @@ pub fn text(name: &str, r: &LightReport) -> String {
     );
     let _ = writeln!(
         o,
-        "{:>12} {:>12} {:>12} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6}",
-        "X", "Y", "Z", "x", "y", "u'", "v'", "cct", "duv", "ra", "r9", "rf", "rg"
+        "{:>12} {:>12} {:>12} {} {:>6} {:>7} {:>6} {:>6}",
+        "X",
+        "Y",
+        "Z",
+        chromaticity_head(),
+        "ra",
+        "r9",
+        "rf",
+        "rg"
     );
     let _ = writeln!(
         o,
-        "{:>12.4} {:>12.4} {:>12.4} {:>7.4} {:>7.4} {:>7.4} {:>7.4} {:>8} {:>8} {:>6} {:>7} {:>6} {:>6}",
+        "{:>12.4} {:>12.4} {:>12.4} {} {:>6} {:>7} {:>6} {:>6}",
         r.big_x,
         r.big_y,
         r.big_z,
-        r.x,
-        r.y,
-        r.u_prime,
-        r.v_prime,
-        opt(r.cct, 1),
-        opt(r.duv, 5),
+        chromaticity_cells([r.x, r.y, r.u_prime, r.v_prime], r.cct, r.duv),
         opt(r.ra, 1),
         opt(r.r9, 1),
         opt(r.rf, 1),

@@ -2,6 +2,7 @@
 //! (computations in [`crate::light`] and `specpoly_core::light::mix`).
 
 use crate::cli::args::{transfer, Curve};
+use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
 use crate::error::{CliError, Result};
 use crate::io::stdout::print_json;
 use crate::light::{self, describe, load_channel, parse_target, Optimize};
@@ -48,10 +49,6 @@ pub struct MixArgs {
     pub json: bool,
 }
 
-fn opt(v: Option<f64>, prec: usize) -> String {
-    v.map_or("-".to_string(), |v| format!("{v:.prec$}"))
-}
-
 /// Runs `specpoly mix`.
 pub fn run(a: &MixArgs) -> Result<()> {
     if !(3..=6).contains(&a.channels.len()) {
@@ -94,18 +91,17 @@ pub fn run(a: &MixArgs) -> Result<()> {
     }
     let _ = writeln!(
         o,
-        "{:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9}",
-        "x", "y", "u'", "v'", "cct", "duv", "ra", "rf", "rg", "lm/W"
+        "{} {:>6} {:>6} {:>6} {:>9}",
+        chromaticity_head(),
+        "ra",
+        "rf",
+        "rg",
+        "lm/W"
     );
     let _ = writeln!(
         o,
-        "{:>7.4} {:>7.4} {:>7.4} {:>7.4} {:>8} {:>8} {:>6} {:>6} {:>6} {:>9.1}",
-        r.x,
-        r.y,
-        r.u_prime,
-        r.v_prime,
-        opt(r.cct, 1),
-        opt(r.duv, 5),
+        "{} {:>6} {:>6} {:>6} {:>9.1}",
+        chromaticity_cells([r.x, r.y, r.u_prime, r.v_prime], r.cct, r.duv),
         opt(r.ra, 1),
         opt(r.rf, 1),
         opt(r.rg, 1),
