@@ -76,12 +76,7 @@ fn table1_beside_the_paper() {
             r["xbar"].as_f64().unwrap(),
             r["reduced"].as_f64().unwrap(),
         ];
-        let theirs: Vec<f64> = r["paper"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let theirs: Vec<f64> = cli::numbers(&r["paper"]);
         assert_eq!(theirs, p.to_vec());
         // x̄ is the same function in both: with the mean squared error on a 10 nm grid our
         // cubic fit of the CIE 1964 x̄ lands within 10 % of the paper's numbers.

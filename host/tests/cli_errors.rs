@@ -104,42 +104,36 @@ fn malformed_csv_is_a_data_error_naming_the_file_and_line() {
 
 #[test]
 fn unknown_names_are_usage_errors() {
-    fails(
-        &specpoly(&["xyz", "colorchecker#red", "--illuminant", "F99"]),
-        2,
-        &["F99", "illuminant"],
-    );
-    fails(
-        &specpoly(&["xyz", "colorchecker#nosuchpatch"]),
-        2,
-        &["no column `nosuchpatch`"],
-    );
-    fails(&specpoly(&["xyz", "colorchecker"]), 2, &["columns"]);
-    fails(
-        &specpoly(&["xyz", "no/such/file.csv"]),
-        2,
-        &["no such file"],
-    );
-    fails(
-        &specpoly(&["xyz", "colorchecker#red", "--repr", "poly:7x3"]),
-        2,
-        &["supported spans"],
-    );
-    fails(
-        &specpoly(&["xyz", "colorchecker#red", "--repr", "fancy"]),
-        2,
-        &["unknown representation"],
-    );
-    fails(
-        &specpoly(&["xyz", "colorchecker#red", "--observer", "1976"]),
-        2,
-        &["unknown observer"],
-    );
-    fails(
-        &specpoly(&["fit", "colorchecker#red", "--repr", "rgb"]),
-        2,
-        &["polynomial representation"],
-    );
+    for (args, needles) in [
+        (
+            vec!["xyz", "colorchecker#red", "--illuminant", "F99"],
+            vec!["F99", "illuminant"],
+        ),
+        (
+            vec!["xyz", "colorchecker#nosuchpatch"],
+            vec!["no column `nosuchpatch`"],
+        ),
+        (vec!["xyz", "colorchecker"], vec!["columns"]),
+        (vec!["xyz", "no/such/file.csv"], vec!["no such file"]),
+        (
+            vec!["xyz", "colorchecker#red", "--repr", "poly:7x3"],
+            vec!["supported spans"],
+        ),
+        (
+            vec!["xyz", "colorchecker#red", "--repr", "fancy"],
+            vec!["unknown representation"],
+        ),
+        (
+            vec!["xyz", "colorchecker#red", "--observer", "1976"],
+            vec!["unknown observer"],
+        ),
+        (
+            vec!["fit", "colorchecker#red", "--repr", "rgb"],
+            vec!["polynomial representation"],
+        ),
+    ] {
+        fails(&specpoly(&args), 2, &needles);
+    }
     // clap's own usage errors (missing arguments) exit with 2 too
     assert_eq!(specpoly(&["xyz"]).code, 2);
     assert_eq!(specpoly(&["plot", "colorchecker#red"]).code, 2);

@@ -3,9 +3,12 @@
 //! silent device, a device that goes away, no such port — each a one-line error, exit code 1,
 //! no panic. (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
 
+#[path = "common/cli.rs"]
+mod cli;
 #[path = "common/pty.rs"]
 mod pty;
 
+use cli::output as specpoly;
 use pty::{Answer, FakePort};
 use serialport::TTYPort;
 use specpoly::led::{MixModel, Model};
@@ -113,11 +116,11 @@ fn serve(port: TTYPort, b: Behaviour, stop: Arc<AtomicBool>) {
     })
 }
 
-fn specpoly(args: &[&str]) -> Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_specpoly"))
-        .args(args)
-        .output()
-        .expect("run specpoly")
+/// `specpoly ARGS`, which must succeed.
+fn succeeds(args: &[&str]) -> Output {
+    let out = specpoly(args);
+    assert!(out.status.success(), "{}", cli::text(&out.stderr));
+    out
 }
 
 /// Exit code 1, one line on stderr containing `needle`, no panic.
@@ -133,19 +136,14 @@ fn fails_cleanly(out: &Output, needle: &str) {
 #[test]
 fn a_faithful_device_passes_the_check() {
     let f = fake(Behaviour::Faithful);
-    let out = specpoly(&["led", "--port", &f.path, "--check", "xyz", "20", "21", "22"]);
+    let out = succeeds(&["led", "--port", &f.path, "--check", "xyz", "20", "21", "22"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let first = stdout.lines().next().unwrap_or_default();
     let expected = srgb_model().colour(Xyz::new(20.0, 21.0, 22.0));
     assert_eq!(Reply::parse(first), Ok(Reply::Colour(expected)), "{stdout}");
     assert!(stdout.contains("check: the host agrees"), "{stdout}");
 
-    let out = specpoly(&[
+    succeeds(&[
         "led",
         "--port",
         &f.path,
@@ -158,14 +156,9 @@ fn a_faithful_device_passes_the_check() {
         "colorchecker#red",
         "colorchecker#green",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
 
     // the README's form: `--check` after the action
-    let out = specpoly(&[
+    let out = succeeds(&[
         "led",
         "--port",
         &f.path,
@@ -176,23 +169,13 @@ fn a_faithful_device_passes_the_check() {
         "FL11",
         "--check",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("check: the host agrees"), "{stdout}");
 
     // --json (the CLI convention): the reply's values as numbers, the check's verdict
-    let out = specpoly(&[
+    let out = succeeds(&[
         "led", "--port", &f.path, "xyz", "20", "21", "22", "--check", "--json",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(v["reply"], "colour");
     assert_eq!(v["check"]["agrees"], true);

@@ -139,12 +139,7 @@ fn mix_hits_the_target() {
     ] {
         assert!(v.get(k).is_some(), "{k} missing: {out}");
     }
-    let d: Vec<f64> = v["duties"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let d: Vec<f64> = cli::numbers(&v["duties"]);
     assert_eq!(d.len(), 5);
     for di in &d {
         // 16-bit steps (printed to 6 decimals)

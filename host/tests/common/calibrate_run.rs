@@ -34,6 +34,16 @@ pub struct Finished {
     pub stderr: String,
 }
 
+impl Finished {
+    /// Asserts exit `code` and exactly one line on stderr; that line.
+    pub fn one_line_error(&self, code: i32) -> &str {
+        assert_eq!(self.code, Some(code), "{self:?}");
+        let err = self.stderr.trim();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        err
+    }
+}
+
 /// A running `specpoly` whose stdout lines are collected as they come.
 pub struct Running {
     child: Child,
