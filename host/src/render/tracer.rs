@@ -305,7 +305,7 @@ pub struct Compiled<T: Shade> {
     /// then the area lights ([`Self::area_slot`]).
     first: Vec<Vec<(Xyz, Xyz)>>,
     /// The same through 1–2 crossings of each filter ([`FilteredFirst`]).
-    first_filtered: FilteredFirst,
+    pub(super) first_filtered: FilteredFirst,
     /// `[material]`: `k_a · xyz(D, L_a)`.
     first_ambient: Vec<Xyz>,
     pub(super) camera: Camera,
