@@ -36,6 +36,13 @@ pub trait Shade: Copy + Send + Sync {
     fn scale(&self, k: f32) -> Self;
     /// XYZ (perfect white under the light: `Y = 100`).
     fn xyz(&self, light: &Self::Light) -> Xyz;
+    /// `xyz(self · o, light)`: the product and its integral in one step, the same value as
+    /// `self.mul(o).xyz(light)` (a renderer's most frequent pair; a vector implementation keeps
+    /// the product in registers).
+    #[inline]
+    fn mul_xyz(&self, o: &Self, light: &Self::Light) -> Xyz {
+        self.mul(o).xyz(light)
+    }
     /// The representation of a tabulated reflectance.
     fn from_reflectance(r: &Tabulated<'_>, light: &Self::Light) -> Result<Self, Error>;
     /// Number of stored values.

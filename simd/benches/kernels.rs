@@ -15,6 +15,9 @@
 //! - `runtime`: [`Wide`]'s per-call choice, as the ray tracer calls it (a cached flag, then the
 //!   AVX2 + FMA kernel as a call);
 //! - `avx2-loop`: the AVX2 + FMA kernel inlined into an AVX2 loop (one check per batch).
+//!
+//! A third group times the renderer's most frequent pair, `xyz(a·b, L)`: portable, as two
+//! run-time calls, and as one fused call ([`Shade::mul_xyz`]).
 
 use criterion::{black_box, criterion_group, criterion_main, Bencher, BenchmarkId, Criterion};
 use specpoly_core::{
@@ -197,6 +200,37 @@ fn bench_repr<T: Kernels>(
             })
         });
     }
+    g.finish();
+
+    // the renderer's most frequent pair, `xyz(T·D, L)`: two calls, or one (`mul_xyz`)
+    let mut g = c.benchmark_group("multiply_to_xyz");
+    g.bench_function(BenchmarkId::new(name, "portable"), |bn| {
+        per_call(bn, || {
+            let (a, b) = black_box((&a, &b));
+            for ((o, x), y) in xyz.iter_mut().zip(a).zip(b) {
+                *o = x.mul(y).xyz(&light);
+            }
+            black_box(&mut xyz);
+        })
+    });
+    g.bench_function(BenchmarkId::new(name, "runtime, two calls"), |bn| {
+        per_call(bn, || {
+            let (a, b) = black_box((&wa, &wb));
+            for ((o, x), y) in xyz.iter_mut().zip(a).zip(b) {
+                *o = x.mul(y).xyz(&light);
+            }
+            black_box(&mut xyz);
+        })
+    });
+    g.bench_function(BenchmarkId::new(name, "runtime, fused"), |bn| {
+        per_call(bn, || {
+            let (a, b) = black_box((&wa, &wb));
+            for ((o, x), y) in xyz.iter_mut().zip(a).zip(b) {
+                *o = x.mul_xyz(y, &light);
+            }
+            black_box(&mut xyz);
+        })
+    });
     g.finish();
 }
 

@@ -14,6 +14,10 @@
 //! reductions shuffle lane by lane, and the portable kernels are not always inlined
 //! (`docs/performance.md`, "Kernels at the floor").
 //!
+//! Each also has the product and its integral fused ([`Shade::mul_xyz`], `xyz(a·b, L)`, the
+//! renderer's most frequent pair): the product stays in registers, one call instead of two, and
+//! the result is bit-identical to the two calls (the same operations).
+//!
 //! **Accuracy.** Fused multiply-adds and a pairwise horizontal sum round differently from the
 //! portable code, so results are not bit-for-bit: each output differs from the portable one by
 //! at most [`ULP_BOUND`] units of 2⁻²⁴ times the sum of the magnitudes of the terms that form it
@@ -67,6 +71,9 @@ pub trait Kernels: Shade {
     fn mul_with(k: Avx2Fma, a: &Self, b: &Self) -> Self;
     /// XYZ of `a` under `light` ([`Shade::xyz`]).
     fn xyz_with(k: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz;
+    /// `xyz(a · b, light)` in one call ([`Shade::mul_xyz`]): the product stays in registers,
+    /// bit-identical to [`Self::mul_with`] then [`Self::xyz_with`].
+    fn mul_xyz_with(k: Avx2Fma, a: &Self, b: &Self, light: &Self::Light) -> Xyz;
     /// `out[i] = a[i] · b[i]` over the shortest of the three, in one AVX2 loop (the kernel
     /// inlined; one check for the batch).
     fn mul_each(k: Avx2Fma, a: &[Self], b: &[Self], out: &mut [Self]);
@@ -112,6 +119,13 @@ impl<T: Kernels> Shade for Wide<T> {
         match Avx2Fma::detect() {
             Some(k) => T::xyz_with(k, &self.0, light),
             None => self.0.xyz(light),
+        }
+    }
+    #[inline(always)]
+    fn mul_xyz(&self, o: &Self, light: &Self::Light) -> Xyz {
+        match Avx2Fma::detect() {
+            Some(k) => T::mul_xyz_with(k, &self.0, &o.0, light),
+            None => self.0.mul_xyz(&o.0, light),
         }
     }
     fn from_reflectance(r: &Tabulated<'_>, light: &Self::Light) -> Result<Self, Error> {

@@ -25,6 +25,9 @@ macro_rules! no_kernels {
             fn xyz_with(k: Avx2Fma, _: &Self, _: &Self::Light) -> Xyz {
                 match k {}
             }
+            fn mul_xyz_with(k: Avx2Fma, _: &Self, _: &Self, _: &Self::Light) -> Xyz {
+                match k {}
+            }
             fn mul_each(k: Avx2Fma, _: &[Self], _: &[Self], _: &mut [Self]) {
                 match k {}
             }

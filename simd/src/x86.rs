@@ -137,24 +137,48 @@ fn sum_lanes3(x: __m256, y: __m256, z: __m256) -> [f32; 3] {
 
 // ---- the default preset: 8 uniform cubic spans, one span per lane ----
 
+/// The reduced product's four coefficient rows, in registers.
 #[inline]
 #[target_feature(enable = "avx2,fma")]
-fn mul_default(a: &DefaultSpectrum, b: &DefaultSpectrum) -> DefaultSpectrum {
+fn product_default(a: &DefaultSpectrum, b: &DefaultSpectrum) -> [__m256; 4] {
     let (a, b) = (a.coefficients(), b.coefficients());
-    let c = cubic_product!(
+    cubic_product!(
         a.each_ref().map(|r| load8(r)),
         b.each_ref().map(|r| load8(r)),
         _mm256_fmadd_ps,
         _mm256_mul_ps,
         _mm256_set1_ps
-    );
-    DefaultSpectrum::from_coefficients(c.map(|v| store8(v)))
+    )
+}
+
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn mul_default(a: &DefaultSpectrum, b: &DefaultSpectrum) -> DefaultSpectrum {
+    DefaultSpectrum::from_coefficients(product_default(a, b).map(|v| store8(v)))
 }
 
 #[inline]
 #[target_feature(enable = "avx2,fma")]
 fn xyz_default(r: &DefaultSpectrum, light: &Moments<8, 4, Uniform>) -> Xyz {
-    let c = r.coefficients().each_ref().map(|r| load8(r));
+    xyz_rows_default(r.coefficients().each_ref().map(|r| load8(r)), light)
+}
+
+/// `xyz(a · b)` with the product kept in registers: the same operations, hence the same bits,
+/// as [`mul_default`] then [`xyz_default`].
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn mul_xyz_default(
+    a: &DefaultSpectrum,
+    b: &DefaultSpectrum,
+    light: &Moments<8, 4, Uniform>,
+) -> Xyz {
+    xyz_rows_default(product_default(a, b), light)
+}
+
+/// →XYZ of the coefficient rows `c` (one span per lane).
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn xyz_rows_default(c: [__m256; 4], light: &Moments<8, 4, Uniform>) -> Xyz {
     let dot = |m: &[[f32; 8]; 4]| {
         let mut acc = _mm256_mul_ps(load8(&m[0]), c[0]);
         for k in 1..4 {
@@ -243,10 +267,22 @@ fn xyz_sampled81(v: &Sampled<81>, light: &SampledLight<81>) -> Xyz {
     Xyz::from_array(core::array::from_fn(|axis| xyz[axis] + w[axis][80] * vt))
 }
 
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn mul_xyz_paper(a: &PaperSpectrum, b: &PaperSpectrum, light: &Moments<2, 4, Paper>) -> Xyz {
+    xyz_paper(&mul_paper(a, b), light)
+}
+
+#[inline]
+#[target_feature(enable = "avx2,fma")]
+fn mul_xyz_sampled81(a: &Sampled<81>, b: &Sampled<81>, light: &SampledLight<81>) -> Xyz {
+    xyz_sampled81(&mul_sampled81(a, b), light)
+}
+
 // ---- the kernels behind the token ----
 
 macro_rules! kernels {
-    ($t:ty, $mul:ident, $xyz:ident) => {
+    ($t:ty, $mul:ident, $xyz:ident, $mul_xyz:ident) => {
         impl Kernels for $t {
             #[inline(always)]
             fn mul_with(_: Avx2Fma, a: &Self, b: &Self) -> Self {
@@ -257,6 +293,11 @@ macro_rules! kernels {
             fn xyz_with(_: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz {
                 // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
                 unsafe { $xyz(a, light) }
+            }
+            #[inline(always)]
+            fn mul_xyz_with(_: Avx2Fma, a: &Self, b: &Self, light: &Self::Light) -> Xyz {
+                // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
+                unsafe { $mul_xyz(a, b, light) }
             }
             fn mul_each(_: Avx2Fma, a: &[Self], b: &[Self], out: &mut [Self]) {
                 #[target_feature(enable = "avx2,fma")]
@@ -282,6 +323,6 @@ macro_rules! kernels {
     };
 }
 
-kernels!(DefaultSpectrum, mul_default, xyz_default);
-kernels!(PaperSpectrum, mul_paper, xyz_paper);
-kernels!(Sampled<81>, mul_sampled81, xyz_sampled81);
+kernels!(DefaultSpectrum, mul_default, xyz_default, mul_xyz_default);
+kernels!(PaperSpectrum, mul_paper, xyz_paper, mul_xyz_paper);
+kernels!(Sampled<81>, mul_sampled81, xyz_sampled81, mul_xyz_sampled81);

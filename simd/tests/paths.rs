@@ -52,6 +52,31 @@ fn xyz_paths<T: Kernels>(a: &T, light: &T::Light) -> Vec<(&'static str, Xyz)> {
     v
 }
 
+/// `mul_xyz` (the product kept in registers) on every path: bit for bit that path's product then
+/// its →XYZ, as the renderer relies on (its images do not change when it fuses the two).
+fn fused_paths_agree<T: Kernels>(a: &T, b: &T, light: &T::Light) -> Result<(), TestCaseError> {
+    let bits = |x: Xyz| x.to_array().map(f32::to_bits);
+    prop_assert_eq!(
+        bits(a.mul_xyz(b, light)),
+        bits(a.mul(b).xyz(light)),
+        "portable"
+    );
+    let (wa, wb) = (Wide(*a), Wide(*b));
+    prop_assert_eq!(
+        bits(wa.mul_xyz(&wb, light)),
+        bits(wa.mul(&wb).xyz(light)),
+        "runtime"
+    );
+    if let Some(k) = Avx2Fma::detect() {
+        prop_assert_eq!(
+            bits(T::mul_xyz_with(k, a, b, light)),
+            bits(T::xyz_with(k, &T::mul_with(k, a, b), light)),
+            "avx2"
+        );
+    }
+    Ok(())
+}
+
 /// `|x − y| ≤ ULP_BOUND · 2⁻²⁴ · terms` (and equal when both are NaN-free and `terms` is 0).
 fn within_bound(x: f32, y: f32, terms: f64) -> bool {
     (x as f64 - y as f64).abs() <= ULP_BOUND * f32::EPSILON as f64 / 2.0 * terms + SUBNORMAL
@@ -165,6 +190,7 @@ proptest! {
     ) {
         let (a, b): (DefaultSpectrum, DefaultSpectrum) = (a, b);
         paths_agree_spectra(&a, &b, &m)?;
+        fused_paths_agree(&a, &b, &m)?;
     }
 
     #[test]
@@ -173,6 +199,7 @@ proptest! {
     ) {
         let (a, b): (PaperSpectrum, PaperSpectrum) = (a, b);
         paths_agree_spectra(&a, &b, &m)?;
+        fused_paths_agree(&a, &b, &m)?;
     }
 
     #[test]
@@ -183,6 +210,7 @@ proptest! {
             // one multiplication per sample on every path: the same bits
             prop_assert_eq!(p.0.map(f32::to_bits), paths[0].1 .0.map(f32::to_bits), "mul, {}", name);
         }
+        fused_paths_agree(&a, &b, &light)?;
         let w = light.weights();
         let paths = xyz_paths(&a, &light);
         for (name, x) in &paths {

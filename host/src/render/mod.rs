@@ -10,6 +10,7 @@ pub mod budget;
 pub mod builtin;
 pub mod compare_image;
 pub mod equal_time;
+mod filter;
 pub mod geometry;
 pub mod hero;
 pub mod image_file;

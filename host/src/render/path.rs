@@ -44,7 +44,7 @@
 
 use super::geometry::Ray;
 use super::lights::cosine_direction;
-use super::tracer::{Compiled, Frame, Mat, Surf};
+use super::tracer::{Compiled, Formed, Frame, Mat, Surf};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 use specpoly_core::{Shade, Xyz};
@@ -143,24 +143,28 @@ impl<T: Shade> Compiled<T> {
             let Frame { n, lift, .. } = hit;
 
             // `T·D`, formed for direct light, is also the diffuse continuation's throughput
-            let mut td = None;
-            if m.diffuse.is_some() || m.specular.is_some() {
-                let (x, d) = self.direct(mats, mi, tp.as_ref(), &hit, rng);
-                out = out + x;
-                td = d;
+            let lit = m.diffuse.is_some() || m.specular.is_some();
+            let formed = if lit {
+                m.times(tp.as_ref())
+            } else {
+                Formed { td: None, ts: None }
+            };
+            if lit {
+                out = out + self.direct(mats, mi, tp.as_ref(), &formed, &hit, rng);
             }
             if depth >= self.max_depth {
                 break;
             }
-            let md = m.diffuse.map_or(0.0, |c| c.max);
-            let mm = m.mirror.map_or(0.0, |c| c.max);
-            let mt = m.transmission.map_or(0.0, |c| c.max);
+            // by reference: a spectral coefficient is 136 bytes
+            let md = m.diffuse.as_ref().map_or(0.0, |c| c.max);
+            let mm = m.mirror.as_ref().map_or(0.0, |c| c.max);
+            let mt = m.transmission.as_ref().map_or(0.0, |c| c.max);
             let total = md + mm + mt;
             if total <= 0.0 {
                 break;
             }
             let xi = rng.uniform() * total;
-            let (coef, bounce) = match (m.diffuse, m.mirror, m.transmission) {
+            let (coef, bounce) = match (&m.diffuse, &m.mirror, &m.transmission) {
                 (Some(d), _, _) if xi < md => (d, Bounce::Diffuse),
                 (_, Some(r), _) if xi < md + mm => (r, Bounce::Mirror),
                 (_, _, Some(f)) => (f, Bounce::Transmit),
@@ -175,11 +179,12 @@ impl<T: Shade> Compiled<T> {
                 break;
             }
             let k = total / coef.max / survive;
-            let next = match (bounce, td) {
-                (Bounce::Diffuse, Some(td)) => td,
-                _ => coef.after(tp.as_ref()),
-            };
-            tp = Some(if k == 1.0 { next } else { next.scale(k) });
+            tp = Some(match (bounce, &formed.td, k == 1.0) {
+                (Bounce::Diffuse, Some(td), true) => *td,
+                (Bounce::Diffuse, Some(td), false) => td.scale(k),
+                (_, _, true) => coef.after(tp.as_ref()),
+                (_, _, false) => coef.after(tp.as_ref()).scale(k),
+            });
             weight = bound / survive;
             ray = match bounce {
                 Bounce::Diffuse => {
@@ -209,46 +214,55 @@ impl<T: Shade> Compiled<T> {
     }
 
     /// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
-    /// and `T·D` if it was formed (a spectral diffuse coefficient after the first hit).
+    /// with `T·D`, `T·S` formed ([`Mat::times`]).
     fn direct(
         &self,
         mats: &[Mat<T>],
         mi: usize,
         tp: Option<&T>,
+        formed: &Formed<T>,
         hit: &Frame,
         rng: &mut Sampler,
-    ) -> (Xyz, Option<T>) {
+    ) -> Xyz {
         let Frame { lift, n, .. } = *hit;
         let m = &mats[mi];
-        let (td, ts) = m.times(tp);
+        let (td, ts) = (&formed.td, &formed.ts);
         let mut acc = Xyz::default();
+        // the first-hit tables hold the frame's materials: not those bound per path (hero)
+        let first = tp.is_none() && self.per_path.is_none();
         for (li, l) in self.lights.iter().enumerate() {
-            let Some((filter, a, b)) = self.point_weights(mats, l, m, hit, lift, true) else {
-                continue;
-            };
-            let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
-            acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
-        }
-        for (k, l) in self.area.iter().enumerate() {
-            let (u1, u2) = (rng.uniform(), rng.uniform());
-            // share 1.0: `x * 1.0` is exactly `x`
-            let Some((filter, a, b)) = self.area_weights(mats, l, m, hit, (u1, u2), 1.0, true)
+            let mut scratch = None;
+            let Some((filter, a, b)) =
+                self.point_weights(mats, &mut scratch, l, m, hit, lift, true)
             else {
                 continue;
             };
-            let first = (tp.is_none() && filter.is_none()).then(|| self.first_area[mi][k]);
-            acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
+            let at = first.then_some((mi, li));
+            acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
+        }
+        for (k, l) in self.area.iter().enumerate() {
+            let (u1, u2) = (rng.uniform(), rng.uniform());
+            let mut scratch = None;
+            // share 1.0: `x * 1.0` is exactly `x`
+            let Some((filter, a, b)) =
+                self.area_weights(mats, &mut scratch, l, m, hit, (u1, u2), 1.0, true)
+            else {
+                continue;
+            };
+            let at = first.then_some((mi, self.area_slot(k)));
+            acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
         }
         if let (Some(e), Some(_)) = (&self.env, &m.diffuse) {
             let (u1, u2) = (rng.uniform(), rng.uniform());
             let dir = cosine_direction(n, u1, u2);
-            if let Some(filter) = self.shadow(mats, lift, dir, f32::INFINITY, true) {
+            let mut scratch = None;
+            if let Some(filter) = self.shadow(mats, &mut scratch, lift, dir, f32::INFINITY, true) {
                 // (D/π) · L · cos θ / (cos θ / π) = D · L
                 acc = acc
-                    + self.light_term(m, tp, &td, &None, filter, e.radiance, 0.0, &e.light, None);
+                    + self.light_term(m, tp, td, &None, &filter, e.radiance, 0.0, &e.light, None);
             }
         }
-        (acc, td)
+        acc
     }
 
     /// One row of path-traced pixels into `row` (length `width`).

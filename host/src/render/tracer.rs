@@ -22,6 +22,7 @@
 //! Refraction follows Snell's law with the outside at index 1; total internal reflection sends
 //! the transmitted share along the mirror direction.
 
+use super::filter::{Crossings, Filter, FilteredFirst};
 use super::geometry::{Camera, Ray, Shape, EPS, V3};
 use super::lights::Emitter;
 use super::mesh::{Owner, Triangles};
@@ -96,6 +97,16 @@ impl<T: Shade> Coef<T> {
         }
     }
 
+    /// [`Self::after`] by reference: `self`'s value itself for the path of weight one (no
+    /// copy), else the product, formed into `formed`.
+    #[inline]
+    pub(super) fn after_ref<'a>(&'a self, path: Option<&T>, formed: &'a mut Option<T>) -> &'a T {
+        match path {
+            Some(p) => formed.insert(self.times(p)),
+            None => &self.value,
+        }
+    }
+
     /// `xyz(path · self)` under `light`; `prod` is `path · self` if already formed, and
     /// `path_xyz` caches `xyz(path)` for flat coefficients.
     #[inline]
@@ -109,7 +120,8 @@ impl<T: Shade> Coef<T> {
         match (self.flat, prod) {
             (Some(k), _) => path_xyz.get_or_insert_with(|| path.xyz(light)).scale(k),
             (None, Some(p)) => p.xyz(light),
-            (None, None) => self.times(path).xyz(light),
+            // spectral: `times` is `path.mul(value)`; product and integral in one step
+            (None, None) => path.mul_xyz(&self.value, light),
         }
     }
 }
@@ -127,17 +139,20 @@ pub(super) struct Mat<T> {
 
 impl<T: Shade> Mat<T> {
     /// At deeper hits (throughput `tp`), `T·D` and `T·S` (spectral coefficients only), formed
-    /// once for all lights.
-    pub(super) fn times(&self, tp: Option<&T>) -> (Option<T>, Option<T>) {
-        let td = match (tp, &self.diffuse) {
-            (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
-            _ => None,
-        };
-        let ts = match (tp, &self.specular) {
-            (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
-            _ => None,
-        };
-        (td, ts)
+    /// once for all lights. A struct read by reference: destructuring a returned pair copied
+    /// both 132-byte halves at every hit (`memcpy`, 8 % of a poly frame of example2).
+    #[inline]
+    pub(super) fn times(&self, tp: Option<&T>) -> Formed<T> {
+        Formed {
+            td: match (tp, &self.diffuse) {
+                (Some(tp), Some(d)) if d.flat.is_none() => Some(d.times(tp)),
+                _ => None,
+            },
+            ts: match (tp, &self.specular) {
+                (Some(tp), Some(s)) if s.flat.is_none() => Some(s.times(tp)),
+                _ => None,
+            },
+        }
     }
 
     /// Its transmission filter if a shadow ray passes (with `refraction_blocks`, not through a
@@ -150,6 +165,14 @@ impl<T: Shade> Mat<T> {
             _ => None,
         }
     }
+}
+
+/// `T·D` and `T·S` at a hit ([`Mat::times`]).
+pub(super) struct Formed<T> {
+    /// `T·D`, if formed.
+    pub(super) td: Option<T>,
+    /// `T·S`, if formed.
+    pub(super) ts: Option<T>,
 }
 
 /// The shading frame of a hit, shared by the Whitted and path tracers.
@@ -278,10 +301,11 @@ pub struct Compiled<T: Shade> {
     ambient_k: f32,
     background: Option<T>,
     background_xyz: Xyz,
-    /// `[material][light]`: `(xyz(D, L), xyz(S, L))`.
-    pub(super) first: Vec<Vec<(Xyz, Xyz)>>,
-    /// `[material][area light]`: `(xyz(D, L), xyz(S, L))`.
-    pub(super) first_area: Vec<Vec<(Xyz, Xyz)>>,
+    /// `[material][light slot]`: `(xyz(D, L), xyz(S, L))`; the slots are the point lights,
+    /// then the area lights ([`Self::area_slot`]).
+    first: Vec<Vec<(Xyz, Xyz)>>,
+    /// The same through 1–2 crossings of each filter ([`FilteredFirst`]).
+    pub(super) first_filtered: FilteredFirst,
     /// `[material]`: `k_a · xyz(D, L_a)`.
     first_ambient: Vec<Xyz>,
     pub(super) camera: Camera,
@@ -384,33 +408,23 @@ impl<T: Shade> Compiled<T> {
         let background = conv(&scene.background)?;
         let xyz_or_zero = |v: &Option<T>, l: &T::Light| v.map(|v| v.xyz(l)).unwrap_or_default();
         let coef_xyz = |c: &Option<Coef<T>>, l: &T::Light| xyz_or_zero(&c.map(|c| c.value), l);
+        // light slots: the point lights, then the area lights
+        let slots: Vec<&T::Light> = lights
+            .iter()
+            .map(|l| &l.light)
+            .chain(area.iter().map(|l| &l.light))
+            .collect();
         let first = mats
             .iter()
             .map(|m| {
-                lights
+                slots
                     .iter()
-                    .map(|l| {
-                        (
-                            coef_xyz(&m.diffuse, &l.light),
-                            coef_xyz(&m.specular, &l.light),
-                        )
-                    })
+                    .map(|l| (coef_xyz(&m.diffuse, l), coef_xyz(&m.specular, l)))
                     .collect()
             })
             .collect();
-        let first_area = mats
-            .iter()
-            .map(|m| {
-                area.iter()
-                    .map(|l| {
-                        (
-                            coef_xyz(&m.diffuse, &l.light),
-                            coef_xyz(&m.specular, &l.light),
-                        )
-                    })
-                    .collect()
-            })
-            .collect();
+        let first_filtered = FilteredFirst::new(&mats, &slots);
+        drop(slots);
         let ambient_k = scene.ambient.intensity;
         let first_ambient = mats
             .iter()
@@ -424,7 +438,7 @@ impl<T: Shade> Compiled<T> {
             lights,
             area,
             env,
-            first_area,
+            first_filtered,
             ambient,
             ambient_k,
             background,
@@ -443,6 +457,12 @@ impl<T: Shade> Compiled<T> {
             light_samples: scene.render.light_samples,
             per_path: None,
         })
+    }
+
+    /// The light slot of area light `k` in the first-hit tables.
+    #[inline]
+    pub(super) fn area_slot(&self, k: usize) -> usize {
+        self.lights.len() + k
     }
 
     /// Image width.
@@ -511,34 +531,31 @@ impl<T: Shade> Compiled<T> {
         })
     }
 
-    /// What reaches `p` from a light at distance `dist` along `dir`: `None` if blocked,
-    /// `Some(None)` if clear, `Some(Some(F))` through filters with product `F`.
+    /// What reaches `p` from a light at distance `dist` along `dir`: `None` if blocked, else
+    /// the filters crossed ([`Filter`]; a product of several is kept in `scratch`).
     /// With `refraction_blocks`, transmitting surfaces with an index of refraction other
     /// than 1 block (the path tracer reaches lights through them by refraction instead).
     #[inline]
-    pub(super) fn shadow(
+    pub(super) fn shadow<'a>(
         &self,
-        mats: &[Mat<T>],
+        mats: &'a [Mat<T>],
+        scratch: &'a mut Option<T>,
         p: V3,
         dir: V3,
         dist: f32,
         refraction_blocks: bool,
-    ) -> Option<Option<T>> {
+    ) -> Option<Filter<'a, T>> {
         count_ray();
         let ray = Ray { origin: p, dir };
-        let mut filter: Option<T> = None;
-        let passes = |m| Mat::filter(m, refraction_blocks);
+        let mut crossed = Crossings::new();
         for o in &self.objects {
             let k = o.shape.crossings(&ray, dist);
             if k == 0 {
                 continue;
             }
-            let f = passes(&mats[o.material])?;
+            let f = mats[o.material].filter(refraction_blocks)?;
             for _ in 0..k {
-                filter = Some(match filter {
-                    Some(acc) => f.times(&acc),
-                    None => f.value,
-                });
+                crossed.cross(f, o.material);
             }
         }
         let mut blocked = false;
@@ -548,12 +565,9 @@ impl<T: Shade> Compiled<T> {
                 blocked = true;
                 false
             }
-            Owner::Material(m) => match passes(&mats[m]) {
+            Owner::Material(m) => match mats[m].filter(refraction_blocks) {
                 Some(f) => {
-                    filter = Some(match filter {
-                        Some(acc) => f.times(&acc),
-                        None => f.value,
-                    });
+                    crossed.cross(f, m);
                     true
                 }
                 None => {
@@ -565,7 +579,7 @@ impl<T: Shade> Compiled<T> {
         if blocked {
             return None;
         }
-        Some(filter)
+        Some(crossed.finish(scratch))
     }
 
     /// Adds to `out` the light arriving along `ray` with throughput `tp` (`None` = 1) whose
@@ -575,7 +589,7 @@ impl<T: Shade> Compiled<T> {
             *out = *out
                 + match (tp, &self.background) {
                     (None, _) => self.background_xyz,
-                    (Some(tp), Some(b)) => tp.mul(b).xyz(&self.ambient),
+                    (Some(tp), Some(b)) => tp.mul_xyz(b, &self.ambient),
                     (Some(_), None) => Xyz::default(),
                 };
             // the environment, if any, is seen behind the background
@@ -598,7 +612,8 @@ impl<T: Shade> Compiled<T> {
 
         if m.diffuse.is_some() || m.specular.is_some() {
             let mut acc = Xyz::default();
-            let (td, ts) = m.times(tp);
+            let formed = m.times(tp);
+            let (td, ts) = (&formed.td, &formed.ts);
             match (tp, &m.diffuse) {
                 (None, _) => acc = acc + self.first_ambient[mi],
                 (Some(tp), Some(d)) if self.ambient_k > 0.0 => {
@@ -608,52 +623,48 @@ impl<T: Shade> Compiled<T> {
                 _ => {}
             }
             for (li, l) in self.lights.iter().enumerate() {
-                let Some((filter, a, b)) = self.point_weights(&self.mats, l, m, &hit, p, false)
+                let mut scratch = None;
+                let Some((filter, a, b)) =
+                    self.point_weights(&self.mats, &mut scratch, l, m, &hit, p, false)
                 else {
                     continue;
                 };
-                let first = (tp.is_none() && filter.is_none()).then(|| self.first[mi][li]);
-                acc = acc + self.light_term(m, tp, &td, &ts, filter, a, b, &l.light, first);
+                let at = tp.is_none().then_some((mi, li));
+                acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
             }
             // area lights: an n × n stratified grid of samples each (deterministic)
             let ns = self.light_samples;
             let inv_n = 1.0 / (ns * ns) as f32;
             for (k, l) in self.area.iter().enumerate() {
+                let at = tp.is_none().then_some((mi, self.area_slot(k)));
                 let (mut a_sum, mut b_sum) = (0.0f32, 0.0f32);
                 for i in 0..ns {
                     for j in 0..ns {
                         let (u1, u2) = ((i as f32 + 0.5) / ns as f32, (j as f32 + 0.5) / ns as f32);
-                        let Some((filter, a, b)) =
-                            self.area_weights(&self.mats, l, m, &hit, (u1, u2), inv_n, false)
-                        else {
+                        let mut scratch = None;
+                        let Some((filter, a, b)) = self.area_weights(
+                            &self.mats,
+                            &mut scratch,
+                            l,
+                            m,
+                            &hit,
+                            (u1, u2),
+                            inv_n,
+                            false,
+                        ) else {
                             continue;
                         };
-                        match filter {
-                            None => {
-                                a_sum += a;
-                                b_sum += b;
-                            }
-                            Some(f) => {
-                                acc = acc
-                                    + self.light_term(
-                                        m,
-                                        tp,
-                                        &td,
-                                        &ts,
-                                        Some(f),
-                                        a,
-                                        b,
-                                        &l.light,
-                                        None,
-                                    );
-                            }
+                        if filter.is_clear() {
+                            a_sum += a;
+                            b_sum += b;
+                        } else {
+                            acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
                         }
                     }
                 }
                 if a_sum > 0.0 || b_sum > 0.0 {
-                    let first = tp.is_none().then(|| self.first_area[mi][k]);
-                    acc =
-                        acc + self.light_term(m, tp, &td, &ts, None, a_sum, b_sum, &l.light, first);
+                    let clear = Filter::Clear;
+                    acc = acc + self.light_term(m, tp, td, ts, &clear, a_sum, b_sum, &l.light, at);
                 }
             }
             *out = *out + acc;
@@ -669,16 +680,19 @@ impl<T: Shade> Compiled<T> {
                     origin: lift,
                     dir: ray.dir.reflect(n),
                 };
-                self.trace(&r, Some(&mirror.after(tp)), w, depth + 1, out);
+                let mut formed = None;
+                let next = mirror.after_ref(tp, &mut formed);
+                self.trace(&r, Some(next), w, depth + 1, out);
             }
         }
         if let Some(filter) = &m.transmission {
             let w = weight * filter.max;
             if w >= self.cutoff {
-                let through = filter.after(tp);
+                let mut formed = None;
+                let through = filter.after_ref(tp, &mut formed);
                 self.trace(
                     &hit.through(ray.dir, m.ior),
-                    Some(&through),
+                    Some(through),
                     w,
                     depth + 1,
                     out,
@@ -691,16 +705,18 @@ impl<T: Shade> Compiled<T> {
     /// `m`: the shadow ray's filter and the diffuse and specular weights `(filter, a, b)` for
     /// [`Self::light_term`]; `None` if the light is behind the surface or blocked. Shared by the
     /// Whitted and path tracers.
+    #[allow(clippy::too_many_arguments)]
     #[inline]
-    pub(super) fn point_weights(
+    pub(super) fn point_weights<'a>(
         &self,
-        mats: &[Mat<T>],
+        mats: &'a [Mat<T>],
+        scratch: &'a mut Option<T>,
         l: &LightT<T>,
         m: &Mat<T>,
         hit: &Frame,
         p: V3,
         refraction_blocks: bool,
-    ) -> Option<(Option<T>, f32, f32)> {
+    ) -> Option<(Filter<'a, T>, f32, f32)> {
         let Frame { lift, n, v, .. } = *hit;
         let to = l.position - p;
         let dist = to.length();
@@ -712,7 +728,7 @@ impl<T: Shade> Compiled<T> {
         if cos <= 0.0 {
             return None;
         }
-        let filter = self.shadow(mats, lift, ldir, dist, refraction_blocks)?;
+        let filter = self.shadow(mats, scratch, lift, ldir, dist, refraction_blocks)?;
         let a = l.intensity * cos;
         let b = match &m.specular {
             Some(_) => {
@@ -735,20 +751,22 @@ impl<T: Shade> Compiled<T> {
     /// sample misses or is blocked.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    pub(super) fn area_weights(
+    pub(super) fn area_weights<'a>(
         &self,
-        mats: &[Mat<T>],
+        mats: &'a [Mat<T>],
+        scratch: &'a mut Option<T>,
         l: &AreaT<T>,
         m: &Mat<T>,
         hit: &Frame,
         u: (f32, f32),
         share: f32,
         refraction_blocks: bool,
-    ) -> Option<(Option<T>, f32, f32)> {
+    ) -> Option<(Filter<'a, T>, f32, f32)> {
         let Frame { lift, n, v, .. } = *hit;
         let smp = l.shape.sample(lift, n, u.0, u.1)?;
         let filter = self.shadow(
             mats,
+            scratch,
             lift,
             smp.dir,
             smp.dist * (1.0 - 1e-4),
@@ -772,9 +790,11 @@ impl<T: Shade> Compiled<T> {
         }
     }
 
-    /// `xyz(path · (a·D + b·S), L)` for one light, where `path` is the throughput `tp` times the
-    /// shadow ray's `filter`; `td`, `ts` are `tp·D`, `tp·S` if already formed; `first` the
-    /// precomputed `(xyz(D, L), xyz(S, L))` when `tp` and `filter` are both 1.
+    /// `xyz(path · (a·D + b·S), L)` for one light, where `path` is the throughput `tp` (`None`
+    /// = 1) times the shadow ray's `filter`; `td`, `ts` are `tp·D`, `tp·S` if already formed.
+    /// `at = (material, light slot)` at first hits (`tp` one, materials the frame's): then the
+    /// precomputed `xyz(D, L)`, `xyz(S, L)` (unfiltered) or `xyz(Fᶜ·D, L)`, `xyz(Fᶜ·S, L)`
+    /// (through `c` crossings of one filter) are scaled instead of formed.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     pub(super) fn light_term(
@@ -783,56 +803,87 @@ impl<T: Shade> Compiled<T> {
         tp: Option<&T>,
         td: &Option<T>,
         ts: &Option<T>,
-        filter: Option<T>,
+        filter: &Filter<'_, T>,
         a: f32,
         b: f32,
         light: &T::Light,
-        first: Option<(Xyz, Xyz)>,
+        at: Option<(usize, usize)>,
     ) -> Xyz {
         let mut acc = Xyz::default();
-        match (filter, tp, first) {
-            (None, _, Some((xd, xs))) => {
-                acc = acc + xd.scale(a) + xs.scale(b);
+        if m.diffuse.is_none() && (m.specular.is_none() || b <= 0.0) {
+            // nothing lit (a specular-only surface outside its highlight): every branch below
+            // would add only zeros, after forming a product through the filters for nothing
+            return acc;
+        }
+        let at = if tp.is_none() { at } else { None };
+        if let Filter::Clear = filter {
+            match (tp, at) {
+                (_, Some((mi, slot))) => {
+                    let (xd, xs) = self.first[mi][slot];
+                    acc = acc + xd.scale(a) + xs.scale(b);
+                }
+                (None, None) => {
+                    if let Some(d) = &m.diffuse {
+                        acc = acc + d.value.xyz(light).scale(a);
+                    }
+                    if let (Some(s), true) = (&m.specular, b > 0.0) {
+                        acc = acc + s.value.xyz(light).scale(b);
+                    }
+                }
+                (Some(tp), None) => {
+                    let mut tp_xyz = None;
+                    if let Some(d) = &m.diffuse {
+                        acc = acc + d.xyz(tp, td.as_ref(), &mut tp_xyz, light).scale(a);
+                    }
+                    if let (Some(s), true) = (&m.specular, b > 0.0) {
+                        acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, light).scale(b);
+                    }
+                }
             }
-            (None, None, None) => {
-                if let Some(d) = &m.diffuse {
-                    acc = acc + d.value.xyz(light).scale(a);
+            return acc;
+        }
+        if let (Filter::Same { mat, count, .. }, Some((mi, slot))) = (filter, at) {
+            if let Some((xd, xs)) = self.first_filtered.get(mi, *mat, *count, slot) {
+                // as formed below: the same values, added in the same order
+                if m.diffuse.is_some() {
+                    acc = acc + xd.scale(a);
                 }
-                if let (Some(s), true) = (&m.specular, b > 0.0) {
-                    acc = acc + s.value.xyz(light).scale(b);
+                if m.specular.is_some() && b > 0.0 {
+                    acc = acc + xs.scale(b);
                 }
-            }
-            (None, Some(tp), None) => {
-                let mut tp_xyz = None;
-                if let Some(d) = &m.diffuse {
-                    acc = acc + d.xyz(tp, td.as_ref(), &mut tp_xyz, light).scale(a);
-                }
-                if let (Some(s), true) = (&m.specular, b > 0.0) {
-                    acc = acc + s.xyz(tp, ts.as_ref(), &mut tp_xyz, light).scale(b);
-                }
-            }
-            (Some(f), _, _) if b == 0.0 && td.is_some() => {
-                // diffuse only, T·D already formed: (T·D)·F
-                if let Some(td) = td {
-                    acc = acc + td.mul(&f).xyz(light).scale(a);
-                }
-            }
-            (Some(f), _, _) => {
-                // the light arrives through filters: path · F · (a·D + b·S)
-                let path = match tp {
-                    Some(tp) => tp.mul(&f),
-                    None => f,
-                };
-                let mut path_xyz = None;
-                if let Some(d) = &m.diffuse {
-                    acc = acc + d.xyz(&path, None, &mut path_xyz, light).scale(a);
-                }
-                if let (Some(s), true) = (&m.specular, b > 0.0) {
-                    acc = acc + s.xyz(&path, None, &mut path_xyz, light).scale(b);
-                }
+                return acc;
             }
         }
-        acc
+        filter.with(|f| {
+            let Some(f) = f else {
+                return acc;
+            };
+            match td {
+                Some(td) if b == 0.0 => {
+                    // diffuse only, T·D already formed: (T·D)·F
+                    acc = acc + td.mul_xyz(f, light).scale(a);
+                }
+                _ => {
+                    // the light arrives through filters: path · F · (a·D + b·S)
+                    let formed;
+                    let path = match tp {
+                        Some(tp) => {
+                            formed = tp.mul(f);
+                            &formed
+                        }
+                        None => f,
+                    };
+                    let mut path_xyz = None;
+                    if let Some(d) = &m.diffuse {
+                        acc = acc + d.xyz(path, None, &mut path_xyz, light).scale(a);
+                    }
+                    if let (Some(s), true) = (&m.specular, b > 0.0) {
+                        acc = acc + s.xyz(path, None, &mut path_xyz, light).scale(b);
+                    }
+                }
+            }
+            acc
+        })
     }
 
     /// XYZ of pixel `(x, y)` (white `Y = 100`): the mean over an `n × n` grid of sub-samples.
