@@ -39,7 +39,7 @@ pub trait PixelMap {
     fn bits(&self) -> [u8; 3];
 }
 
-impl<const LEN: usize, const F: usize, const M: usize> PixelMap for PixelTransform<LEN, F, M> {
+impl PixelMap for PixelTransform {
     #[inline(always)]
     fn levels(&self, rgb: [u8; 3]) -> [u16; 3] {
         PixelTransform::levels(self, rgb)

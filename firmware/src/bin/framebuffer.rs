@@ -21,6 +21,7 @@ use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565, Rgb888};
 use embedded_graphics_core::primitives::{PointsIter, Rectangle};
 use embedded_graphics_core::Pixel;
 use specpoly_firmware::board::icount::Counter;
+use specpoly_firmware::board::rgb565::Rgb565Kernel;
 use specpoly_graphics::Calibrated;
 
 include!(concat!(env!("OUT_DIR"), "/framebuffer_panel.rs"));
@@ -109,9 +110,10 @@ const BLOCKS: [[u8; 3]; 8] = [
     [5, 10, 7],
 ];
 
-/// The per-pixel path without `embedded-graphics`: transform, Bayer threshold, pack, store.
+/// The per-pixel path without `embedded-graphics`, in portable Rust: transform, Bayer threshold,
+/// pack, store.
 #[inline(never)]
-fn kernel(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
+fn kernel_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
     for (y, (s, d)) in src.chunks_exact(W).zip(dst.chunks_exact_mut(W)).enumerate() {
         let b = &specpoly_core::pixel::dither::BAYER8[y & 7];
         let thresholds: [u16; 8] = core::array::from_fn(|i| b[i] as u16 * 4 + 2);
@@ -120,6 +122,14 @@ fn kernel(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
             let c = PANEL.apply(*s, t);
             *d = (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
         }
+    }
+}
+
+/// The same in the assembly kernel (`board::rgb565`), row by row.
+#[inline(never)]
+fn kernel(k: &Rgb565Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
+    for (y, (s, d)) in src.chunks_exact(W).zip(dst.chunks_exact_mut(W)).enumerate() {
+        k.row(s, d, y);
     }
 }
 
@@ -166,9 +176,28 @@ fn main() -> ! {
     let mut fb = Framebuffer { px: [0; PIXELS] };
     let all = Rectangle::new(Point::zero(), Size::new(W as u32, H as u32));
 
-    // 1. the kernel alone: transform, dither, pack, store
-    let insns = counter.insns_per_call(1, || kernel(&src, &mut fb.px));
+    // 1. the kernel alone: transform, dither, pack, store; in assembly, then in portable Rust
+    let Some(asm) = Rgb565Kernel::new(&PANEL) else {
+        hprintln!("framebuffer: the panel's transform is not RGB565 with clip");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {
+            cortex_m::asm::wfi();
+        }
+    };
+    let insns = counter.insns_per_call(1, || kernel(&asm, &src, &mut fb.px));
     hprintln!("insns kernel {}", insns * 100 / PIXELS as u64);
+    let kernel = fnv1a(&fb.px);
+    let asm_frame = fb.px;
+    fb.px.fill(0);
+    let insns = counter.insns_per_call(1, || kernel_portable(&src, &mut fb.px));
+    hprintln!("insns kernel-portable {}", insns * 100 / PIXELS as u64);
+    let same = asm_frame
+        .iter()
+        .zip(fb.px.iter())
+        .filter(|(a, b)| a == b)
+        .count();
+    hprintln!("asm-equals-portable {} of {}", same, PIXELS);
+    check("asm-equals-portable", same == PIXELS);
     let mut acc = 0;
     let insns = counter.insns_per_call(1, || acc = levels_only(core::hint::black_box(&src)));
     hprintln!(
@@ -176,7 +205,6 @@ fn main() -> ! {
         insns * 100 / PIXELS as u64,
         acc
     );
-    let kernel = fnv1a(&fb.px);
 
     // 2. the same frame through the embedded-graphics adapter (fill_contiguous)
     fb.px.fill(0);
