@@ -7,7 +7,8 @@
 //!   picks one of the two), within `LEVEL_SLACK`;
 //! - every flat 8×8 block's mean light is within 0.5 ΔE00 of the reference;
 //! - the whole frame's checksum equals the same transform run on the host (the Cortex-M4 build
-//!   computes bit for bit what the host does);
+//!   computes bit for bit what the host does); on target, the assembly kernel
+//!   (`firmware/src/board/rgb565.rs`), the portable kernel and the adapter made that same frame;
 //! - the tables fit 8 KiB of flash; instruction counts per pixel are printed (docs/performance.md).
 //!
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both).
@@ -174,7 +175,7 @@ fn calibrated_framebuffer_on_target_matches_the_f64_reference() {
     let field = |prefix: &str| -> u64 {
         out.lines()
             .find_map(|l| l.strip_prefix(prefix))
-            .and_then(|v| v.trim().parse().ok())
+            .and_then(|v| v.split_whitespace().next()?.parse().ok())
             .unwrap_or_else(|| panic!("no `{prefix}` in:\n{out}"))
     };
     let tables = field("tables ");
@@ -261,15 +262,29 @@ fn calibrated_framebuffer_on_target_matches_the_f64_reference() {
     );
 
     let per_px = |what: &str| field(&format!("insns {what} ")) as f64 / 100.0;
-    let (kernel, image, solid, plain) = (
+    let same = out
+        .lines()
+        .find_map(|l| l.strip_prefix("asm-equals-portable "))
+        .expect("an asm-equals-portable line");
+    assert_eq!(
+        same,
+        format!("{} of {}", W * H, W * H),
+        "assembly vs portable kernel"
+    );
+    let (kernel, portable, levels) = (
         per_px("kernel"),
+        per_px("kernel-portable"),
+        per_px("levels"),
+    );
+    let (image, solid, plain) = (
         per_px("adapter-image"),
         per_px("adapter-solid"),
         per_px("unmanaged-image"),
     );
     println!(
-        "instructions per pixel: kernel {kernel}, adapter image {image}, adapter solid fill {solid}, \
-         unmanaged image {plain}; tables {tables} B"
+        "instructions per pixel: kernel {kernel} (assembly; portable {portable}, levels only \
+         {levels}), adapter image {image}, adapter solid fill {solid}, unmanaged image {plain}; \
+         tables {tables} B"
     );
     assert!(solid < image, "a solid fill transforms its colour once");
 }
