@@ -10,7 +10,7 @@
 //! 3. on mps2, an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector
 //!    table); the STM32's comes from its PAC.
 //! 4. the framebuffer demo's pixel transform (`src/bin/framebuffer.rs`): a small SPI LCD's
-//!    calibration baked by the core into `framebuffer_panel.rs` (`PANEL`, 6.9 KiB of tables in
+//!    calibration baked by the core into `framebuffer_panel.rs` (`PANEL`, 7.3 KiB of tables in
 //!    flash, and `PANEL_DESC`, the panel as the QEMU test rebuilds it in f64).
 //!
 //! Each light is written as `Moments::from_parts(m, white)`, the values of `Moments::new`
