@@ -125,12 +125,10 @@ fn kernel_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
     }
 }
 
-/// The same in the assembly kernel (`board::rgb565`), row by row.
+/// The same in the assembly kernel (`board::rgb565`), the whole frame in one call.
 #[inline(never)]
 fn kernel(k: &Rgb565Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
-    for (y, (s, d)) in src.chunks_exact(W).zip(dst.chunks_exact_mut(W)).enumerate() {
-        k.row(s, d, y);
-    }
+    k.rows(src, dst, W, 0);
 }
 
 /// The transform alone (levels, no dither or store), folded into a checksum.
@@ -188,6 +186,10 @@ fn main() -> ! {
     hprintln!("insns kernel {}", insns * 100 / PIXELS as u64);
     let kernel_sum = fnv1a(&fb.px);
     let asm_frame = fb.px;
+    // a band of rows starting at y = 3 (thresholds by absolute row) equals those rows of the frame
+    let mut band = [0u16; 8 * W];
+    asm.rows(&src[3 * W..11 * W], &mut band, W, 3);
+    check("asm-band-rows", band[..] == asm_frame[3 * W..11 * W]);
     fb.px.fill(0);
     let insns = counter.insns_per_call(1, || kernel_portable(&src, &mut fb.px));
     hprintln!("insns kernel-portable {}", insns * 100 / PIXELS as u64);

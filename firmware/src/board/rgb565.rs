@@ -29,8 +29,8 @@ struct Frame {
     src: *const u8,
     /// 4: the first output pixel.
     dst: *mut u16,
-    /// 8: one past the last source byte of the 8-pixel groups.
-    end: *const u8,
+    /// 8: rows (≥ 1).
+    rows: u32,
     /// 12: the decode table.
     decode: *const u16,
     /// 16, 20, 24: the R, G, B curve tables.
@@ -41,9 +41,28 @@ struct Frame {
     m2rg: u32,
     /// 44: `m_B2`.
     m2b: u32,
-    /// 48: the row's thresholds, `x & 7` = 0‥7.
-    thresholds: [u16; 8],
+    /// 48: source bytes per row (3 × width, width a multiple of 8, ≥ 8).
+    row_bytes: u32,
+    /// 52: the first row's `y`.
+    y: u32,
+    /// 56: the thresholds, `[y & 7][x & 7]`.
+    thresholds: *const [[u16; 8]; 8],
 }
+
+/// The Bayer thresholds `4b + 2` by `[y & 7][x & 7]` (`specpoly_core::pixel::Dither`).
+static THRESHOLDS: [[u16; 8]; 8] = {
+    let mut t = [[0u16; 8]; 8];
+    let mut y = 0;
+    while y < 8 {
+        let mut x = 0;
+        while x < 8 {
+            t[y][x] = BAYER8[y][x] as u16 * 4 + 2;
+            x += 1;
+        }
+        y += 1;
+    }
+    t
+};
 
 core::arch::global_asm!(
     r#"
@@ -105,21 +124,21 @@ core::arch::global_asm!(
 
 specpoly_rgb565_run:
     push    {{r4-r11, lr}}
-    sub     sp, sp, #32
-    ldr     r1, [r0, #48]
-    str     r1, [sp, #0]
-    ldr     r1, [r0, #52]
-    str     r1, [sp, #4]
-    ldr     r1, [r0, #56]
-    str     r1, [sp, #8]
-    ldr     r1, [r0, #60]
-    str     r1, [sp, #12]
-    ldr     r1, [r0, #8]
-    str     r1, [sp, #16]
+    sub     sp, sp, #48
+    @ stack: [0, 16) the row's thresholds, 16 end of the row, 20 m01b, 24 m2b, 28 rows left,
+    @ 32 y, 36 row bytes, 40 the threshold table
     ldr     r1, [r0, #36]
     str     r1, [sp, #20]
     ldr     r1, [r0, #44]
     str     r1, [sp, #24]
+    ldr     r1, [r0, #8]
+    str     r1, [sp, #28]
+    ldr     r1, [r0, #52]
+    str     r1, [sp, #32]
+    ldr     r1, [r0, #48]
+    str     r1, [sp, #36]
+    ldr     r1, [r0, #56]
+    str     r1, [sp, #40]
     ldr     r2, [r0, #12]
     ldr     r3, [r0, #16]
     ldr     r4, [r0, #20]
@@ -129,9 +148,16 @@ specpoly_rgb565_run:
     ldr     r8, [r0, #40]
     ldr     r1, [r0, #4]
     ldr     r0, [r0, #0]
-    ldr     r9, [sp, #16]
-    cmp     r0, r9
-    beq     2f
+3:
+    ldr     r9, [sp, #32]               @ this row's thresholds: table[y & 7]
+    ldr     r10, [sp, #40]
+    and     r9, r9, #7
+    add     r10, r10, r9, lsl #4
+    ldm     r10, {{r9, r10, r11, r12}}
+    stm     sp, {{r9, r10, r11, r12}}
+    ldr     r9, [sp, #36]
+    add     r9, r0, r9
+    str     r9, [sp, #16]
 1:
     PIXEL 0
     PIXEL 1
@@ -144,8 +170,14 @@ specpoly_rgb565_run:
     ldr     r9, [sp, #16]
     cmp     r0, r9
     bne     1b
-2:
-    add     sp, sp, #32
+    ldr     r9, [sp, #32]
+    add     r9, r9, #1
+    str     r9, [sp, #32]
+    ldr     r9, [sp, #28]
+    subs    r9, r9, #1
+    str     r9, [sp, #28]
+    bne     3b
+    add     sp, sp, #48
     pop     {{r4-r11, pc}}
     .size specpoly_rgb565_run, . - specpoly_rgb565_run
 "#
@@ -185,37 +217,48 @@ impl<'t> Rgb565Kernel<'t> {
         })
     }
 
-    /// Row `y` of a framebuffer: `dst[x]` = the RGB565 code of `src[x]`, dithered at `(x, y)`,
-    /// `x` from 0 (the rows of a full-width frame). Panics if the lengths differ.
-    pub fn row(&self, src: &[[u8; 3]], dst: &mut [u16], y: usize) {
-        assert_eq!(src.len(), dst.len(), "source and destination rows");
-        let b = &BAYER8[y & 7];
-        let thresholds: [u16; 8] = core::array::from_fn(|i| b[i] as u16 * 4 + 2);
-        let n8 = src.len() / 8 * 8;
+    /// Rows `y0, y0 + 1, …` of a framebuffer `width` pixels wide: `dst[i]` = the RGB565 code of
+    /// `src[i]`, dithered at `(i % width, y0 + i / width)`. The assembly runs when `width` is a
+    /// multiple of 8; other widths go through the portable transform. Panics if the lengths
+    /// differ or are not whole rows.
+    pub fn rows(&self, src: &[[u8; 3]], dst: &mut [u16], width: usize, y0: usize) {
+        assert_eq!(src.len(), dst.len(), "source and destination");
+        assert!(width > 0 && src.len().is_multiple_of(width), "whole rows");
+        let rows = src.len() / width;
+        if rows == 0 {
+            return;
+        }
+        if !width.is_multiple_of(8) {
+            for (i, (s, d)) in src.iter().zip(dst.iter_mut()).enumerate() {
+                let t = THRESHOLDS[(y0 + i / width) & 7][(i % width) & 7];
+                let c = self.t.apply(*s, t);
+                *d = (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
+            }
+            return;
+        }
         let tab = self.t.tables();
         let curve: &[[u16; LEN]; 3] = &tab.curve;
         let frame = Frame {
             src: src.as_ptr().cast(),
             dst: dst.as_mut_ptr(),
-            end: src[n8..].as_ptr().cast(),
+            rows: rows as u32,
             decode: tab.decode.as_ptr(),
             curve: [curve[0].as_ptr(), curve[1].as_ptr(), curve[2].as_ptr()],
             m01: self.m01,
             m2rg: self.m2rg,
             m2b: self.m2b,
-            thresholds,
+            row_bytes: (3 * width) as u32,
+            y: y0 as u32,
+            thresholds: &THRESHOLDS,
         };
-        // SAFETY: the assembly reads `n8` pixels (3 bytes each) from `src` and writes `n8` u16 to
-        // `dst`, both in bounds (`n8 ≤ len`, equal lengths); it reads the decode table at code
-        // values (0‥255 < 256 entries) and each curve table at indices ≤ 127 + 511 + 511 =
-        // `LEN − 1` (`usat` bounds every term), all borrowed for the call. It restores the
-        // callee-saved registers and `sp` (AAPCS) and touches no other memory than its own
-        // 32 bytes of stack.
+        // SAFETY: the assembly reads `rows × width` pixels (3 bytes each) from `src` and writes
+        // as many u16 to `dst`, both exactly their lengths (checked above; `width` a multiple of
+        // 8, so every row ends on its 8-pixel loop); it reads the decode table at code values
+        // (0‥255 < 256 entries), each curve table at indices ≤ 127 + 511 + 511 = `LEN − 1`
+        // (`usat` bounds every term) and `THRESHOLDS[y & 7]`, all borrowed or static for the
+        // call. It restores the callee-saved registers and `sp` (AAPCS) and touches no other
+        // memory than its own 48 bytes of stack.
         unsafe { specpoly_rgb565_run(&frame) };
-        for x in n8..src.len() {
-            let c = self.t.apply(src[x], thresholds[x & 7]);
-            dst[x] = (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
-        }
     }
 }
 
