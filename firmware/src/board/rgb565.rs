@@ -2,7 +2,7 @@
 //! [`PixelTransform`] ([`GamutMap::Clip`]), the Bayer 8×8 threshold and the RGB565 pack, for rows
 //! of 8-bit source pixels — the same integers as the portable code, bit for bit (checked by the
 //! demo on every pixel of its frame and by `tests/tests/firmware_framebuffer.rs` against the
-//! host), in 43 instructions per pixel instead of the compiler's 64 (docs/performance.md,
+//! host), in 43.4 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
 //! "Calibrated framebuffer").
 //!
 //! Assembly because the two instructions that make it short are the DSP extension's, which
