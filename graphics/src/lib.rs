@@ -274,7 +274,7 @@ impl<C: PanelColor> Pattern<C> {
 impl<C: PanelColor> Iterator for Pattern<C> {
     type Item = C;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<C> {
         if self.left == 0 {
             return None;
