@@ -15,11 +15,13 @@
 //!    sends the rare out-of-gamut pixel through the core's [`map_gamut`] in f32;
 //! 4. the panel's inverse curve by one table look-up per channel, without interpolation, at the
 //!    index `i = Σₖ clamp(v >> aₖ, 0, 2^nₖ − 1)` over the three [`RAMPS`] `(aₖ, nₖ)` — each term
-//!    one `usat` with a shift. The sum is concave and piecewise linear in `v`: below `2^(a₁+n₁)`
-//!    all three ramps climb (fine bins), then two, then only the coarsest, so the bins widen in
-//!    three tiers, because ΔE00 is most sensitive to light errors in dark colours (CIELAB's
-//!    slope grows as `Y^(−2/3)`, and below `Y ≈ 0.009` chroma is linear in X, Y, Z). Negative
-//!    drive gives index 0, drive beyond the coarsest ramp's top the last index: the clip is free.
+//!    one `usat` with a shift. The ramps' steps are nested (multiples of `2^aₖ`), so the bins
+//!    are the finest climbing ramp's: `2^a₁` units of `v` below `2^(a₁+n₁)`, `2^a₂` below
+//!    `2^(a₂+n₂)`, `2^a₃` above — three tiers, because ΔE00 is most sensitive to light errors in
+//!    dark colours (CIELAB's slope grows as `Y^(−2/3)`, and below `Y ≈ 0.009` chroma is linear
+//!    in X, Y, Z). Where a coarser ramp steps together with a finer one the index skips a value
+//!    (never read). Negative drive gives index 0, drive beyond the coarsest ramp's top the last
+//!    index: the clip is free.
 //!    An entry is the panel level of the light at its bin's centre; entry 0 is black and the last
 //!    bin (holding full drive and everything above) is full drive, so black and white are exact.
 //!
@@ -27,10 +29,11 @@
 //! `q` to `q + 1`, by the panel's own curve at its own bit depth), so rounding or dithering to the
 //! panel's 5, 6 or 8 bits is an add and a shift.
 //!
-//! With [`RAMPS`] = (3, 7), (4, 9), (6, 9): bins of 4.9 units of `v` (1.5·10⁻⁴ of full drive)
-//! to 1/32, of 12.8 (3.9·10⁻⁴) to 1/4, of 64 (2.0·10⁻³) above; [`LEN`] = 1150 entries per
-//! channel, [`PixelTransform::TABLE_BYTES`] = 7 430 B of tables (decode 512 B, matrix 18 B,
-//! curves 3 × 2 300 B); accuracy and speed in docs/calibration.md and docs/performance.md.
+//! With [`RAMPS`] = (2, 7), (4, 9), (6, 9): bins of 4 units of `v` (1.2·10⁻⁴ of full drive)
+//! to 1/64, of 16 (4.9·10⁻⁴) to 1/4, of 64 (2.0·10⁻³) above; [`LEN`] = 1150 entries per channel
+//! (992 of them reached), [`PixelTransform::TABLE_BYTES`] = 7 430 B of tables (decode 512 B,
+//! matrix 18 B, curves 3 × 2 300 B); fine bins to 1/32 would take 1 278 entries, 8 198 B, over
+//! the firmware's 8 KiB. Accuracy and speed in docs/calibration.md and docs/performance.md.
 
 use super::source::linear_matrix;
 use super::{level_lights, level_q8, Source, White};
