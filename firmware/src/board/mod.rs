@@ -8,6 +8,7 @@ pub mod flash;
 pub mod icount;
 pub mod pwm;
 pub mod rgb565;
+pub mod rgb888;
 pub mod stack;
 pub mod uart;
 pub mod vectors;
