@@ -154,7 +154,7 @@ fn codes(levels: [u16; 3], t: u16) -> [u8; 3] {
 
 #[inline(always)]
 fn convert<C: PanelColor, T: PixelMap>(map: &T, dither: Dither, c: Rgb888, p: Point) -> C {
-    let levels = map.levels([c.r(), c.g(), c.b()]);
+    let levels = map.levels_for([c.r(), c.g(), c.b()], C::BITS);
     C::from_codes(codes(levels, dither.threshold(p.x as u32, p.y as u32)))
 }
 
@@ -233,7 +233,7 @@ where
         let c = self.colors.next()?;
         let t = self.threshold();
         Some(C::from_codes(codes(
-            self.map.levels([c.r(), c.g(), c.b()]),
+            self.map.levels_for([c.r(), c.g(), c.b()], C::BITS),
             t,
         )))
     }
@@ -325,7 +325,9 @@ where
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
-        let levels = self.map.levels([color.r(), color.g(), color.b()]);
+        let levels = self
+            .map
+            .levels_for([color.r(), color.g(), color.b()], D::Color::BITS);
         match self.dither {
             Dither::None => self
                 .inner

@@ -25,9 +25,14 @@
 //!    An entry is the panel level of the light at its bin's centre; entry 0 is black and the last
 //!    bin (holding full drive and everything above) is full drive, so black and white are exact.
 //!
-//! The entries are panel levels in Q8 (`q · 256 + f`, `f/256` of the way *in light* from level
-//! `q` to `q + 1`, by the panel's own curve at its own bit depth), so rounding or dithering to the
-//! panel's 5, 6 or 8 bits is an add and a shift.
+//! The levels are Q8 (`q · 256 + f`, `f/256` of the way *in light* from level `q` to `q + 1`, by
+//! the panel's own curve at its own bit depth), so rounding or dithering to the panel's 5, 6 or
+//! 8 bits is an add and a shift. A channel of `b` bits stores them top-aligned in the u16, as
+//! `(q · 256 + f) << (8 − b)` (the code in the top `b` bits, e.g. RGB565's red at bits 11–15, its
+//! field in the pixel): [`PixelTransform::levels`] shifts back, while the firmware's RGB565 kernel
+//! adds the dither threshold shifted to match and masks the field in place (one instruction
+//! fewer per pixel). No add overflows: a level below the top has `q ≤ 2^b − 2`, and the top level
+//! only full drive's `f = 0`, so `q · 256 + f + t < 2^b · 256` for thresholds `t < 256`.
 //!
 //! With [`RAMPS`] = (2, 7), (4, 9), (6, 9): bins of 4 units of `v` (1.2·10⁻⁴ of full drive)
 //! to 1/64, of 16 (4.9·10⁻⁴) to 1/4, of 64 (2.0·10⁻³) above; [`LEN`] = 1150 entries per channel
@@ -65,7 +70,7 @@ pub struct Tables {
     pub decode: [u16; 256],
     /// `T` in Q14, row-major.
     pub matrix: [[i16; 3]; 3],
-    /// Per channel, the levels (Q8) by index.
+    /// Per channel, the levels (Q8) by index, top-aligned: `level << (8 − bits)`.
     pub curve: [[u16; LEN]; 3],
     /// The panel's bits per channel (5, 6 or 8 for RGB565/666/888).
     pub bits: [u8; 3],
@@ -165,6 +170,9 @@ impl PixelTransform {
         for c in 0..3 {
             let n = level_lights(&panel.transfer()[c], opts.bits[c], &mut lights);
             fill_curve(&lights[..n], &mut curve[c]);
+            for e in curve[c].iter_mut() {
+                *e <<= 8 - opts.bits[c];
+            }
         }
         Ok(Self {
             t: Tables {
@@ -222,6 +230,15 @@ impl PixelTransform {
     /// The panel levels (Q8: `level · 256 + fraction`) for a source pixel.
     #[inline(always)]
     pub fn levels(&self, rgb: [u8; 3]) -> [u16; 3] {
+        self.levels_for(rgb, self.t.bits)
+    }
+
+    /// [`Self::levels`] for a caller that knows the transform's bits per channel at compile
+    /// time (the `embedded-graphics` adapter, from its panel colour type): the shifts that undo
+    /// the tables' top alignment are then constants. `bits` other than [`Self::bits`] give
+    /// wrong levels (never a panic).
+    #[inline(always)]
+    pub fn levels_for(&self, rgb: [u8; 3], bits: [u8; 3]) -> [u16; 3] {
         let v = self.drive(rgb);
         if self.t.map == GamutMap::Desaturate {
             // full drive's own rounding may land a few units above ONE
@@ -229,16 +246,16 @@ impl PixelTransform {
             if (v[0] as u32 > top) | (v[1] as u32 > top) | (v[2] as u32 > top) {
                 let v = self.desaturate(v);
                 return [
-                    self.lookup(0, v[0]),
-                    self.lookup(1, v[1]),
-                    self.lookup(2, v[2]),
+                    self.lookup(0, v[0], bits[0]),
+                    self.lookup(1, v[1], bits[1]),
+                    self.lookup(2, v[2], bits[2]),
                 ];
             }
         }
         [
-            self.lookup(0, v[0]),
-            self.lookup(1, v[1]),
-            self.lookup(2, v[2]),
+            self.lookup(0, v[0], bits[0]),
+            self.lookup(1, v[1], bits[1]),
+            self.lookup(2, v[2], bits[2]),
         ]
     }
 
@@ -261,9 +278,10 @@ impl PixelTransform {
         ramp(v, RAMPS[0]) + ramp(v, RAMPS[1]) + ramp(v, RAMPS[2])
     }
 
+    /// The Q8 level of channel `c` (of `bits`) at drive `v`: the top-aligned entry shifted back.
     #[inline(always)]
-    fn lookup(&self, c: usize, v: i32) -> u16 {
-        self.t.curve[c][Self::index(v)]
+    fn lookup(&self, c: usize, v: i32, bits: u8) -> u16 {
+        self.t.curve[c][Self::index(v)].wrapping_shr(8u32.wrapping_sub(bits as u32))
     }
 
     /// The out-of-gamut path of [`GamutMap::Desaturate`]: the core's [`map_gamut`] in f32.
@@ -462,6 +480,32 @@ mod tests {
         assert_eq!(PixelTransform::index(i32::MIN), 0);
         assert_eq!(PixelTransform::index(ONE), LEN - 1);
         assert_eq!(PixelTransform::index(i32::MAX), LEN - 1);
+    }
+
+    #[test]
+    fn curves_are_stored_top_aligned_for_the_panel_bits() {
+        for bits in [Options::RGB565, Options::RGB666, Options::RGB888] {
+            let opts = Options {
+                bits,
+                ..Options::default()
+            };
+            let p = PanelTransform::new(&lcd(), opts).unwrap();
+            for c in 0..3 {
+                let curve = &p.tables().curve[c];
+                let low = (1u16 << (8 - bits[c])) - 1;
+                assert!(curve.iter().all(|e| e & low == 0), "{bits:?} {c}");
+                // full drive: the top code in the top bits
+                assert_eq!(curve[LEN - 1], !((1u32 << (16 - bits[c])) - 1) as u16);
+                // no dither threshold carries a level past the top code
+                for &e in curve.iter() {
+                    let q8 = e >> (8 - bits[c]);
+                    assert!(
+                        q8 as u32 + 255 < 1 << (bits[c] + 8)
+                            || q8 as u32 == ((1 << bits[c]) - 1) << 8
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! The calibrated framebuffer demo, under QEMU with semihosting: a 240×240 RGB565 framebuffer in
 //! RAM, filled from an sRGB UI through `specpoly_graphics::Calibrated` (the `embedded-graphics`
-//! adapter) with the demo panel's transform baked into flash by `build.rs`. Exits 0 when its
-//! checks pass. Prints, for `tests/tests/firmware_framebuffer.rs` and docs/performance.md:
+//! adapter) with the demo panel's transform baked into flash by `build.rs`; and the same panel in
+//! RGB888 through the RGB888 kernel (`board::rgb888`, XRGB8888 words and packed bytes). Exits 0
+//! when its checks pass. Prints, for `tests/tests/firmware_framebuffer.rs` and docs/performance.md:
 //!
 //! - `panel …`: the demo panel (primaries, white, gammas), for the host's f64 reference;
 //! - `tables BYTES`: the transform's tables in flash;

@@ -2,8 +2,10 @@
 //! [`PixelTransform`] ([`GamutMap::Clip`]), the Bayer 8×8 threshold and the RGB565 pack, for rows
 //! of 8-bit source pixels — the same integers as the portable code, bit for bit (checked by the
 //! demo on every pixel of its frame and by `tests/tests/firmware_framebuffer.rs` against the
-//! host), in 43.4 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
-//! "Calibrated framebuffer").
+//! host), in 42.4 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
+//! "Calibrated framebuffer"). The transform stores each channel's levels top-aligned for its
+//! bits (`specpoly_core::pixel::transform`), so the dither is an add with a shifted threshold and
+//! the pack two masks and two `orr`s with shifted operands.
 //!
 //! Assembly because the two instructions that make it short are the DSP extension's, which
 //! stable Rust does not emit on its own here: `SMLAD` (two 16 × 16 products and a 32-bit
@@ -97,7 +99,7 @@ core::arch::global_asm!(
     usat    lr, #9, r10, asr #18
     add     r9, r9, lr, lsl #1
     usat    r10, #9, r10, asr #20
-    ldrh    r10, [r9, r10, lsl #1]      @ level R (Q8)
+    ldrh    r10, [r9, r10, lsl #1]      @ level R (Q8 << 3)
     usat    r9, #7, r12, asr #16        @ G
     add     r9, r4, r9, lsl #1
     usat    lr, #9, r12, asr #18
@@ -110,15 +112,14 @@ core::arch::global_asm!(
     add     r9, r9, lr, lsl #1
     usat    r11, #9, r11, asr #20
     ldrh    r11, [r9, r11, lsl #1]      @ level B
-    ldrh    r9, [sp, #(2 * \k)]         @ threshold
-    add     r10, r10, r9
-    and     r10, r10, #0x1F00           @ R code << 8
-    add     r12, r12, r9
-    and     r12, r12, #0x3F00           @ G code << 8
-    add     r11, r11, r9
-    lsl     r10, r10, #3
-    orr     r10, r10, r12, lsr #3
-    orr     r10, r10, r11, lsr #8
+    ldrh    r9, [sp, #(2 * \k)]         @ threshold t
+    add     r10, r10, r9, lsl #3        @ levels top-aligned: R << 3, G << 2, B << 3
+    and     r10, r10, #0xF800           @ R code << 11
+    add     r12, r12, r9, lsl #2
+    and     r12, r12, #0xFC00           @ G code << 10
+    add     r11, r11, r9, lsl #3        @ B code << 11 (no add carries past bit 15)
+    orr     r10, r10, r12, lsr #5
+    orr     r10, r10, r11, lsr #11
     strh    r10, [r1], #2
 .endm
 
@@ -205,6 +206,7 @@ impl<'t> Rgb565Kernel<'t> {
     /// desaturating map's slow path is not in the assembly).
     pub fn new(t: &'t PixelTransform) -> Option<Self> {
         let tab = t.tables();
+        // the assembly's masks and shifts are RGB565's top-aligned fields
         if tab.bits != [5, 6, 5] || tab.map != GamutMap::Clip {
             return None;
         }
