@@ -10,8 +10,10 @@
 //! 3. on mps2, an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector
 //!    table); the STM32's comes from its PAC.
 //! 4. the framebuffer demo's pixel transform (`src/bin/framebuffer.rs`): a small SPI LCD's
-//!    calibration baked by the core into `framebuffer_panel.rs` (`PANEL`, 6.9 KiB of tables in
-//!    flash, and `PANEL_DESC`, the panel as the QEMU test rebuilds it in f64).
+//!    calibration baked by the core into `framebuffer_panel.rs` (`PANEL`, 7.3 KiB of tables in
+//!    flash, and `PANEL_DESC`, the panel as the QEMU test rebuilds it in f64); the same panel in
+//!    RGB888 (`PANEL888`) with its 8-bit code tables (`PANEL888_CODES`, 3 450 B) for the
+//!    RGB888 kernel (`src/board/rgb888.rs`).
 //!
 //! Each light is written as `Moments::from_parts(m, white)`, the values of `Moments::new`
 //! printed with `{:?}` (shortest round-trip form), so they are the core's to the bit.
@@ -99,6 +101,39 @@ fn framebuffer_panel(out: &std::path::Path) {
         &mut src,
     )
     .expect("write the transform");
+    // the same panel driven in RGB888 (an 18/24-bit SPI panel, an LTDC framebuffer): its
+    // transform and the 8-bit code tables of `board::rgb888` (`(level + 128) >> 8`, rounded)
+    let p888 = PanelTransform::new(
+        &display,
+        Options {
+            bits: Options::RGB888,
+            ..opts
+        },
+    )
+    .expect("the demo panel's RGB888 transform builds");
+    export::write_rust(
+        &p888,
+        "PANEL888",
+        "the framebuffer demo's SPI LCD in RGB888 (firmware/build.rs)",
+        &mut src,
+    )
+    .expect("write the RGB888 transform");
+    let _ = writeln!(
+        src,
+        "/// `PANEL888`'s levels rounded to 8-bit codes, for `board::rgb888`.\n\
+         pub static PANEL888_CODES: specpoly_firmware::board::rgb888::Codes = ["
+    );
+    for curve in &p888.tables().curve {
+        src.push_str("    [");
+        for (i, l) in curve.iter().enumerate() {
+            if i % 24 == 0 {
+                src.push_str("\n        ");
+            }
+            let _ = write!(src, "{}, ", (l.saturating_add(128) >> 8) as u8);
+        }
+        src.push_str("\n    ],\n");
+    }
+    src.push_str("];\n");
     fs::write(out.join("framebuffer_panel.rs"), src).expect("write framebuffer_panel.rs");
 }
 

@@ -32,6 +32,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point};
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb666, Rgb888, RgbColor};
@@ -153,7 +154,7 @@ fn codes(levels: [u16; 3], t: u16) -> [u8; 3] {
 
 #[inline(always)]
 fn convert<C: PanelColor, T: PixelMap>(map: &T, dither: Dither, c: Rgb888, p: Point) -> C {
-    let levels = map.levels([c.r(), c.g(), c.b()]);
+    let levels = map.levels_for([c.r(), c.g(), c.b()], C::BITS);
     C::from_codes(codes(levels, dither.threshold(p.x as u32, p.y as u32)))
 }
 
@@ -166,11 +167,128 @@ where
     }
 }
 
-/// The points of `area`, row by row (the order of `fill_contiguous`).
-fn points(area: &Rectangle) -> impl Iterator<Item = Point> {
-    let (x0, y0) = (area.top_left.x, area.top_left.y);
-    let (w, h) = (area.size.width as i32, area.size.height as i32);
-    (0..h).flat_map(move |y| (0..w).map(move |x| Point::new(x0 + x, y0 + y)))
+/// The source colours of `area` (row by row, the order of `fill_contiguous`), colour-managed: a
+/// column counter and the row's eight thresholds instead of a `Point` per pixel, so the per-pixel
+/// work is the transform, one add per channel and the pack.
+struct Managed<'t, T, I, C> {
+    map: &'t T,
+    dither: Dither,
+    colors: I,
+    /// `area`'s left edge and width.
+    x0: i32,
+    width: u32,
+    /// The column within the row, and the row (absolute).
+    x: u32,
+    y: i32,
+    row: [u16; 8],
+    colour: PhantomData<fn() -> C>,
+}
+
+impl<'t, T: PixelMap, I, C> Managed<'t, T, I, C> {
+    fn new(map: &'t T, dither: Dither, area: &Rectangle, colors: I) -> Self {
+        let (x0, y) = (area.top_left.x, area.top_left.y);
+        Self {
+            map,
+            dither,
+            colors,
+            x0,
+            width: area.size.width,
+            x: 0,
+            y,
+            row: row_thresholds(dither, x0, y),
+            colour: PhantomData,
+        }
+    }
+
+    /// The threshold of the next pixel, advancing the column (and the row at its end).
+    #[inline(always)]
+    fn threshold(&mut self) -> u16 {
+        let t = self.row[self.x as usize & 7];
+        self.x += 1;
+        if self.x == self.width {
+            self.x = 0;
+            self.y += 1;
+            self.row = row_thresholds(self.dither, self.x0, self.y);
+        }
+        t
+    }
+}
+
+/// The thresholds of row `y` for columns `x0, x0 + 1, …, x0 + 7` (so column `x` uses `[x & 7]`
+/// counted from `x0`).
+fn row_thresholds(dither: Dither, x0: i32, y: i32) -> [u16; 8] {
+    core::array::from_fn(|i| dither.threshold((x0 + i as i32) as u32, y as u32))
+}
+
+impl<T, I, C> Iterator for Managed<'_, T, I, C>
+where
+    T: PixelMap,
+    I: Iterator<Item = Rgb888>,
+    C: PanelColor,
+{
+    type Item = C;
+
+    #[inline]
+    fn next(&mut self) -> Option<C> {
+        let c = self.colors.next()?;
+        let t = self.threshold();
+        Some(C::from_codes(codes(
+            self.map.levels_for([c.r(), c.g(), c.b()], C::BITS),
+            t,
+        )))
+    }
+}
+
+/// A flat colour over `area`, dithered: the eight codes of each row computed once per row.
+struct Pattern<C> {
+    levels: [u16; 3],
+    dither: Dither,
+    x0: i32,
+    width: u32,
+    x: u32,
+    y: i32,
+    left: u32,
+    row: [C; 8],
+}
+
+impl<C: PanelColor> Pattern<C> {
+    fn new(levels: [u16; 3], dither: Dither, area: &Rectangle) -> Self {
+        let (x0, y) = (area.top_left.x, area.top_left.y);
+        Self {
+            levels,
+            dither,
+            x0,
+            width: area.size.width,
+            x: 0,
+            y,
+            left: area.size.width * area.size.height,
+            row: Self::row(levels, dither, x0, y),
+        }
+    }
+
+    fn row(levels: [u16; 3], dither: Dither, x0: i32, y: i32) -> [C; 8] {
+        row_thresholds(dither, x0, y).map(|t| C::from_codes(codes(levels, t)))
+    }
+}
+
+impl<C: PanelColor> Iterator for Pattern<C> {
+    type Item = C;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<C> {
+        if self.left == 0 {
+            return None;
+        }
+        self.left -= 1;
+        let c = self.row[self.x as usize & 7];
+        self.x += 1;
+        if self.x == self.width {
+            self.x = 0;
+            self.y += 1;
+            self.row = Self::row(self.levels, self.dither, self.x0, self.y);
+        }
+        Some(c)
+    }
 }
 
 impl<D, T> DrawTarget for Calibrated<'_, D, T>
@@ -198,25 +316,26 @@ where
     where
         I: IntoIterator<Item = Self::Color>,
     {
-        let (map, dither) = (self.map, self.dither);
-        let mapped = points(area)
-            .zip(colors)
-            .map(|(p, c)| convert(map, dither, c, p));
+        if area.is_zero_sized() {
+            return Ok(());
+        }
+        let mapped =
+            Managed::<_, _, D::Color>::new(self.map, self.dither, area, colors.into_iter());
         self.inner.fill_contiguous(area, mapped)
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: Self::Color) -> Result<(), Self::Error> {
-        let levels = self.map.levels([color.r(), color.g(), color.b()]);
+        let levels = self
+            .map
+            .levels_for([color.r(), color.g(), color.b()], D::Color::BITS);
         match self.dither {
             Dither::None => self
                 .inner
                 .fill_solid(area, D::Color::from_codes(codes(levels, 128))),
-            dither => {
-                let mapped = points(area).map(|p| {
-                    D::Color::from_codes(codes(levels, dither.threshold(p.x as u32, p.y as u32)))
-                });
-                self.inner.fill_contiguous(area, mapped)
-            }
+            _ if area.is_zero_sized() => Ok(()),
+            dither => self
+                .inner
+                .fill_contiguous(area, Pattern::<D::Color>::new(levels, dither, area)),
         }
     }
 }

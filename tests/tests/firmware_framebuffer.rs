@@ -7,7 +7,13 @@
 //!   picks one of the two), within `LEVEL_SLACK`;
 //! - every flat 8×8 block's mean light is within 0.5 ΔE00 of the reference;
 //! - the whole frame's checksum equals the same transform run on the host (the Cortex-M4 build
-//!   computes bit for bit what the host does);
+//!   computes bit for bit what the host does); on target, the assembly kernel
+//!   (`firmware/src/board/rgb565.rs`), the portable kernel and the adapter made that same frame,
+//!   and the assembly and portable kernels agree on every pixel of a random frame too;
+//! - the same panel in RGB888 through the RGB888 kernel (`firmware/src/board/rgb888.rs`, no
+//!   dither): every sampled code within `LEVEL_SLACK` of the floor or ceiling of the reference
+//!   level, the frame's checksum the host's, the assembly's XRGB8888 words and packed bytes the
+//!   portable code's on the gradient and the random frame;
 //! - the tables fit 8 KiB of flash; instruction counts per pixel are printed (docs/performance.md).
 //!
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both).
@@ -174,7 +180,7 @@ fn calibrated_framebuffer_on_target_matches_the_f64_reference() {
     let field = |prefix: &str| -> u64 {
         out.lines()
             .find_map(|l| l.strip_prefix(prefix))
-            .and_then(|v| v.trim().parse().ok())
+            .and_then(|v| v.split_whitespace().next()?.parse().ok())
             .unwrap_or_else(|| panic!("no `{prefix}` in:\n{out}"))
     };
     let tables = field("tables ");
@@ -260,16 +266,97 @@ fn calibrated_framebuffer_on_target_matches_the_f64_reference() {
         "firmware frame differs from the host's"
     );
 
+    // the RGB888 kernel's frame (no dither): each sampled code is the reference level rounded
+    // (within the slack), and the frame is the host's, bit for bit
+    let bits888 = Options::RGB888;
+    let (mut n, mut exact) = (0, 0);
+    for line in out.lines().filter(|l| l.starts_with("px888 ")) {
+        let v: Vec<u64> = line[6..].split(' ').map(|t| t.parse().unwrap()).collect();
+        let rgb = [v[2] as u8, v[3] as u8, v[4] as u8];
+        assert_eq!(rgb, source(v[0] as usize, v[1] as usize), "{line}");
+        let light = panel.reference_light(Source::Srgb, White::Adapt, GamutMap::Clip, rgb);
+        let code = [v[5] >> 16, (v[5] >> 8) & 255, v[5] & 255];
+        for c in 0..3 {
+            let level = level_of(&panel, c, bits888[c], light[c].clamp(0.0, 1.0));
+            let (lo, hi) = (level.floor() as i64, level.ceil() as i64);
+            let q = code[c] as i64;
+            assert!(
+                q >= lo - LEVEL_SLACK && q <= hi + LEVEL_SLACK,
+                "{line}: channel {c} code {q}, reference level {level:.3}"
+            );
+            exact += usize::from(q == lo || q == hi);
+            n += 1;
+        }
+    }
+    assert!(n >= 3 * 200, "{n} RGB888 samples");
+    assert!(
+        exact as f64 >= 0.99 * n as f64,
+        "RGB888: {exact} of {n} on floor/ceiling"
+    );
+    let host888 = PanelTransform::new(
+        &panel.display,
+        Options {
+            bits: bits888,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    let mut h = 0x811c_9dc5u32;
+    for y in 0..H {
+        for x in 0..W {
+            let c = host888.apply(source(x, y), 128);
+            let v = (c[0] as u32) << 16 | (c[1] as u32) << 8 | c[2] as u32;
+            for b in v.to_le_bytes() {
+                h = (h ^ b as u32).wrapping_mul(0x0100_0193);
+            }
+        }
+    }
+    let fw = out
+        .lines()
+        .find_map(|l| l.strip_prefix("checksum888 "))
+        .expect("a checksum888");
+    assert_eq!(
+        fw,
+        format!("{h:08x}"),
+        "firmware RGB888 frame differs from the host's"
+    );
+
     let per_px = |what: &str| field(&format!("insns {what} ")) as f64 / 100.0;
-    let (kernel, image, solid, plain) = (
+    for what in [
+        "asm-equals-portable ",
+        "asm-equals-portable-random ",
+        "asm888-equals-portable ",
+        "asm888-equals-portable-random ",
+    ] {
+        let same = out
+            .lines()
+            .find_map(|l| l.strip_prefix(what))
+            .unwrap_or_else(|| panic!("no `{what}` line"));
+        assert_eq!(same, format!("{} of {}", W * H, W * H), "{what}");
+    }
+    let (kernel, portable, levels) = (
         per_px("kernel"),
+        per_px("kernel-portable"),
+        per_px("levels"),
+    );
+    let (image, solid, plain) = (
         per_px("adapter-image"),
         per_px("adapter-solid"),
         per_px("unmanaged-image"),
     );
+    let (xrgb, packed, portable888) = (
+        per_px("kernel888-xrgb"),
+        per_px("kernel888-packed"),
+        per_px("kernel888-portable"),
+    );
     println!(
-        "instructions per pixel: kernel {kernel}, adapter image {image}, adapter solid fill {solid}, \
-         unmanaged image {plain}; tables {tables} B"
+        "instructions per pixel, RGB888: kernel {xrgb} (XRGB8888), {packed} (packed), portable \
+         {portable888}"
+    );
+    println!(
+        "instructions per pixel: kernel {kernel} (assembly; portable {portable}, levels only \
+         {levels}), adapter image {image}, adapter solid fill {solid}, unmanaged image {plain}; \
+         tables {tables} B"
     );
     assert!(solid < image, "a solid fill transforms its colour once");
 }

@@ -37,15 +37,27 @@ pub trait PixelMap {
     fn levels(&self, rgb: [u8; 3]) -> [u16; 3];
     /// The panel's bits per channel.
     fn bits(&self) -> [u8; 3];
+    /// [`Self::levels`] when the caller knows [`Self::bits`] at compile time (lets
+    /// [`PixelTransform`] shift its top-aligned tables by constants); `bits` must be
+    /// [`Self::bits`].
+    #[inline(always)]
+    fn levels_for(&self, rgb: [u8; 3], bits: [u8; 3]) -> [u16; 3] {
+        let _ = bits;
+        self.levels(rgb)
+    }
 }
 
-impl<const LEN: usize, const F: usize, const M: usize> PixelMap for PixelTransform<LEN, F, M> {
+impl PixelMap for PixelTransform {
     #[inline(always)]
     fn levels(&self, rgb: [u8; 3]) -> [u16; 3] {
         PixelTransform::levels(self, rgb)
     }
     fn bits(&self) -> [u8; 3] {
         PixelTransform::bits(self)
+    }
+    #[inline(always)]
+    fn levels_for(&self, rgb: [u8; 3], bits: [u8; 3]) -> [u16; 3] {
+        PixelTransform::levels_for(self, rgb, bits)
     }
 }
 

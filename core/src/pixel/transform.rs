@@ -1,67 +1,76 @@
 //! The matrix/curves pixel transform: decode table → 3×3 in fixed point → gamut map → panel
-//! inverse-curve table, for panels that obey Cowan's additive model.
+//! inverse-curve table, for panels that obey Cowan's additive model. Its arithmetic is chosen so
+//! that a Cortex-M4 runs it in one instruction per step: 16-bit operands for the DSP extension's
+//! dual multiply-accumulate (`SMLAD`) and an index made of `USAT`s (the firmware's RGB565 kernel,
+//! `firmware/src/board/rgb565.rs`, is this arithmetic in assembly, checked bit for bit against
+//! this portable code).
 //!
 //! Per pixel, with `c` the 8-bit source code values:
 //!
-//! 1. `d = decode[c]`: the source curve, linear light in Q15 (`1.0 = 32768`), 256 × u16;
-//! 2. `v = (Σⱼ mᵢⱼ dⱼ + round) >> shift`: the 3×3 `T` of [`linear_matrix`](super::source::linear_matrix)
-//!    in i32, giving the panel's linear drive `l` as `v = round(l · 65472) + 4`. The shift is the
-//!    largest that cannot overflow i32 for this `T` (chosen at construction);
-//! 3. the gamut map: [`GamutMap::Clip`] is the clamp of `v` to `0..=65535` (one `usat` on a
-//!    Cortex-M4); [`GamutMap::Desaturate`] sends the rare out-of-gamut pixel through the core's
-//!    [`map_gamut`] in f32;
-//! 4. the panel's inverse curve by one table look-up per channel, without interpolation. The
-//!    table's bins widen in three tiers, because ΔE00 is most sensitive to light errors in dark
-//!    colours (CIELAB's slope grows as `Y^(−2/3)`, and below `Y ≈ 0.009` chroma is linear in
-//!    X, Y, Z): `F` *fine* bins of 8 units of `v` from 0, then `M` *middle* bins of 32, then the
-//!    rest (`C = LEN − F − M`) *coarse* bins of 128 up to 65536. The index is
-//!    `min(v >> 3, (v >> 5) + K₁, (v >> 7) + K₂)`: each tier's own formula is the smallest inside
-//!    it (no branch). An entry is the panel level of the light at its bin's centre (the bin
-//!    holding `l = 0` is centred on it; the bin holding `l = 1` is full drive), so the emitted
-//!    light is off by at most half a bin: 6.1·10⁻⁵ in the fine tier, 2.4·10⁻⁴ in the middle,
-//!    9.8·10⁻⁴ in the coarse.
+//! 1. `d = decode[c]`: the source curve, linear light with `1.0 = 32767` (Q15), 256 × u16;
+//! 2. `acc = Σⱼ mᵢⱼ dⱼ` in i32, with `m` the 3×3 `T` of [`linear_matrix`](super::source::linear_matrix)
+//!    in Q14 (i16, so `|mᵢⱼ| < 2`; a row's `Σ|mᵢⱼ| < 4` keeps `acc` inside i32 — both checked at
+//!    construction); the panel's linear drive is `v = acc >> 14` (`v = 32767` is full drive);
+//! 3. the gamut map: [`GamutMap::Clip`] is the saturation in the index below; [`GamutMap::Desaturate`]
+//!    sends the rare out-of-gamut pixel through the core's [`map_gamut`] in f32;
+//! 4. the panel's inverse curve by one table look-up per channel, without interpolation, at the
+//!    index `i = Σₖ clamp(v >> aₖ, 0, 2^nₖ − 1)` over the three [`RAMPS`] `(aₖ, nₖ)` — each term
+//!    one `usat` with a shift. The ramps' steps are nested (multiples of `2^aₖ`), so the bins
+//!    are the finest climbing ramp's: `2^a₁` units of `v` below `2^(a₁+n₁)`, `2^a₂` below
+//!    `2^(a₂+n₂)`, `2^a₃` above — three tiers, because ΔE00 is most sensitive to light errors in
+//!    dark colours (CIELAB's slope grows as `Y^(−2/3)`, and below `Y ≈ 0.009` chroma is linear
+//!    in X, Y, Z). Where a coarser ramp steps together with a finer one the index skips a value
+//!    (never read). Negative drive gives index 0, drive beyond the coarsest ramp's top the last
+//!    index: the clip is free.
+//!    An entry is the panel level of the light at its bin's centre; entry 0 is black and the last
+//!    bin (holding full drive and everything above) is full drive, so black and white are exact.
 //!
-//! The entries are panel levels in Q8 (`q · 256 + f`, `f/256` of the way *in light* from level
-//! `q` to `q + 1`, by the panel's own curve at its own bit depth), so rounding or dithering to the
-//! panel's 5, 6 or 8 bits is an add and a shift.
+//! The levels are Q8 (`q · 256 + f`, `f/256` of the way *in light* from level `q` to `q + 1`, by
+//! the panel's own curve at its own bit depth), so rounding or dithering to the panel's 5, 6 or
+//! 8 bits is an add and a shift. A channel of `b` bits stores them top-aligned in the u16, as
+//! `(q · 256 + f) << (8 − b)` (the code in the top `b` bits, e.g. RGB565's red at bits 11–15, its
+//! field in the pixel): [`PixelTransform::levels`] shifts back, while the firmware's RGB565 kernel
+//! adds the dither threshold shifted to match and masks the field in place (one instruction
+//! fewer per pixel). No add overflows: a level below the top has `q ≤ 2^b − 2`, and the top level
+//! only full drive's `f = 0`, so `q · 256 + f + t < 2^b · 256` for thresholds `t < 256`.
 //!
-//! [`PanelTransform`] (`F = 256` fine bins to 1/32 of full drive, `M = 448` middle ones to 1/4,
-//! 384 coarse ones: `LEN = 1088`) holds 6.9 KiB of tables (decode 512 B, matrix 36 B, curves
-//! 3 × 2176 B); its accuracy and speed are in docs/calibration.md and docs/performance.md.
+//! With [`RAMPS`] = (2, 7), (4, 9), (6, 9): bins of 4 units of `v` (1.2·10⁻⁴ of full drive)
+//! to 1/64, of 16 (4.9·10⁻⁴) to 1/4, of 64 (2.0·10⁻³) above; [`LEN`] = 1150 entries per channel
+//! (992 of them reached), [`PixelTransform::TABLE_BYTES`] = 7 430 B of tables (decode 512 B,
+//! matrix 18 B, curves 3 × 2 300 B); fine bins to 1/32 would take 1 278 entries, 8 198 B, over
+//! the firmware's 8 KiB. Accuracy and speed in docs/calibration.md and docs/performance.md.
 
 use super::source::linear_matrix;
 use super::{level_lights, level_q8, Source, White};
 use crate::display::{map_gamut, Display, GamutMap};
 use crate::Error;
 
-/// The decode table's linear 1.0 (Q15).
-pub const DECODE_ONE: i32 = 1 << 15;
-/// `v` of linear drive 0 (so that the fine bin holding it is centred on it).
-pub const BIAS: i32 = 4;
-/// `v − BIAS` of linear drive 1.
-pub const ONE: i32 = 65472;
-/// The largest `v` (the clamp).
-pub const V_MAX: i32 = 65535;
-/// Fine bins are `2^FINE_SHIFT` units of `v` wide.
-pub const FINE_SHIFT: u32 = 3;
-/// Middle bins are `2^MID_SHIFT` units of `v` wide.
-pub const MID_SHIFT: u32 = 5;
-/// Coarse bins are `2^COARSE_SHIFT` units of `v` wide.
-pub const COARSE_SHIFT: u32 = 7;
+/// The decode table's linear 1.0 (Q15, the largest i16).
+pub const DECODE_ONE: i32 = 32767;
+/// The matrix coefficients' fixed point: Q14.
+pub const Q: u32 = 14;
+/// `v` of full drive.
+pub const ONE: i32 = 32767;
+/// The index's ramps `(a, n)`: `clamp(v >> a, 0, 2^n − 1)`, finest first. The coarsest must
+/// reach past full drive (`2^(a+n) > ONE`).
+pub const RAMPS: [(u32, u32); 3] = [(2, 7), (4, 9), (6, 9)];
+/// Entries per channel: the largest index plus one.
+pub const LEN: usize = (1 << RAMPS[0].1) + (1 << RAMPS[1].1) + (1 << RAMPS[2].1) - 2;
+
+// the coarsest ramp covers full drive; the tiers are ordered
+const _: () = assert!(1 << (RAMPS[2].0 + RAMPS[2].1) > ONE as usize);
+const _: () = assert!(RAMPS[0].0 + RAMPS[0].1 <= RAMPS[1].0 + RAMPS[1].1);
+const _: () = assert!(RAMPS[1].0 + RAMPS[1].1 <= RAMPS[2].0 + RAMPS[2].1);
 
 /// Everything a [`PixelTransform`] computes with: what [`export`](super::export) writes out and
 /// [`PixelTransform::from_tables`] takes back (so firmware can keep it in flash).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Tables<const LEN: usize> {
-    /// Source code value → linear light, Q15.
+pub struct Tables {
+    /// Source code value → linear light, Q15 (`1.0 = 32767`).
     pub decode: [u16; 256],
-    /// `T` scaled to `v` units and by `2^shift`, row-major.
-    pub matrix: [[i32; 3]; 3],
-    /// The matrix's fixed-point shift.
-    pub shift: u32,
-    /// `(BIAS << shift) + (1 << (shift − 1))`: the bias and rounding.
-    pub round: i32,
-    /// Per channel, the levels (Q8): the fine bins, the middle ones, the coarse ones.
+    /// `T` in Q14, row-major.
+    pub matrix: [[i16; 3]; 3],
+    /// Per channel, the levels (Q8) by index, top-aligned: `level << (8 − bits)`.
     pub curve: [[u16; LEN]; 3],
     /// The panel's bits per channel (5, 6 or 8 for RGB565/666/888).
     pub bits: [u8; 3],
@@ -105,62 +114,28 @@ impl Options {
     pub const RGB888: [u8; 3] = [8, 8, 8];
 }
 
-/// A source → panel pixel transform with `LEN` inverse-curve entries per channel: `F` fine,
-/// `M` middle and `LEN − F − M` coarse bins, which must tile `0..65536` (`8F + 32M + 128C =
-/// 65536`, tier boundaries on the next tier's bins; checked at compile time).
+/// A source → panel pixel transform: decode, 3×3, [`LEN`] inverse-curve entries per channel.
 #[derive(Clone, Debug, PartialEq)]
-pub struct PixelTransform<const LEN: usize, const F: usize, const M: usize> {
-    t: Tables<LEN>,
+pub struct PixelTransform {
+    t: Tables,
 }
 
-/// The transform sized for ≤ 8 KiB of tables: fine bins to 1/32 of full drive, middle ones to
-/// 1/4, coarse ones above.
-pub type PanelTransform = PixelTransform<1088, 256, 448>;
+/// The transform as firmware holds it (the name the exports and the demo use).
+pub type PanelTransform = PixelTransform;
 
 // the firmware budget (issue 17): tables ≤ 8 KiB of flash
-const _: () = assert!(PanelTransform::TABLE_BYTES <= 8 * 1024);
+const _: () = assert!(PixelTransform::TABLE_BYTES <= 8 * 1024);
 
-impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M> {
-    /// Coarse bins.
-    pub const C: usize = LEN - F - M;
-    /// Where the middle tier starts (`v`).
-    pub const MID_START: usize = F << FINE_SHIFT;
-    /// Where the coarse tier starts (`v`).
-    pub const COARSE_START: usize = Self::MID_START + (M << MID_SHIFT);
-    /// `K₁`: added to `v >> 5` to index the middle tier.
-    pub const K_MID: usize = F - (Self::MID_START >> MID_SHIFT);
-    /// `K₂`: added to `v >> 7` to index the coarse tier.
-    pub const K_COARSE: usize = F + M - (Self::COARSE_START >> COARSE_SHIFT);
-    const SIZES_OK: () = assert!(
-        F >= 4
-            && M >= 4
-            && LEN >= F + M + 2
-            && (F << FINE_SHIFT) % (1 << MID_SHIFT) == 0
-            && ((F << FINE_SHIFT) + (M << MID_SHIFT)) % (1 << COARSE_SHIFT) == 0
-            && (F << FINE_SHIFT) + (M << MID_SHIFT) + ((LEN - F - M) << COARSE_SHIFT) == 65536,
-        "PixelTransform<LEN, F, M>: 8F + 32M + 128(LEN − F − M) = 65536, F ≡ 0 mod 4, 8F + 32M ≡ 0 mod 128"
-    );
+impl PixelTransform {
     /// Bytes of tables (decode, matrix, curves).
-    pub const TABLE_BYTES: usize = 256 * 2 + 9 * 4 + 3 * LEN * 2;
-
-    /// The centre of table entry `i`'s bin, in `v`.
-    pub fn centre(i: usize) -> i32 {
-        let c = if i < F {
-            (i << FINE_SHIFT) + (1 << (FINE_SHIFT - 1))
-        } else if i < F + M {
-            Self::MID_START + ((i - F) << MID_SHIFT) + (1 << (MID_SHIFT - 1))
-        } else {
-            Self::COARSE_START + ((i - F - M) << COARSE_SHIFT) + (1 << (COARSE_SHIFT - 1))
-        };
-        c as i32
-    }
+    pub const TABLE_BYTES: usize = 256 * 2 + 9 * 2 + 3 * LEN * 2;
 
     /// Builds the transform for `panel` (Cowan's model: primaries, black, curves).
     ///
-    /// Errors: [`Error::Capacity`] for bits outside 1–8 or a matrix too large for i32 fixed
-    /// point (a panel gamut tiny against the source), [`Error::Singular`] for unusable matrices.
+    /// Errors: [`Error::Capacity`] for bits outside 1–8 or a matrix outside Q14 (a coefficient
+    /// of 2 or more, or a row's absolute sum of 4 or more: a panel gamut tiny against the
+    /// source), [`Error::Singular`] for unusable matrices.
     pub fn new(panel: &Display, opts: Options) -> Result<Self, Error> {
-        let () = Self::SIZES_OK;
         if opts.bits.iter().any(|b| !(1..=8).contains(b)) {
             return Err(Error::Capacity);
         }
@@ -169,48 +144,40 @@ impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M>
         let mut decode = [0u16; 256];
         for (c, d) in decode.iter_mut().enumerate() {
             let l = opts.source.decode(c as f32 / 255.0) as f64;
-            *d = (l * DECODE_ONE as f64 + 0.5) as u16;
+            *d = (l.clamp(0.0, 1.0) * DECODE_ONE as f64 + 0.5) as u16;
         }
 
-        // the largest shift with |Σ m d| + round < 2^31 for every input
-        let k = ONE as f64 / DECODE_ONE as f64;
-        let row =
-            t.0.iter()
-                .map(|r| r.iter().map(|v| v.abs() as f64).sum::<f64>() * k)
-                .fold(0.0f64, f64::max);
-        let limit = (i32::MAX - 1) as f64;
-        let shift = (6..=20u32)
-            .rev()
-            .find(|s| {
-                let p = (1u64 << s) as f64;
-                (row * p + 2.0) * DECODE_ONE as f64 + (BIAS as f64 + 1.0) * p < limit
-            })
-            .ok_or(Error::Capacity)?;
-        let p = (1u64 << shift) as f64;
-        let matrix = t.0.map(|r| r.map(|v| libm::round(v as f64 * k * p) as i32));
-        let round = (BIAS << shift) + (1 << (shift - 1));
+        let one = (1u32 << Q) as f64;
+        let mut matrix = [[0i16; 3]; 3];
+        for (row, src) in matrix.iter_mut().zip(t.0.iter()) {
+            let mut sum = 0i64;
+            for (m, v) in row.iter_mut().zip(src.iter()) {
+                let q = libm::round(*v as f64 * one);
+                if !(q.abs() <= i16::MAX as f64) {
+                    return Err(Error::Capacity);
+                }
+                *m = q as i16;
+                sum += (q as i64).abs();
+            }
+            // |acc| ≤ Σ|m| · 32767 < 2^31
+            if sum * DECODE_ONE as i64 >= i32::MAX as i64 {
+                return Err(Error::Capacity);
+            }
+        }
 
         let mut curve = [[0u16; LEN]; 3];
         let mut lights = [0.0f32; 256];
-        let white = Self::index(ONE + BIAS);
         for c in 0..3 {
             let n = level_lights(&panel.transfer()[c], opts.bits[c], &mut lights);
-            let lv = &lights[..n];
-            for (i, e) in curve[c].iter_mut().enumerate() {
-                let l = if i >= white {
-                    1.0 // the bin holding full drive (and everything above)
-                } else {
-                    ((Self::centre(i) - BIAS) as f32 / ONE as f32).clamp(0.0, 1.0)
-                };
-                *e = level_q8(lv, l);
+            fill_curve(&lights[..n], &mut curve[c]);
+            for e in curve[c].iter_mut() {
+                *e <<= 8 - opts.bits[c];
             }
         }
         Ok(Self {
             t: Tables {
                 decode,
                 matrix,
-                shift,
-                round,
                 curve,
                 bits: opts.bits,
                 map: opts.map,
@@ -222,13 +189,12 @@ impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M>
     /// A transform from tables made by [`Self::new`] (and written out by
     /// [`export`](super::export)): `const`, so the tables can live in flash. The arithmetic
     /// wraps, so any tables are safe (if wrong).
-    pub const fn from_tables(t: Tables<LEN>) -> Self {
-        let () = Self::SIZES_OK;
+    pub const fn from_tables(t: Tables) -> Self {
         Self { t }
     }
 
     /// The tables.
-    pub fn tables(&self) -> &Tables<LEN> {
+    pub fn tables(&self) -> &Tables {
         &self.t
     }
 
@@ -237,40 +203,59 @@ impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M>
         self.t.bits
     }
 
-    /// The panel's linear drive for a source pixel, as `v` (before the gamut map).
+    /// `acc = m · decode(rgb)` per channel (Q29: `acc >> 14` is the drive `v`).
     // Written out without `array::map` or iterator adapters: firmware builds at `opt-level = "z"`,
     // which does not inline them, and this is the per-pixel path.
     #[inline(always)]
-    pub fn drive(&self, rgb: [u8; 3]) -> [i32; 3] {
+    pub fn acc(&self, rgb: [u8; 3]) -> [i32; 3] {
         let t = &self.t;
         let d0 = t.decode[rgb[0] as usize] as i32;
         let d1 = t.decode[rgb[1] as usize] as i32;
         let d2 = t.decode[rgb[2] as usize] as i32;
         let d = [d0, d1, d2];
         [
-            row(&t.matrix[0], d, t.round, t.shift),
-            row(&t.matrix[1], d, t.round, t.shift),
-            row(&t.matrix[2], d, t.round, t.shift),
+            row(&t.matrix[0], d),
+            row(&t.matrix[1], d),
+            row(&t.matrix[2], d),
         ]
+    }
+
+    /// The panel's linear drive for a source pixel, as `v` (`32767` = full; before the gamut map).
+    #[inline(always)]
+    pub fn drive(&self, rgb: [u8; 3]) -> [i32; 3] {
+        let a = self.acc(rgb);
+        [a[0] >> Q, a[1] >> Q, a[2] >> Q]
     }
 
     /// The panel levels (Q8: `level · 256 + fraction`) for a source pixel.
     #[inline(always)]
     pub fn levels(&self, rgb: [u8; 3]) -> [u16; 3] {
-        let mut v = self.drive(rgb);
+        self.levels_for(rgb, self.t.bits)
+    }
+
+    /// [`Self::levels`] for a caller that knows the transform's bits per channel at compile
+    /// time (the `embedded-graphics` adapter, from its panel colour type): the shifts that undo
+    /// the tables' top alignment are then constants. `bits` other than [`Self::bits`] give
+    /// wrong levels (never a panic).
+    #[inline(always)]
+    pub fn levels_for(&self, rgb: [u8; 3], bits: [u8; 3]) -> [u16; 3] {
+        let v = self.drive(rgb);
         if self.t.map == GamutMap::Desaturate {
-            let one = ONE as u32;
-            let outside = (v[0].wrapping_sub(BIAS) as u32 > one)
-                | (v[1].wrapping_sub(BIAS) as u32 > one)
-                | (v[2].wrapping_sub(BIAS) as u32 > one);
-            if outside {
-                v = self.desaturate(v);
+            // full drive's own rounding may land a few units above ONE
+            let top = (ONE + 4) as u32;
+            if (v[0] as u32 > top) | (v[1] as u32 > top) | (v[2] as u32 > top) {
+                let v = self.desaturate(v);
+                return [
+                    self.lookup(0, v[0], bits[0]),
+                    self.lookup(1, v[1], bits[1]),
+                    self.lookup(2, v[2], bits[2]),
+                ];
             }
         }
         [
-            self.lookup(0, v[0]),
-            self.lookup(1, v[1]),
-            self.lookup(2, v[2]),
+            self.lookup(0, v[0], bits[0]),
+            self.lookup(1, v[1], bits[1]),
+            self.lookup(2, v[2], bits[2]),
         ]
     }
 
@@ -286,20 +271,17 @@ impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M>
         ]
     }
 
-    /// The table index of `v` after the clamp that is [`GamutMap::Clip`]: the smallest of the
-    /// three tiers' formulas, which is the tier `v` lies in (no branch; tested for every `v`).
+    /// The table index of drive `v`: `Σₖ clamp(v >> aₖ, 0, 2^nₖ − 1)` over [`RAMPS`] (one `usat`
+    /// each on a Cortex-M4; negative drive is index 0, drive past the top the last index).
     #[inline(always)]
     pub fn index(v: i32) -> usize {
-        let v = v.clamp(0, V_MAX) as usize;
-        let fine = v >> FINE_SHIFT;
-        let mid = (v >> MID_SHIFT) + Self::K_MID;
-        let coarse = (v >> COARSE_SHIFT) + Self::K_COARSE;
-        fine.min(mid).min(coarse)
+        ramp(v, RAMPS[0]) + ramp(v, RAMPS[1]) + ramp(v, RAMPS[2])
     }
 
+    /// The Q8 level of channel `c` (of `bits`) at drive `v`: the top-aligned entry shifted back.
     #[inline(always)]
-    fn lookup(&self, c: usize, v: i32) -> u16 {
-        self.t.curve[c][Self::index(v)]
+    fn lookup(&self, c: usize, v: i32, bits: u8) -> u16 {
+        self.t.curve[c][Self::index(v)].wrapping_shr(8u32.wrapping_sub(bits as u32))
     }
 
     /// The out-of-gamut path of [`GamutMap::Desaturate`]: the core's [`map_gamut`] in f32.
@@ -307,20 +289,57 @@ impl<const LEN: usize, const F: usize, const M: usize> PixelTransform<LEN, F, M>
     #[inline(never)]
     fn desaturate(&self, v: [i32; 3]) -> [i32; 3] {
         let one = ONE as f32;
-        let l = v.map(|x| (x - BIAS) as f32 / one);
+        let l = v.map(|x| x as f32 / one);
         let (m, _) = map_gamut(l, self.t.weights, GamutMap::Desaturate);
-        m.map(|x| (x * one + 0.5) as i32 + BIAS)
+        m.map(|x| (x * one + 0.5) as i32)
     }
 }
 
-/// `(m · d + round) >> shift`, wrapping.
+/// `clamp(v >> a, 0, 2^n − 1)`: one ramp of the index (`usat` with a shift).
 #[inline(always)]
-fn row(m: &[i32; 3], d: [i32; 3], round: i32, shift: u32) -> i32 {
-    m[0].wrapping_mul(d[0])
-        .wrapping_add(m[1].wrapping_mul(d[1]))
-        .wrapping_add(m[2].wrapping_mul(d[2]))
-        .wrapping_add(round)
-        .wrapping_shr(shift)
+fn ramp(v: i32, (a, n): (u32, u32)) -> usize {
+    (v >> a).clamp(0, (1 << n) - 1) as usize
+}
+
+/// The curve table of one channel whose levels emit `lights`: each index's entry is the level of
+/// the light at the centre of the drives that map to it (`v` stands for `[v, v + 1)` of
+/// `acc / 2^14`); index 0 is black, the last (full drive and above) the top level. Indices the
+/// sum of ramps skips repeat the next entry (never read; the table stays monotone).
+fn fill_curve(lights: &[f32], out: &mut [u16; LEN]) {
+    let top = 1i32 << (RAMPS[2].0 + RAMPS[2].1);
+    let full = ((lights.len() - 1) as u16) << 8;
+    let level = |lo: i32, hi: i32| {
+        let centre = (lo + hi + 1) as f32 * 0.5 / ONE as f32;
+        level_q8(lights, centre.min(1.0))
+    };
+    let (mut start, mut cur) = (0i32, 0usize);
+    let mut filled = 0usize; // entries below `filled` are set
+    for v in 1..=top {
+        let i = if v == top {
+            LEN
+        } else {
+            PixelTransform::index(v)
+        };
+        if i != cur {
+            // the run `start..v` maps to `cur`
+            let e = if cur == 0 { 0 } else { level(start, v - 1) };
+            for x in &mut out[filled..=cur] {
+                *x = e;
+            }
+            filled = cur + 1;
+            (start, cur) = (v, i);
+        }
+    }
+    out[LEN - 1] = full;
+}
+
+/// `m · d` (i32, wrapping: the construction keeps it exact).
+#[inline(always)]
+fn row(m: &[i16; 3], d: [i32; 3]) -> i32 {
+    (m[0] as i32)
+        .wrapping_mul(d[0])
+        .wrapping_add((m[1] as i32).wrapping_mul(d[1]))
+        .wrapping_add((m[2] as i32).wrapping_mul(d[2]))
 }
 
 #[cfg(test)]
@@ -435,28 +454,64 @@ mod tests {
     }
 
     #[test]
-    fn every_v_indexes_its_own_tier() {
-        type P = PanelTransform;
-        for v in 0..=V_MAX {
-            let u = v as usize;
-            let want = if u < P::MID_START {
-                u >> FINE_SHIFT
-            } else if u < P::COARSE_START {
-                256 + ((u - P::MID_START) >> MID_SHIFT)
-            } else {
-                256 + 448 + ((u - P::COARSE_START) >> COARSE_SHIFT)
-            };
-            assert_eq!(P::index(v), want, "v = {v}");
-            // and the entry's bin holds v
-            let half = match want {
-                i if i < 256 => 4,
-                i if i < 256 + 448 => 16,
-                _ => 64,
-            };
-            assert!((P::centre(want) - v).abs() <= half);
+    fn the_index_is_monotone_with_three_tiers_of_bins() {
+        // the ramps' steps are nested (multiples of 2^a), so in each tier the bins are the finest
+        // climbing ramp's: 2^a₁ units of v below 2^(a₁+n₁), 2^a₂ below 2^(a₂+n₂), 2^a₃ above
+        let mut last = 0;
+        let mut start = 0;
+        for v in 1..=(1i32 << 16) {
+            let i = PixelTransform::index(v);
+            assert!(i >= last && i - last <= 3, "v = {v}: {last} → {i}");
+            if i != last {
+                let tier = RAMPS
+                    .iter()
+                    .position(|(a, n)| start < 1 << (a + n))
+                    .unwrap();
+                let w = 1 << RAMPS[tier].0;
+                assert_eq!(v - start, w, "bin at {start}");
+                assert_eq!(start % w, 0);
+                start = v;
+            }
+            last = i;
         }
-        assert_eq!(P::index(-5), 0);
-        assert_eq!(P::index(1 << 20), 1087);
+        assert_eq!(last, LEN - 1);
+        assert_eq!(PixelTransform::index(0), 0);
+        assert_eq!(PixelTransform::index(-5), 0);
+        assert_eq!(PixelTransform::index(i32::MIN), 0);
+        assert_eq!(PixelTransform::index(ONE), LEN - 1);
+        assert_eq!(PixelTransform::index(i32::MAX), LEN - 1);
+    }
+
+    #[test]
+    fn curves_are_stored_top_aligned_for_the_panel_bits() {
+        for bits in [Options::RGB565, Options::RGB666, Options::RGB888] {
+            let opts = Options {
+                bits,
+                ..Options::default()
+            };
+            let p = PanelTransform::new(&lcd(), opts).unwrap();
+            for c in 0..3 {
+                let curve = &p.tables().curve[c];
+                let low = (1u16 << (8 - bits[c])) - 1;
+                assert!(curve.iter().all(|e| e & low == 0), "{bits:?} {c}");
+                // full drive: the top code in the top bits
+                assert_eq!(curve[LEN - 1], !((1u32 << (16 - bits[c])) - 1) as u16);
+                // no dither threshold carries a level past the top code
+                for &e in curve.iter() {
+                    let q8 = e >> (8 - bits[c]);
+                    assert!(
+                        q8 as u32 + 255 < 1 << (bits[c] + 8)
+                            || q8 as u32 == ((1 << bits[c]) - 1) << 8
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn tables_fit_the_firmware_budget() {
+        assert_eq!(LEN, 1150);
+        assert_eq!(PixelTransform::TABLE_BYTES, 7430);
     }
 
     #[test]

@@ -1,13 +1,16 @@
 //! The calibrated framebuffer demo, under QEMU with semihosting: a 240×240 RGB565 framebuffer in
 //! RAM, filled from an sRGB UI through `specpoly_graphics::Calibrated` (the `embedded-graphics`
-//! adapter) with the demo panel's transform baked into flash by `build.rs`. Exits 0 when its
-//! checks pass. Prints, for `tests/tests/firmware_framebuffer.rs` and docs/performance.md:
+//! adapter) with the demo panel's transform baked into flash by `build.rs`; and the same panel in
+//! RGB888 through the RGB888 kernel (`board::rgb888`, XRGB8888 words and packed bytes). Exits 0
+//! when its checks pass. Prints, for `tests/tests/firmware_framebuffer.rs` and docs/performance.md:
 //!
 //! - `panel …`: the demo panel (primaries, white, gammas), for the host's f64 reference;
 //! - `tables BYTES`: the transform's tables in flash;
 //! - `px X Y R G B CODE`: sampled pixels of the gradient frame (source sRGB, RGB565 code);
 //! - `block R G B C0 … C63`: flat 8×8 blocks (fill_solid), their 64 codes in hex;
 //! - `checksum HEX`: FNV-1a of the whole gradient frame;
+//! - `px888 X Y R G B XRGB` and `checksum888 HEX`: the same for the RGB888 kernel
+//!   (`board::rgb888`, the panel in RGB888, no dither; XRGB8888 words, FNV-1a of their LE bytes);
 //! - `insns WHAT PER_PIXEL_×100`: instructions per pixel (under `-icount shift=0`);
 //! - `check NAME ok|FAIL`, `framebuffer: pass|fail`.
 #![no_std]
@@ -21,6 +24,8 @@ use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565, Rgb888};
 use embedded_graphics_core::primitives::{PointsIter, Rectangle};
 use embedded_graphics_core::Pixel;
 use specpoly_firmware::board::icount::Counter;
+use specpoly_firmware::board::rgb565::Rgb565Kernel;
+use specpoly_firmware::board::rgb888::Rgb888Kernel;
 use specpoly_graphics::Calibrated;
 
 include!(concat!(env!("OUT_DIR"), "/framebuffer_panel.rs"));
@@ -109,9 +114,10 @@ const BLOCKS: [[u8; 3]; 8] = [
     [5, 10, 7],
 ];
 
-/// The per-pixel path without `embedded-graphics`: transform, Bayer threshold, pack, store.
+/// The per-pixel path without `embedded-graphics`, in portable Rust: transform, Bayer threshold,
+/// pack, store.
 #[inline(never)]
-fn kernel(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
+fn kernel_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
     for (y, (s, d)) in src.chunks_exact(W).zip(dst.chunks_exact_mut(W)).enumerate() {
         let b = &specpoly_core::pixel::dither::BAYER8[y & 7];
         let thresholds: [u16; 8] = core::array::from_fn(|i| b[i] as u16 * 4 + 2);
@@ -121,6 +127,54 @@ fn kernel(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
             *d = (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
         }
     }
+}
+
+/// The same in the assembly kernel (`board::rgb565`), the whole frame in one call.
+#[inline(never)]
+fn kernel(k: &Rgb565Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
+    k.rows(src, dst, W, 0);
+}
+
+/// The RGB888 per-pixel path in portable Rust: transform, rounding (threshold 128), XRGB8888.
+#[inline(never)]
+fn kernel888_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u32; PIXELS]) {
+    for (s, d) in src.iter().zip(dst.iter_mut()) {
+        let c = PANEL888.apply(*s, 128);
+        *d = (c[0] as u32) << 16 | (c[1] as u32) << 8 | c[2] as u32;
+    }
+}
+
+/// The RGB888 assembly kernel (`board::rgb888`), XRGB8888 words, the whole frame in one call.
+#[inline(never)]
+fn kernel888(k: &Rgb888Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u32; PIXELS]) {
+    k.xrgb(src, dst);
+}
+
+/// The same, packed RGB888 (3 bytes per pixel).
+#[inline(never)]
+fn kernel888_packed(k: &Rgb888Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u8; 3 * PIXELS]) {
+    k.packed(src, dst);
+}
+
+/// Pixels where the XRGB words, the packed bytes and the portable words all agree.
+fn same888(xrgb: &[u32], packed: &[u8], portable: &[u32]) -> usize {
+    xrgb.iter()
+        .zip(packed.chunks_exact(3))
+        .zip(portable.iter())
+        .filter(|((w, b), p)| {
+            *w == *p && (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32 == **p
+        })
+        .count()
+}
+
+fn fnv1a32(px: &[u32]) -> u32 {
+    let mut h = 0x811c_9dc5u32;
+    for v in px {
+        for b in v.to_le_bytes() {
+            h = (h ^ b as u32).wrapping_mul(0x0100_0193);
+        }
+    }
+    h
 }
 
 /// The transform alone (levels, no dither or store), folded into a checksum.
@@ -166,9 +220,106 @@ fn main() -> ! {
     let mut fb = Framebuffer { px: [0; PIXELS] };
     let all = Rectangle::new(Point::zero(), Size::new(W as u32, H as u32));
 
-    // 1. the kernel alone: transform, dither, pack, store
-    let insns = counter.insns_per_call(1, || kernel(&src, &mut fb.px));
+    // 1. the kernel alone: transform, dither, pack, store; in assembly, then in portable Rust
+    let Some(asm) = Rgb565Kernel::new(&PANEL) else {
+        hprintln!("framebuffer: the panel's transform is not RGB565 with clip");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {
+            cortex_m::asm::wfi();
+        }
+    };
+    let insns = counter.insns_per_call(1, || kernel(&asm, &src, &mut fb.px));
     hprintln!("insns kernel {}", insns * 100 / PIXELS as u64);
+    let kernel_sum = fnv1a(&fb.px);
+    let asm_frame = fb.px;
+    // a band of rows starting at y = 3 (thresholds by absolute row) equals those rows of the frame
+    let mut band = [0u16; 8 * W];
+    asm.rows(&src[3 * W..11 * W], &mut band, W, 3);
+    check("asm-band-rows", band[..] == asm_frame[3 * W..11 * W]);
+    fb.px.fill(0);
+    let insns = counter.insns_per_call(1, || kernel_portable(&src, &mut fb.px));
+    hprintln!("insns kernel-portable {}", insns * 100 / PIXELS as u64);
+    let same = asm_frame
+        .iter()
+        .zip(fb.px.iter())
+        .filter(|(a, b)| a == b)
+        .count();
+    hprintln!("asm-equals-portable {} of {}", same, PIXELS);
+    check("asm-equals-portable", same == PIXELS);
+    // and on a frame of random colours (xorshift32): code values all over, in and out of gamut
+    let mut noise = [[0u8; 3]; PIXELS];
+    let mut s = 0x2545_f491u32;
+    for px in noise.iter_mut() {
+        s ^= s << 13;
+        s ^= s >> 17;
+        s ^= s << 5;
+        *px = [s as u8, (s >> 8) as u8, (s >> 16) as u8];
+    }
+    kernel(&asm, &noise, &mut fb.px);
+    let asm_noise = fb.px;
+    kernel_portable(&noise, &mut fb.px);
+    let same = asm_noise
+        .iter()
+        .zip(fb.px.iter())
+        .filter(|(a, b)| a == b)
+        .count();
+    hprintln!("asm-equals-portable-random {} of {}", same, PIXELS);
+    check("asm-equals-portable-random", same == PIXELS);
+
+    // 1b. the panel in RGB888 (no dither): the assembly kernel's XRGB8888 words and packed
+    // bytes against the portable transform, on the gradient and on the random frame
+    let Some(k888) = Rgb888Kernel::new(&PANEL888, &PANEL888_CODES) else {
+        hprintln!("framebuffer: PANEL888 is not RGB888 with clip, or its codes differ");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {
+            cortex_m::asm::wfi();
+        }
+    };
+    let mut xrgb = [0u32; PIXELS];
+    let mut packed = [0u8; 3 * PIXELS];
+    let mut portable = [0u32; PIXELS];
+    let insns = counter.insns_per_call(1, || kernel888(&k888, &src, &mut xrgb));
+    hprintln!("insns kernel888-xrgb {}", insns * 100 / PIXELS as u64);
+    let insns = counter.insns_per_call(1, || kernel888_packed(&k888, &src, &mut packed));
+    hprintln!("insns kernel888-packed {}", insns * 100 / PIXELS as u64);
+    let insns = counter.insns_per_call(1, || kernel888_portable(&src, &mut portable));
+    hprintln!("insns kernel888-portable {}", insns * 100 / PIXELS as u64);
+    let same = same888(&xrgb, &packed, &portable);
+    hprintln!("asm888-equals-portable {} of {}", same, PIXELS);
+    check("asm888-equals-portable", same == PIXELS);
+    hprintln!("checksum888 {:08x}", fnv1a32(&xrgb));
+    for y in (0..H).step_by(17) {
+        for x in (0..W).step_by(13) {
+            let s = src[y * W + x];
+            hprintln!(
+                "px888 {} {} {} {} {} {}",
+                x,
+                y,
+                s[0],
+                s[1],
+                s[2],
+                xrgb[y * W + x]
+            );
+        }
+    }
+    // a run that is not a multiple of 8 (the tail in portable code) and starts off the frame's
+    // 8-pixel grid
+    let mut tail = [0u32; 13];
+    k888.xrgb(&noise[5..18], &mut tail);
+    kernel888(&k888, &noise, &mut xrgb);
+    k888.packed(&noise, &mut packed);
+    kernel888_portable(&noise, &mut portable);
+    let same = same888(&xrgb, &packed, &portable);
+    hprintln!("asm888-equals-portable-random {} of {}", same, PIXELS);
+    check(
+        "asm888-equals-portable-random",
+        same == PIXELS && tail[..] == portable[5..18],
+    );
+    check(
+        "white-and-black-888",
+        PANEL888.apply([255; 3], 128) == [255; 3] && PANEL888.apply([0; 3], 128) == [0; 3],
+    );
+
     let mut acc = 0;
     let insns = counter.insns_per_call(1, || acc = levels_only(core::hint::black_box(&src)));
     hprintln!(
@@ -176,7 +327,6 @@ fn main() -> ! {
         insns * 100 / PIXELS as u64,
         acc
     );
-    let kernel = fnv1a(&fb.px);
 
     // 2. the same frame through the embedded-graphics adapter (fill_contiguous)
     fb.px.fill(0);
@@ -188,7 +338,7 @@ fn main() -> ! {
     hprintln!("insns adapter-image {}", insns * 100 / PIXELS as u64);
     let checksum = fnv1a(&fb.px);
     hprintln!("checksum {:08x}", checksum);
-    check("adapter-equals-kernel", checksum == kernel);
+    check("adapter-equals-kernel", checksum == kernel_sum);
     for y in (0..H).step_by(17) {
         for x in (0..W).step_by(13) {
             let s = src[y * W + x];

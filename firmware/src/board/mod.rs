@@ -1,11 +1,14 @@
 //! Board support for QEMU `mps2-an386` (Cortex-M4F): the CMSDK UART, a PWM stand-in whose
 //! duties are reported (QEMU emulates no PWM), stack painting, an instruction counter, the
-//! defmt logger (semihosting) and the panic handler. The only `unsafe` of the project is here:
-//! memory-mapped registers and the stack region, each block with its reason.
+//! defmt logger (semihosting), the panic handler and the framebuffer demo's RGB565 kernel in
+//! assembly. The only `unsafe` of the project is here: memory-mapped registers, the stack region
+//! and the call into the assembly kernel, each block with its reason.
 
 pub mod flash;
 pub mod icount;
 pub mod pwm;
+pub mod rgb565;
+pub mod rgb888;
 pub mod stack;
 pub mod uart;
 pub mod vectors;

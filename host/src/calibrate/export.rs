@@ -35,7 +35,7 @@ impl From<SourceArg> for Source {
 pub enum Format {
     /// A C99 header: tables and `NAME_levels`, `NAME_codes`, `NAME_rgb565`.
     CTable,
-    /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform<1088, 256, 448>`.
+    /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform`.
     Rust,
 }
 
