@@ -37,7 +37,6 @@
 //!    `XYZ(R) + XYZ(G) + XYZ(B) − 2·K`, as ΔE00 (CIELAB relative to the measured white) and as
 //!    the luminance difference in percent.
 
-pub mod inverse;
 pub mod lattice;
 pub mod robust;
 pub mod select;

@@ -19,7 +19,8 @@ use crate::calibrate::file::Calibration;
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
 use serde::Deserialize;
-use specpoly_core::{bradford, quantize8, Display, GamutMap, Mat3, Transfer, Xyz};
+use specpoly_core::display_model::FULL;
+use specpoly_core::{bradford, quantize8, Display, DisplayModel, GamutMap, Mat3, Transfer, Xyz};
 use std::sync::Arc;
 
 /// How XYZ pixels become display values.
@@ -33,12 +34,12 @@ pub struct Output {
     pub exposure: f32,
     /// Chromatic adaptation applied before display (Bradford, scene white → display white).
     pub adapt: Mat3,
-    /// A calibration whose model has channel interaction (`calibrate fit`'s lattice): device
-    /// values then come from its inverse ([`Calibration::inverse`]), so the full model emits
-    /// what the matrix model [`Self::display`] maps the colour to (gamut mapping stays the
-    /// matrix model's); where the inverse misses by more than the matrix model's own values,
-    /// those are kept. `None`: the matrix model alone.
-    pub exact: Option<Arc<Calibration>>,
+    /// A calibration's full model when it has channel interaction (`calibrate fit`'s
+    /// lattice): device values then come from the core's [`DisplayModel::encode_relative`]
+    /// (the matrix model's gamut mapping, then the full model's exact inverse), so the full
+    /// model emits what the matrix model [`Self::display`] maps the colour to. `None`: the
+    /// matrix model alone.
+    pub model: Option<Arc<DisplayModel<FULL>>>,
 }
 
 impl Output {
@@ -57,13 +58,15 @@ impl Output {
             gamut,
             exposure: scene.render.exposure,
             adapt,
-            exact: None,
+            model: None,
         }
     }
 
-    /// The output with the full model of `cal` (see [`Self::exact`]).
+    /// The output with the full model of `cal` when it has interaction (see [`Self::model`]).
     pub fn with_model(mut self, cal: Option<Calibration>) -> Self {
-        self.exact = cal.map(Arc::new);
+        self.model = cal
+            .filter(|c| c.has_interaction())
+            .map(|c| Arc::new(c.model().clone()));
         self
     }
 
@@ -71,31 +74,9 @@ impl Output {
     #[inline]
     pub fn device(&self, xyz: Xyz) -> [f32; 3] {
         let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
-        let e = self.display.encode_relative(a, self.gamut);
-        match &self.exact {
-            Some(cal) => {
-                // what the matrix model emits for the mapped colour, made exact by the full
-                // model; the solver can stop in a local minimum (or the colour be outside the
-                // full model's gamut), so the matrix model's values stay when they are closer
-                let target = self
-                    .display
-                    .device_to_xyz(e.device)
-                    .to_array()
-                    .map(f64::from);
-                let white = cal.predict([1.0; 3]);
-                let miss = |d: [f64; 3]| {
-                    crate::calibrate::verify::delta_e00(cal.predict(d), target, white)
-                };
-                let exact = cal.inverse(target);
-                let matrix = e.device.map(f64::from);
-                let best = if miss(exact) <= miss(matrix) {
-                    exact
-                } else {
-                    matrix
-                };
-                best.map(|v| v as f32)
-            }
-            None => e.device,
+        match &self.model {
+            Some(m) => m.encode_relative(a, self.gamut).device,
+            None => self.display.encode_relative(a, self.gamut).device,
         }
     }
 
