@@ -161,21 +161,27 @@ impl Transfer {
                 }
             }
             Transfer::Gamma(g) => math::powf(l, 1.0 / *g),
-            Transfer::Table(t) => {
-                let n = t.len();
-                if l <= t[0] {
-                    return 0.0;
-                }
-                if l >= t[n - 1] {
-                    return 1.0;
-                }
-                let i = t.partition_point(|x| *x <= l).clamp(1, n - 1);
-                let (a, b) = (t[i - 1], t[i]);
-                let f = if b > a { (l - a) / (b - a) } else { 0.0 };
-                ((i - 1) as f32 + f) / (n - 1) as f32
-            }
+            Transfer::Table(t) => table_inverse(t, l),
         }
     }
+}
+
+/// Where a non-decreasing curve sampled at `n ≥ 2` evenly spaced points `0, 1/(n−1), …, 1`
+/// reaches `l`: the linear interpolant's inverse (the first crossing on a flat step; 0 below
+/// the curve, 1 above). [`Transfer::encode`] of a table, and the host's ICC writer on its
+/// longer curves.
+pub fn table_inverse(t: &[f32], l: f32) -> f32 {
+    let n = t.len();
+    if n < 2 || l <= t[0] {
+        return 0.0;
+    }
+    if l >= t[n - 1] {
+        return 1.0;
+    }
+    let i = t.partition_point(|x| *x <= l).clamp(1, n - 1);
+    let (a, b) = (t[i - 1], t[i]);
+    let f = if b > a { (l - a) / (b - a) } else { 0.0 };
+    ((i - 1) as f32 + f) / (n - 1) as f32
 }
 
 /// How to bring a colour outside the display's gamut inside it.

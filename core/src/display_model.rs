@@ -17,15 +17,18 @@
 //! 1. Start from the matrix model's inverse corrected for the lattice by fixed-point rounds,
 //!    `rgb ← t⁻¹(clamp(M⁻¹(w − black − L(rgb))))` ([`FIXED_POINT_ROUNDS`]); keep the best.
 //! 2. Levenberg–Marquardt steps with the analytic Jacobian `M · diag(t′(rgb)) + ∂L/∂rgb`,
-//!    each step projected onto the cube and kept only when it lowers the cost (the damping
-//!    grows until it does; the small 3 × 3 systems are solved in f64 by [`crate::solve`]).
+//!    each step projected onto the cube and kept only when it lowers the cost (a channel at a
+//!    face that the step would push out is held there and the step solved for the others;
+//!    the damping grows until the cost falls; the small 3 × 3 systems are solved in f64 by [`crate::solve`]).
 //!    When no step lowers it, one more try with a flat curve's slope replaced by its secant to
 //!    where it rises ([`Transfer::rise`]): the way off a flat foot that the true slope, 0,
-//!    cannot show.
+//!    cannot show; then once with central secants over 1/64 (slopes averaged across the kinks
+//!    of the table curves and of the lattice's cells).
 //! 3. If the prediction is still more than [`INVERSE_DE`] (ΔE00) off (a local minimum: where a curve is
 //!    nearly flat, a lattice slope of the other sign makes the prediction fold back), each
-//!    channel in turn is scanned over its range (`SCAN_STEPS + 1` values, dense near 0), the
-//!    others held, and step 2 restarts from the best point: at most [`SCAN_ROUNDS`] rounds.
+//!    channel is scanned over its range (`SCAN_STEPS + 1` values, dense near 0, away from the
+//!    current value) with the other two refitted by the matrix model at each value, and step 2
+//!    restarts from each channel's best point: at most [`SCAN_ROUNDS`] rounds.
 //! 4. If still above: a coarse search over a `SEARCH_GRID³` lattice of device values (dense
 //!    near 0 as the scans), and
 //!    step 2 from the [`RESTARTS`] best of them.
@@ -59,7 +62,7 @@ pub const INVERSE_DE: f64 = 0.005;
 pub const FIXED_POINT_ROUNDS: usize = 4;
 
 /// Rounds of channel scans (step 3).
-pub const SCAN_ROUNDS: usize = 3;
+pub const SCAN_ROUNDS: usize = 5;
 
 /// Values a channel scan tries: `(i / SCAN_STEPS)²`, `i = 0 ..= SCAN_STEPS`, dense near 0
 /// where curves are flat.
@@ -73,6 +76,9 @@ pub const RESTARTS: usize = 3;
 
 /// Levenberg–Marquardt iterations per start.
 const MAX_ITERATIONS: u32 = 60;
+
+/// The step of the secant Jacobian: a table step of the finest curve.
+const SECANT_STEP: f32 = 1.0 / 64.0;
 
 /// Stop when the residual is this small (the f32 evaluation's floor).
 const FLOOR: f32 = 2e-8;
@@ -174,6 +180,24 @@ impl<const CAP: usize> DisplayModel<CAP> {
         (f, j)
     }
 
+    /// The Jacobian by central secants over [`SECANT_STEP`] (one-sided at the cube's faces):
+    /// slopes averaged across the kinks of the table curves and the lattice's cells.
+    fn secant_jacobian(&self, rgb: [f32; 3]) -> [[f32; 3]; 3] {
+        let mut j = [[0.0f32; 3]; 3];
+        for c in 0..3 {
+            let (mut lo, mut hi) = (rgb, rgb);
+            lo[c] = (rgb[c] - SECANT_STEP).max(0.0);
+            hi[c] = (rgb[c] + SECANT_STEP).min(1.0);
+            let (a, b) = (self.device_to_xyz(lo), self.device_to_xyz(hi));
+            let h = hi[c] - lo[c];
+            let d = [b.x - a.x, b.y - a.y, b.z - a.z];
+            for r in 0..3 {
+                j[r][c] = d[r] / h;
+            }
+        }
+        j
+    }
+
     /// `1 / Y_white`, the residuals' scale.
     fn inv_scale(&self) -> f32 {
         let y = self.display.white().y.abs();
@@ -223,31 +247,42 @@ impl<const CAP: usize> DisplayModel<CAP> {
         // 2. Levenberg–Marquardt from there
         let (mut x, mut cost, mut iterations) = self.descend(&resid, k, best.0);
         let mut starts = 1;
-        // 3. channel scans: each channel over its whole range, the others held, then a descent
+        // 3. channel scans: each channel over its whole range, the other two refitted by the
+        // matrix model at each value; a descent from the best point found
         for _ in 0..SCAN_ROUNDS {
             if miss(x) <= INVERSE_DE {
                 break;
             }
-            let mut p = x;
+            let mut improved = false;
+            let from = x;
             for c in 0..3 {
-                let mut best = (p[c], norm2(resid(p)));
+                // the best value of channel c, the others refitted, away from where we stand
+                let mut p = (from, f32::INFINITY);
                 for i in 0..=SCAN_STEPS {
                     let f = i as f32 / SCAN_STEPS as f32;
-                    let mut q = p;
+                    if (f * f - from[c]).abs() < 0.5 / SCAN_STEPS as f32 {
+                        continue;
+                    }
+                    let mut q = from;
                     q[c] = f * f;
+                    let q = self.refit_others(q, c, w);
                     let cq = norm2(resid(q));
-                    if cq < best.1 {
-                        best = (q[c], cq);
+                    if cq < p.1 {
+                        p = (q, cq);
                     }
                 }
-                p[c] = best.0;
+                if !p.1.is_finite() {
+                    continue;
+                }
+                let (y, cy, n) = self.descend(&resid, k, p.0);
+                iterations += n;
+                starts += 1;
+                if cy < cost {
+                    (x, cost) = (y, cy);
+                    improved = true;
+                }
             }
-            let (y, cy, n) = self.descend(&resid, k, p);
-            iterations += n;
-            starts += 1;
-            if cy < cost {
-                (x, cost) = (y, cy);
-            } else {
+            if !improved {
                 break;
             }
         }
@@ -302,6 +337,35 @@ impl<const CAP: usize> DisplayModel<CAP> {
         }
     }
 
+    /// `q` with the two channels other than `c` set so that the matrix model, with the lattice
+    /// at `q`, comes nearest `w` in least squares (two rounds, the lattice re-read at the new
+    /// point): how a scan of channel `c` keeps the others in step.
+    fn refit_others(&self, mut q: [f32; 3], c: usize, w: [f32; 3]) -> [f32; 3] {
+        let m = &self.display.rgb_to_xyz().0;
+        let t = self.display.transfer();
+        let b = self.display.black().to_array();
+        let (o1, o2) = ((c + 1) % 3, (c + 2) % 3);
+        for _ in 0..2 {
+            let l = self.interaction.as_ref().map_or([0.0; 3], |l| l.eval(q));
+            let tc = t[c].decode(q[c]);
+            let rhs = [0, 1, 2].map(|r| (w[r] - b[r] - l[r] - m[r][c] * tc) as f64);
+            let col = |o: usize| [0, 1, 2].map(|r| m[r][o] as f64);
+            let (p1, p2) = (col(o1), col(o2));
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let (a11, a12, a22) = (dot(p1, p1), dot(p1, p2), dot(p2, p2));
+            let (r1, r2) = (dot(p1, rhs), dot(p2, rhs));
+            let det = a11 * a22 - a12 * a12;
+            if !(det.abs() > 1e-12 * a11 * a22) {
+                return q;
+            }
+            let u1 = (r1 * a22 - r2 * a12) / det;
+            let u2 = (a11 * r2 - a12 * r1) / det;
+            q[o1] = t[o1].encode(u1 as f32);
+            q[o2] = t[o2].encode(u2 as f32);
+        }
+        q
+    }
+
     /// Levenberg–Marquardt descent of `‖resid‖²` from `x` inside the cube (step 2): the
     /// point, its cost and the iterations taken.
     fn descend(
@@ -315,10 +379,15 @@ impl<const CAP: usize> DisplayModel<CAP> {
         let mut mu = 1e-3f64;
         let mut n = 0;
         // exact slopes; after a stall, once with flat curves' secants (to leave a flat foot)
-        let mut rise = false;
+        // 0: exact slopes; 1: flat curves' secants; 2: secants over SECANT_STEP
+        let mut mode = 0;
         while n < MAX_ITERATIONS && max_abs(r) > FLOOR {
             n += 1;
-            let (_, j) = self.with_jacobian(x, rise);
+            let j = if mode < 2 {
+                self.with_jacobian(x, mode == 1).1
+            } else {
+                self.secant_jacobian(x)
+            };
             let j = j.map(|row| row.map(|v| (v * k) as f64));
             // normal equations JᵀJ δ = −Jᵀr, damped on the diagonal
             let mut a = [[0.0f64; 3]; 3];
@@ -332,12 +401,41 @@ impl<const CAP: usize> DisplayModel<CAP> {
             let trace = a[0][0] + a[1][1] + a[2][2];
             let mut accepted = false;
             for _ in 0..16 {
-                let mut m = a;
-                for p in 0..3 {
-                    m[p][p] += mu * a[p][p] + 1e-12 * trace + 1e-30;
+                // channels held at a face of the cube that the step would push out of are
+                // fixed there and the step solved for the others (an active set)
+                let mut held = [false; 3];
+                let mut step = [0.0f64; 3];
+                let mut solved = false;
+                for _ in 0..3 {
+                    let mut m = a;
+                    step = g;
+                    for p in 0..3 {
+                        m[p][p] += mu * a[p][p] + 1e-12 * trace + 1e-30;
+                        if held[p] {
+                            for q in 0..3 {
+                                m[p][q] = if p == q { 1.0 } else { 0.0 };
+                                m[q][p] = if p == q { 1.0 } else { 0.0 };
+                            }
+                            step[p] = 0.0;
+                        }
+                    }
+                    solved = crate::solve::solve(m.as_flattened_mut(), &mut step).is_ok();
+                    if !solved {
+                        break;
+                    }
+                    let mut more = false;
+                    for c in 0..3 {
+                        let out = (x[c] <= 0.0 && step[c] < 0.0) || (x[c] >= 1.0 && step[c] > 0.0);
+                        if out && !held[c] {
+                            held[c] = true;
+                            more = true;
+                        }
+                    }
+                    if !more {
+                        break;
+                    }
                 }
-                let mut step = g;
-                if crate::solve::solve(m.as_flattened_mut(), &mut step).is_err() {
+                if !solved {
                     mu *= 10.0;
                     continue;
                 }
@@ -353,11 +451,11 @@ impl<const CAP: usize> DisplayModel<CAP> {
                 mu *= 4.0;
             }
             if accepted {
-                rise = false;
-            } else if rise {
+                mode = 0;
+            } else if mode == 2 {
                 break;
             } else {
-                rise = true;
+                mode += 1;
             }
         }
         (x, cost, n)

@@ -135,6 +135,15 @@ pub fn load(spec: &str) -> Result<Display> {
     parse(&text, spec)
 }
 
+/// The full model behind `--display SPEC` (`xyz --display`): a calibration's (its interaction
+/// lattice included), or the matrix model of sRGB, a display TOML file or an ICC profile.
+pub fn load_model(spec: &str) -> Result<Box<DisplayModel<FULL>>> {
+    match interaction_model(spec)? {
+        Some(cal) => Ok(Box::new(cal.model().clone())),
+        None => Ok(Box::new(DisplayModel::new(load(spec)?, None))),
+    }
+}
+
 /// The calibration behind `--display SPEC` when its model has channel interaction (for
 /// [`Output::with_model`]); `None` for sRGB, display TOML files, ICC profiles and matrix-only
 /// calibrations.
