@@ -27,8 +27,9 @@
 //! 3. If the prediction is still more than [`INVERSE_DE`] (ΔE00) off (a local minimum: where a curve is
 //!    nearly flat, a lattice slope of the other sign makes the prediction fold back), each
 //!    channel is scanned over its range (`SCAN_STEPS + 1` values, dense near 0, away from the
-//!    current value) with the other two refitted by the matrix model at each value, and step 2
-//!    restarts from each channel's best point: at most [`SCAN_ROUNDS`] rounds.
+//!    current value); at each value the other two are refitted by the matrix model and then
+//!    descended (step 2 with the channel held), and step 2 restarts from each channel's best
+//!    point: at most [`SCAN_ROUNDS`] rounds.
 //! 4. If still above: a coarse search over a `SEARCH_GRID³` lattice of device values (dense
 //!    near 0 as the scans), and
 //!    step 2 from the [`RESTARTS`] best of them.
@@ -245,7 +246,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
             }
         }
         // 2. Levenberg–Marquardt from there
-        let (mut x, mut cost, mut iterations) = self.descend(&resid, k, best.0);
+        let (mut x, mut cost, mut iterations) = self.descend(&resid, k, best.0, [false; 3]);
         let mut starts = 1;
         // 3. channel scans: each channel over its whole range, the other two refitted by the
         // matrix model at each value; a descent from the best point found
@@ -266,7 +267,11 @@ impl<const CAP: usize> DisplayModel<CAP> {
                     let mut q = from;
                     q[c] = f * f;
                     let q = self.refit_others(q, c, w);
-                    let cq = norm2(resid(q));
+                    // the profile: the other two descended with channel c held
+                    let mut hold = [false; 3];
+                    hold[c] = true;
+                    let (q, cq, n) = self.descend(&resid, k, q, hold);
+                    iterations += n;
                     if cq < p.1 {
                         p = (q, cq);
                     }
@@ -274,7 +279,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
                 if !p.1.is_finite() {
                     continue;
                 }
-                let (y, cy, n) = self.descend(&resid, k, p.0);
+                let (y, cy, n) = self.descend(&resid, k, p.0, [false; 3]);
                 iterations += n;
                 starts += 1;
                 if cy < cost {
@@ -315,7 +320,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
                 if !c.is_finite() {
                     continue;
                 }
-                let (y, cy, n) = self.descend(&resid, k, p);
+                let (y, cy, n) = self.descend(&resid, k, p, [false; 3]);
                 iterations += n;
                 starts += 1;
                 if cy < cost {
@@ -366,13 +371,14 @@ impl<const CAP: usize> DisplayModel<CAP> {
         q
     }
 
-    /// Levenberg–Marquardt descent of `‖resid‖²` from `x` inside the cube (step 2): the
-    /// point, its cost and the iterations taken.
+    /// Levenberg–Marquardt descent of `‖resid‖²` from `x` inside the cube (step 2), the
+    /// channels of `hold` held where they are: the point, its cost and the iterations taken.
     fn descend(
         &self,
         resid: &impl Fn([f32; 3]) -> [f32; 3],
         k: f32,
         mut x: [f32; 3],
+        hold: [bool; 3],
     ) -> ([f32; 3], f32, u32) {
         let mut r = resid(x);
         let mut cost = norm2(r);
@@ -403,7 +409,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
             for _ in 0..16 {
                 // channels held at a face of the cube that the step would push out of are
                 // fixed there and the step solved for the others (an active set)
-                let mut held = [false; 3];
+                let mut held = hold;
                 let mut step = [0.0f64; 3];
                 let mut solved = false;
                 for _ in 0..3 {

@@ -26,11 +26,11 @@ const ROUND_TRIP_DE: f64 = 0.01;
 
 /// Known weakness (issue 12): on the Surface, whose lattice (9 a side) folds the prediction
 /// near red = 0 and blue ≈ 0, the solver still stops in a local minimum for a few grid
-/// colours (5 of 2 197, at most 0.082 ΔE00). These bounds hold it there; every other display
+/// colours (4 of 2 197, at most 0.022 ΔE00). These bounds hold it there; every other display
 /// must be exact everywhere.
-const SURFACE_MISSES_MAX: usize = 5;
+const SURFACE_MISSES_MAX: usize = 4;
 /// See [`SURFACE_MISSES_MAX`].
-const SURFACE_MISS_DE_MAX: f64 = 0.1;
+const SURFACE_MISS_DE_MAX: f64 = 0.03;
 
 /// Grid points per side of device RGB (dense near 0, where curves are flat: `(i/(n−1))^1.5`).
 const GRID: usize = 13;
@@ -134,9 +134,8 @@ fn every_shipped_display_inverts_exactly_on_a_dense_grid() {
                     let rgb = [i, j, k].map(|v| (v as f64 / (GRID - 1) as f64).powf(1.5));
                     let (de, it, starts) = round_trip(&cal, rgb);
                     if de > ROUND_TRIP_DE {
-                        misses.push(format!(
-                            "{name}: device {rgb:?} comes back {de:.4} ΔE00 off"
-                        ));
+                        let what = format!("{name}: device {rgb:?} comes back {de:.4} ΔE00 off");
+                        misses.push((name, what, de));
                     }
                     worst = worst.max(de);
                     iters += it as u64;
@@ -147,9 +146,10 @@ fn every_shipped_display_inverts_exactly_on_a_dense_grid() {
             }
         }
         eprintln!(
-            "{name} ({}): {n} colours, max ΔE00 {worst:.5}, mean iterations {:.2}, max {most_iters}, restarted {restarted}",
+            "{name} ({}): {n} colours, max ΔE00 {worst:.5}, mean iterations {:.2}, max {most_iters}, restarted {restarted}, misses so far {}",
             cal.data().fit.model,
-            iters as f64 / n as f64
+            iters as f64 / n as f64,
+            misses.len()
         );
     }
     assert!(lattices >= 3, "the shipped displays' fits keep lattices");
