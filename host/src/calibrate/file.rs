@@ -160,7 +160,7 @@ pub struct FitReport {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outliers: Vec<Outlier>,
     /// Primaries the fit had to constrain to the chromaticity triangle (`x ≥ 0`, `y > 0`,
-    /// `x + y ≤ 1`), one sentence each.
+    /// `x + y ≤ 1`) or to the spectral locus (CIE 1931, `fit/locus.rs`), one sentence each.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub constrained: Vec<String>,
 }
