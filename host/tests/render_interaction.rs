@@ -40,7 +40,9 @@ fn a_calibration_with_interaction_renders_through_its_full_model() {
         adapt: Mat3::IDENTITY,
         model: None,
     };
-    let full = matrix_only.clone().with_model(Some(cal.clone()));
+    let full = matrix_only
+        .clone()
+        .with_model(Some(Box::new(cal.model().clone())));
     let white = cal.predict([1.0; 3]);
     let k = (display.white().y - display.black().y) / 100.0;
     let levels = [0.15, 0.4, 0.65, 0.9];

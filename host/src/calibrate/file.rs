@@ -523,7 +523,7 @@ pub fn load(path: &Path) -> Result<Calibration> {
 /// `acsp` signature, read by [`super::icc_read`]).
 pub fn load_display(path: &Path) -> Result<Display> {
     if super::icc_read::is_icc_file(path) {
-        return super::icc_read::load(path);
+        return Ok(super::icc_read::load_model(path)?.display().clone());
     }
     Ok(load(path)?.display())
 }

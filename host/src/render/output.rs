@@ -15,7 +15,6 @@
 
 use super::scene::Scene;
 use super::{scene_white, Image};
-use crate::calibrate::file::Calibration;
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -62,11 +61,12 @@ impl Output {
         }
     }
 
-    /// The output with the full model of `cal` when it has interaction (see [`Self::model`]).
-    pub fn with_model(mut self, cal: Option<Calibration>) -> Self {
-        self.model = cal
-            .filter(|c| c.has_interaction())
-            .map(|c| Arc::new(c.model().clone()));
+    /// The output with a full model (see [`Self::model`]; a model without interaction is the
+    /// matrix model and is dropped).
+    pub fn with_model(mut self, model: Option<Box<DisplayModel<FULL>>>) -> Self {
+        self.model = model
+            .filter(|m| m.interaction().is_some())
+            .map(|m| Arc::from(m));
         self
     }
 
@@ -135,33 +135,35 @@ pub fn load(spec: &str) -> Result<Display> {
     parse(&text, spec)
 }
 
-/// The full model behind `--display SPEC` (`xyz --display`): a calibration's (its interaction
-/// lattice included), or the matrix model of sRGB, a display TOML file or an ICC profile.
+/// The full model behind `--display SPEC` (`xyz --display`): a calibration's or a LUT ICC
+/// profile's (its interaction lattice included), or the matrix model of sRGB, a display TOML
+/// file or a matrix/TRC profile.
 pub fn load_model(spec: &str) -> Result<Box<DisplayModel<FULL>>> {
     match interaction_model(spec)? {
-        Some(cal) => Ok(Box::new(cal.model().clone())),
+        Some(m) => Ok(m),
         None => Ok(Box::new(DisplayModel::new(load(spec)?, None))),
     }
 }
 
-/// The calibration behind `--display SPEC` when its model has channel interaction (for
-/// [`Output::with_model`]); `None` for sRGB, display TOML files, ICC profiles and matrix-only
-/// calibrations.
-pub fn interaction_model(spec: &str) -> Result<Option<Calibration>> {
+/// The full model behind `--display SPEC` when it has channel interaction (for
+/// [`Output::with_model`]): a calibration with an interaction lattice, or a LUT ICC profile
+/// whose table holds interaction; `None` for sRGB, display TOML files, matrix/TRC profiles and
+/// matrix-only calibrations.
+pub fn interaction_model(spec: &str) -> Result<Option<Box<DisplayModel<FULL>>>> {
     let path = std::path::Path::new(spec);
-    if spec.eq_ignore_ascii_case("srgb")
-        || !path.is_file()
-        || crate::calibrate::icc_read::is_icc_file(path)
-    {
+    if spec.eq_ignore_ascii_case("srgb") || !path.is_file() {
         return Ok(None);
     }
+    if crate::calibrate::icc_read::is_icc_file(path) {
+        let m = crate::calibrate::icc_read::load_model(path)?;
+        return Ok(m.interaction().is_some().then_some(m));
+    }
     let text = crate::io::read::text(path)?;
-    let is_calibration = crate::calibrate::file::is_calibration_text(&text);
-    if !is_calibration {
+    if !crate::calibrate::file::is_calibration_text(&text) {
         return Ok(None);
     }
     let cal = crate::calibrate::file::load(path)?;
-    Ok(cal.has_interaction().then_some(cal))
+    Ok(cal.has_interaction().then(|| Box::new(cal.model().clone())))
 }
 
 /// Parses a display TOML; `source` names it in errors.
