@@ -64,9 +64,7 @@ impl Output {
     /// The output with a full model (see [`Self::model`]; a model without interaction is the
     /// matrix model and is dropped).
     pub fn with_model(mut self, model: Option<Box<DisplayModel<FULL>>>) -> Self {
-        self.model = model
-            .filter(|m| m.interaction().is_some())
-            .map(|m| Arc::from(m));
+        self.model = model.filter(|m| m.interaction().is_some()).map(Arc::from);
         self
     }
 
