@@ -6,26 +6,20 @@
 //! in the gamut, the dark colours of this panel's flat-footed red curve included), and on
 //! average at most half the matrix model's error.
 
+#[path = "common/displays.rs"]
+mod displays;
+
 use specpoly::calibrate::file::Calibration;
-use specpoly::calibrate::fit::{fit, FitOptions};
 use specpoly::calibrate::verify::delta_e00;
-use specpoly::io::cgats::read_ti3;
 use specpoly::render::output::Output;
 use specpoly_core::{GamutMap, Mat3, Xyz};
-use std::path::Path;
 
 /// ΔE00 between the full model's emission of the encoded device values and the target (the
 /// round-trip tolerance of `display_inverse.rs`).
 const EXACT_DE: f64 = 0.01;
 
 fn surface() -> Calibration {
-    let name = "microsoft-surface-pro-2017_825.ti3";
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../data/ti3")
-        .join(name);
-    let text = std::fs::read_to_string(path).unwrap();
-    let t = read_ti3(&text, name).unwrap();
-    fit(&t.measurements, &FitOptions::default()).unwrap()
+    displays::fitted("microsoft-surface-pro-2017_825.ti3")
 }
 
 #[test]

@@ -238,15 +238,7 @@ fn sample_lattice(
     display: &Display,
     to_display: impl Fn([f64; 3]) -> [f64; 3],
 ) -> std::result::Result<Option<Interaction<FULL>>, String> {
-    let xyz = Profile::new_xyz();
-    let t: Transform<[f64; 3], [f64; 3]> = Transform::new(
-        p,
-        PixelFormat::RGB_DBL,
-        &xyz,
-        PixelFormat::XYZ_DBL,
-        Intent::RelativeColorimetric,
-    )
-    .map_err(|e| format!("Little CMS cannot use its A2B0 table: {e}"))?;
+    let t = to_pcs(p)?;
     let g = LATTICE_GRID;
     let src: Vec<[f64; 3]> = (0..g * g * g)
         .map(|i| [i / (g * g), i / g % g, i % g].map(|n| n as f64 / (g - 1) as f64))
@@ -296,21 +288,26 @@ fn curve(t: &[f64]) -> std::result::Result<Transfer, String> {
     Transfer::table(&f).map_err(|e| e.to_string())
 }
 
-/// What [`sample_lut`] measures: primaries (PCS, black excluded), curves (0 to 1), black (PCS).
-type Sampled = ([[f64; 3]; 3], [Vec<f64>; 3], [f64; 3]);
-
-/// Samples a LUT profile through Little CMS: full-drive primaries and black (PCS) and each
-/// channel's curve (its luminance over its ramp, black subtracted, normalised).
-fn sample_lut(p: &Profile) -> std::result::Result<Sampled, String> {
+/// Little CMS's relative-colorimetric transform from the profile's device RGB to PCS XYZ.
+fn to_pcs(p: &Profile) -> std::result::Result<Transform<[f64; 3], [f64; 3]>, String> {
     let xyz = Profile::new_xyz();
-    let t: Transform<[f64; 3], [f64; 3]> = Transform::new(
+    Transform::new(
         p,
         PixelFormat::RGB_DBL,
         &xyz,
         PixelFormat::XYZ_DBL,
         Intent::RelativeColorimetric,
     )
-    .map_err(|e| format!("Little CMS cannot use its A2B0 table: {e}"))?;
+    .map_err(|e| format!("Little CMS cannot use its A2B0 table: {e}"))
+}
+
+/// What [`sample_lut`] measures: primaries (PCS, black excluded), curves (0 to 1), black (PCS).
+type Sampled = ([[f64; 3]; 3], [Vec<f64>; 3], [f64; 3]);
+
+/// Samples a LUT profile through Little CMS: full-drive primaries and black (PCS) and each
+/// channel's curve (its luminance over its ramp, black subtracted, normalised).
+fn sample_lut(p: &Profile) -> std::result::Result<Sampled, String> {
+    let t = to_pcs(p)?;
     let n = specpoly_core::display::TABLE_MAX;
     let mut src = vec![[0.0; 3]];
     for c in 0..3 {
