@@ -85,6 +85,69 @@ impl Transfer {
         }
     }
 
+    /// The curve's slope `dl/dv` at `v` (clamped to `[0, 1]`): the derivative on the right of
+    /// `v` (on the left at `v = 1`); 0 where the curve is flat. A power law below 1, whose
+    /// slope at 0 is infinite, gives the secant to the first table step, `1/(TABLE_MAX − 1)`.
+    pub fn slope(&self, v: f32) -> f32 {
+        let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        match self {
+            Transfer::Linear => 1.0,
+            Transfer::Srgb => {
+                if v <= 0.04045 {
+                    1.0 / 12.92
+                } else {
+                    2.4 / 1.055 * math::powf((v + 0.055) / 1.055, 1.4)
+                }
+            }
+            Transfer::Gamma(g) => {
+                let d = *g * math::powf(v, *g - 1.0);
+                if d.is_finite() {
+                    d
+                } else {
+                    Self::secant_up(|x| math::powf(x, *g), v)
+                }
+            }
+            Transfer::Table(t) => {
+                let n = t.len();
+                let top = (n - 1) as f32;
+                let i = ((v * top) as usize).min(n - 2);
+                (t[i + 1] - t[i]) * top
+            }
+        }
+    }
+
+    /// [`Self::slope`], except where the curve is flat at `v` (a table's flat foot, a power
+    /// law's zero slope at 0): there the secant from `v` to the first point where it rises,
+    /// the slope a solver needs to leave the flat part. 0 only for a curve flat to its end.
+    pub fn rise(&self, v: f32) -> f32 {
+        let s = self.slope(v);
+        let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+        if s > 0.0 || v >= 1.0 {
+            return s.max(0.0);
+        }
+        match self {
+            Transfer::Table(t) => {
+                let top = (t.len() - 1) as f32;
+                let here = self.decode(v);
+                match t.iter().position(|y| *y > here) {
+                    Some(k) => (t[k] - here) / (k as f32 / top - v),
+                    None => 0.0,
+                }
+            }
+            _ => Self::secant_up(|x| self.decode(x), v),
+        }
+    }
+
+    /// The secant of `f` from `v` to `v + 1/(TABLE_MAX − 1)` (or 1).
+    fn secant_up(f: impl Fn(f32) -> f32, v: f32) -> f32 {
+        let h = (1.0 / (TABLE_MAX - 1) as f32).min(1.0 - v);
+        if h > 0.0 {
+            (f(v + h) - f(v)) / h
+        } else {
+            0.0
+        }
+    }
+
     /// Linear light → device value (the inverse of [`Self::decode`]; clamps to `[0, 1]`).
     pub fn encode(&self, l: f32) -> f32 {
         let l = l.clamp(0.0, 1.0);
@@ -98,21 +161,27 @@ impl Transfer {
                 }
             }
             Transfer::Gamma(g) => math::powf(l, 1.0 / *g),
-            Transfer::Table(t) => {
-                let n = t.len();
-                if l <= t[0] {
-                    return 0.0;
-                }
-                if l >= t[n - 1] {
-                    return 1.0;
-                }
-                let i = t.partition_point(|x| *x <= l).clamp(1, n - 1);
-                let (a, b) = (t[i - 1], t[i]);
-                let f = if b > a { (l - a) / (b - a) } else { 0.0 };
-                ((i - 1) as f32 + f) / (n - 1) as f32
-            }
+            Transfer::Table(t) => table_inverse(t, l),
         }
     }
+}
+
+/// Where a non-decreasing curve sampled at `n ≥ 2` evenly spaced points `0, 1/(n−1), …, 1`
+/// reaches `l`: the linear interpolant's inverse (the first crossing on a flat step; 0 below
+/// the curve, 1 above). [`Transfer::encode`] of a table, and the host's ICC writer on its
+/// longer curves.
+pub fn table_inverse(t: &[f32], l: f32) -> f32 {
+    let n = t.len();
+    if n < 2 || l <= t[0] {
+        return 0.0;
+    }
+    if l >= t[n - 1] {
+        return 1.0;
+    }
+    let i = t.partition_point(|x| *x <= l).clamp(1, n - 1);
+    let (a, b) = (t[i - 1], t[i]);
+    let f = if b > a { (l - a) / (b - a) } else { 0.0 };
+    ((i - 1) as f32 + f) / (n - 1) as f32
 }
 
 /// How to bring a colour outside the display's gamut inside it.

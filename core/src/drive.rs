@@ -9,7 +9,7 @@
 //!
 //! (Cowan 1983, the paper's §7.3; quantisation as in [`crate::quantize`].)
 
-use crate::{quantize, Display, GamutMap, Xyz};
+use crate::{quantize, Display, Encoded, GamutMap, Xyz};
 
 /// What a display shows for a target colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,18 +27,28 @@ pub struct Drive {
 impl Display {
     /// The drive step for `target` (relative to a white of `Y = 100`) on levels `0 ..= max`.
     pub fn drive(&self, target: Xyz, map: GamutMap, max: u16) -> Drive {
-        let enc = self.encode_relative(target, map);
-        let level = enc.device.map(|v| quantize(v, max));
-        let full = max.max(1) as f32;
-        let shown = level.map(|d| d as f32 / full);
-        let white = self.white().y;
-        let k = if white > 0.0 { 100.0 / white } else { 0.0 };
-        Drive {
-            linear: enc.linear,
-            level,
-            emitted: self.device_to_xyz(shown).scale(k),
-            out_of_gamut: enc.out_of_gamut,
-        }
+        step(
+            self.encode_relative(target, map),
+            max,
+            self.white().y,
+            |shown| self.device_to_xyz(shown),
+        )
+    }
+}
+
+/// The step after encoding (shared by [`Display::drive`] and the full model's
+/// [`crate::DisplayModel::drive`]): quantise `enc`'s device values to `0 ..= max`, and the
+/// XYZ `emit` predicts at those levels, relative to a white of luminance `white_y` at 100.
+pub(crate) fn step(enc: Encoded, max: u16, white_y: f32, emit: impl Fn([f32; 3]) -> Xyz) -> Drive {
+    let level = enc.device.map(|v| quantize(v, max));
+    let full = max.max(1) as f32;
+    let shown = level.map(|d| d as f32 / full);
+    let k = if white_y > 0.0 { 100.0 / white_y } else { 0.0 };
+    Drive {
+        linear: enc.linear,
+        level,
+        emitted: emit(shown).scale(k),
+        out_of_gamut: enc.out_of_gamut,
     }
 }
 

@@ -61,10 +61,12 @@
 pub mod cheb;
 pub mod colorimetry;
 pub mod display;
+pub mod display_model;
 pub mod drive;
 pub mod error;
 pub mod fit;
 pub mod illuminant;
+pub mod interaction;
 pub mod layout;
 pub mod light;
 mod math;
@@ -83,10 +85,12 @@ pub use colorimetry::{
     bradford, chromaticity, de2000_terms, delta_e2000, De2000Terms, Lab, Xyy, Xyz,
 };
 pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
+pub use display_model::{DisplayModel, Solution};
 pub use drive::Drive;
 pub use error::Error;
 pub use fit::FitErrors;
 pub use illuminant::Illuminant;
+pub use interaction::Interaction;
 pub use layout::{Breaks, Layout, Paper, Uniform, PAPER_BREAKS};
 pub use matrix::Mat3;
 pub use moments::{exact_xyz, Moments};

@@ -11,9 +11,10 @@
 //! that our held-out mean is at or below both; the figures of every display are in
 //! docs/calibration.md ("The display model against ArgyllCMS"), with the commands.
 
-use palette::color_difference::Ciede2000;
-use palette::white_point::{WhitePoint, D65};
-use palette::FromColor;
+#[path = "common/displays.rs"]
+mod displays;
+
+use displays::de00;
 use specpoly::calibrate::fit::{fit_and_verify, hold_out_indices, FitOptions};
 use specpoly::io::cgats::read_ti3;
 use specpoly::measurement::Measurement;
@@ -35,18 +36,6 @@ fn readings(name: &str) -> (String, Vec<Measurement>) {
     let t = read_ti3(&text, name).unwrap();
     let m = t.measurements.clone();
     (text, m)
-}
-
-/// ΔE00 by `palette`: XYZ relative to `white` is mapped onto palette's D65 by the same
-/// per-component ratio CIELAB uses (`X/X_n`), converted to CIELAB and compared by CIEDE2000.
-fn de00(a: [f64; 3], b: [f64; 3], white: [f64; 3]) -> f64 {
-    let wp = <D65 as WhitePoint<f64>>::get_xyz();
-    let wp = [wp.x, wp.y, wp.z];
-    let lab = |v: [f64; 3]| {
-        let s = [0, 1, 2].map(|i| v[i] / white[i] * wp[i]);
-        palette::Lab::<D65, f64>::from_color(palette::Xyz::<D65, f64>::new(s[0], s[1], s[2]))
-    };
-    lab(a).difference(lab(b))
 }
 
 fn white_of(m: &[Measurement]) -> [f64; 3] {

@@ -9,6 +9,9 @@
 mod cli;
 
 use cli::{output as specpoly, s};
+#[path = "common/displays.rs"]
+mod displays;
+
 use specpoly::calibrate::file::{self, Calibration};
 use specpoly::calibrate::fit::{fit, FitOptions, InteractionChoice};
 use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
@@ -94,16 +97,7 @@ fn our_profiles_give_the_calibrations_device_values() {
         },
     )
     .unwrap();
-    let n = u32::from_be_bytes([b[128], b[129], b[130], b[131]]) as usize;
-    for i in 0..n {
-        let at = 132 + 12 * i;
-        if [b"rXYZ", b"gXYZ", b"bXYZ", b"rTRC", b"gTRC", b"bTRC"]
-            .iter()
-            .any(|sig| &b[at..at + 4] == *sig)
-        {
-            b[at] = b'0' + i as u8; // unknown, and distinct (lcms refuses duplicates)
-        }
-    }
+    displays::tables_only(&mut b);
     let p = dir.path().join("tables.icc");
     std::fs::write(&p, b).unwrap();
     let worst = max_difference(&rgb_of(&p), &want);

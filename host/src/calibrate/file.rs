@@ -37,7 +37,8 @@ pub use super::fit::lattice::Lattice;
 use crate::error::{CliError, Result};
 use crate::io::toml_error::one_line;
 use serde::{Deserialize, Serialize};
-use specpoly_core::{Display, Transfer, Xyz};
+use specpoly_core::display_model::FULL;
+use specpoly_core::{Display, DisplayModel, Interaction, Transfer, Xyz};
 use std::path::Path;
 
 /// The `format` value of a calibration file.
@@ -159,7 +160,7 @@ pub struct FitReport {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outliers: Vec<Outlier>,
     /// Primaries the fit had to constrain to the chromaticity triangle (`x ≥ 0`, `y > 0`,
-    /// `x + y ≤ 1`), one sentence each.
+    /// `x + y ≤ 1`) or to the spectral locus (CIE 1931, `fit/locus.rs`), one sentence each.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub constrained: Vec<String>,
 }
@@ -244,11 +245,12 @@ pub fn is_calibration_text(text: &str) -> bool {
         .unwrap_or(false)
 }
 
-/// A validated calibration: its file contents and the display model built from them.
+/// A validated calibration: its file contents and the display model built from them (the
+/// core's [`DisplayModel`]: the matrix model and the interaction lattice, in f32).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Calibration {
     data: CalibrationData,
-    display: Display,
+    model: Box<DisplayModel<FULL>>,
     /// The video LUT loaded while the display was measured (the model describes the display
     /// with it loaded): the file's optional `[video_lut]`.
     video_lut: Option<super::video_lut::VideoLut>,
@@ -333,9 +335,16 @@ impl Calibration {
                 TransferKind::Gamma => Transfer::Gamma(t.gamma[c] as f32),
             };
         }
-        if let Some(l) = &data.interaction {
-            l.check().map_err(CliError::data)?;
-        }
+        let interaction = match &data.interaction {
+            Some(l) => {
+                l.check().map_err(CliError::data)?;
+                let v = l.values.iter().map(|v| v.map(|x| x as f32));
+                Some(Interaction::new(l.grid, v).map_err(|e| {
+                    CliError::data(format!("interaction: {e} (an offset beyond f32?)"))
+                })?)
+            }
+            None => None,
+        };
         let p = data.primaries.array();
         let display = Display::from_primaries(
             p.map(|p| [p.x as f32, p.y as f32]),
@@ -350,7 +359,7 @@ impl Calibration {
         .map_err(|e| CliError::data(format!("the primaries do not make a display: {e}")))?;
         Ok(Calibration {
             data,
-            display,
+            model: Box::new(DisplayModel::new(display, interaction)),
             video_lut: None,
         })
     }
@@ -379,9 +388,15 @@ impl Calibration {
         (&mut self.data.fit, &mut self.data.provenance)
     }
 
-    /// The display model (Cowan's model with the fitted curves) for `specpoly-core`.
+    /// The matrix model (Cowan's model with the fitted curves) for `specpoly-core`.
     pub fn display(&self) -> Display {
-        self.display.clone()
+        self.model.display().clone()
+    }
+
+    /// The full model (matrix model and interaction lattice): the core's evaluation and
+    /// inverse, which [`Self::predict`] and [`Self::inverse`] call.
+    pub fn model(&self) -> &DisplayModel<FULL> {
+        &self.model
     }
 
     /// Whether XYZ is in cd/m² (else relative to a white of `Y = 100`).
@@ -390,17 +405,10 @@ impl Calibration {
     }
 
     /// Predicted XYZ for device values in `[0, 1]` (the calibration's units): the matrix
-    /// model of [`Self::display`] plus the interaction lattice, if any.
+    /// model of [`Self::display`] plus the interaction lattice, if any (the core's
+    /// [`DisplayModel::device_to_xyz`], f32, widened).
     pub fn predict(&self, rgb: [f64; 3]) -> [f64; 3] {
-        let v = self.display.device_to_xyz(rgb.map(|v| v as f32)).to_array();
-        let mut x = v.map(|x| x as f64);
-        if let Some(l) = &self.data.interaction {
-            let d = l.eval(rgb);
-            for r in 0..3 {
-                x[r] += d[r];
-            }
-        }
-        x
+        <[f64; 3]>::from(self.model.device_to_xyz(rgb.map(|v| v as f32)))
     }
 
     /// Whether the model has a channel-interaction correction (then [`Self::display`], the
@@ -410,16 +418,16 @@ impl Calibration {
     }
 
     /// Device RGB in `[0, 1]³` whose [`Self::predict`] is `xyz` (the calibration's units): the
-    /// exact inverse inside the gamut, by damped Newton steps on the forward model from the
-    /// matrix model's inverse; outside the gamut the nearest prediction in the weighted
-    /// least-squares sense within the cube. See [`super::fit::inverse`].
+    /// core's [`DisplayModel::inverse`], exact (ΔE00 ≤ 0.005) inside the gamut; outside it the
+    /// nearest prediction within the cube in least squares.
     pub fn inverse(&self, xyz: [f64; 3]) -> [f64; 3] {
-        super::fit::inverse::inverse(self, xyz)
+        let x = xyz.map(|v| v as f32);
+        self.model.inverse(Xyz::from_array(x)).device.map(f64::from)
     }
 
     /// The linear light of each channel for device values in `[0, 1]`.
     pub fn linearise(&self, rgb: [f64; 3]) -> [f64; 3] {
-        let t = self.display.transfer();
+        let t = self.model.display().transfer();
         [0, 1, 2].map(|c| t[c].decode(rgb[c] as f32) as f64)
     }
 
@@ -515,7 +523,7 @@ pub fn load(path: &Path) -> Result<Calibration> {
 /// `acsp` signature, read by [`super::icc_read`]).
 pub fn load_display(path: &Path) -> Result<Display> {
     if super::icc_read::is_icc_file(path) {
-        return super::icc_read::load(path);
+        return Ok(super::icc_read::load_model(path)?.display().clone());
     }
     Ok(load(path)?.display())
 }

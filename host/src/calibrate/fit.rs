@@ -37,8 +37,8 @@
 //!    `XYZ(R) + XYZ(G) + XYZ(B) − 2·K`, as ΔE00 (CIELAB relative to the measured white) and as
 //!    the luminance difference in percent.
 
-pub mod inverse;
 pub mod lattice;
+pub mod locus;
 pub mod robust;
 pub mod select;
 
@@ -332,7 +332,7 @@ pub fn fit_model(
         let mut p = p;
         let notes = project_primaries(&mut p);
         let mut cal = model.calibration(p, black, &tables, None, "cowan")?;
-        cal.report_mut().0.constrained = notes;
+        cal.report_mut().0.constrained.splice(0..0, notes);
         cal
     };
     // a lattice whose system could not be solved is left out: name what was fitted
@@ -498,6 +498,9 @@ impl Model<'_> {
         lattice: Option<lattice::Lattice>,
         matrix: &str,
     ) -> Result<Calibration> {
+        // physically possible primaries: inside the spectral locus
+        let mut p = p;
+        let locus_notes = locus::constrain(&mut p);
         let prim = p.map(Primary::from_xyz);
         let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + k[r]);
         Calibration::new(CalibrationData {
@@ -526,6 +529,7 @@ impl Model<'_> {
             interaction: lattice,
             fit: FitReport {
                 matrix: matrix.into(),
+                constrained: locus_notes,
                 ..Default::default()
             },
             provenance: Provenance::default(),
@@ -614,7 +618,7 @@ impl Model<'_> {
         }
         let mut cal = self.calibration(m, k, &tables, lat, "least-squares")?;
         if !notes.is_empty() {
-            cal.report_mut().0.constrained = first_notes;
+            cal.report_mut().0.constrained.splice(0..0, first_notes);
         }
         Ok(cal)
     }

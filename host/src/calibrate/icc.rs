@@ -298,19 +298,10 @@ fn channel_curves(cal: &Calibration) -> [Vec<f64>; 3] {
     })
 }
 
-/// The device value at which a non-decreasing curve sampled at `LUT_CURVE` points reaches `l`.
-fn curve_inverse(t: &[f64], l: f64) -> f64 {
-    let n = t.len();
-    if l <= t[0] {
-        return 0.0;
-    }
-    if l >= t[n - 1] {
-        return 1.0;
-    }
-    let i = t.partition_point(|x| *x <= l).clamp(1, n - 1);
-    let (a, b) = (t[i - 1], t[i]);
-    let f = if b > a { (l - a) / (b - a) } else { 0.0 };
-    ((i - 1) as f64 + f) / (n - 1) as f64
+/// The device value at which a non-decreasing curve sampled at `LUT_CURVE` points reaches `l`
+/// (the core's table inverse, in f32: far below the 16-bit tables' step).
+fn curve_inverse(t: &[f32], l: f64) -> f64 {
+    specpoly_core::display::table_inverse(t, l as f32) as f64
 }
 
 /// A `lut16Type` (`mft2`) tag: 3 inputs, 3 outputs, identity matrix.
@@ -356,6 +347,9 @@ fn mft2(inputs: &[Vec<u16>; 3], clut: &[[u16; 3]], outputs: &[Vec<u16>; 3]) -> V
 /// points.
 pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
     let curves = channel_curves(cal);
+    let curves32 = curves
+        .each_ref()
+        .map(|c| c.iter().map(|v| *v as f32).collect::<Vec<_>>());
     let g = |k: usize| k as f64 / (GRID - 1) as f64;
     // A2B0
     let a_in = [0, 1, 2].map(|c| curves[c].iter().map(|v| u16_unit(*v)).collect::<Vec<_>>());
@@ -364,7 +358,7 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
         for gg in 0..GRID {
             for b in 0..GRID {
                 let lin = [g(r), g(gg), g(b)];
-                let rgb = [0, 1, 2].map(|c| curve_inverse(&curves[c], lin[c]));
+                let rgb = [0, 1, 2].map(|c| curve_inverse(&curves32[c], lin[c]));
                 a_clut.push(predict_pcs(cal, rgb).map(u16_xyz));
             }
         }
@@ -414,7 +408,7 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
         (0..B2A_CURVE)
             .map(|k| {
                 let l = k as f64 / (B2A_CURVE - 1) as f64 * B2A_SPAN - B2A_OFFSET;
-                u16_unit(curve_inverse(&curves[c], l.clamp(0.0, 1.0)))
+                u16_unit(curve_inverse(&curves32[c], l.clamp(0.0, 1.0)))
             })
             .collect::<Vec<_>>()
     });

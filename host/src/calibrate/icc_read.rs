@@ -15,15 +15,18 @@
 //!   display its black, and the curves are renormalised to run from 0 to 1.
 //! - **LUT profiles** (an `A2B0` and no colorants): the same model sampled through Little
 //!   CMS's relative-colorimetric transform: the primaries at full drive, black, and each
-//!   channel's ramp for its curve. Channel interaction in the table is not carried over (a
-//!   Cowan display cannot hold it).
+//!   channel's ramp for its curve. Channel interaction in the table is carried by the core's
+//!   interaction lattice ([`load_model`]): the table sampled on a 17³ grid less the matrix
+//!   model (exact at the nodes, trilinear between them, as Little CMS interpolates a 17³
+//!   table); `render --display` and `xyz --display` use it, `led` the matrix model.
 
 use crate::error::{CliError, Result};
 use lcms2::{
     ColorSpaceSignature, Intent, PixelFormat, Profile, ProfileClassSignature, Tag, TagSignature,
     Transform,
 };
-use specpoly_core::{Display, Transfer, Xyz};
+use specpoly_core::display_model::FULL;
+use specpoly_core::{Display, DisplayModel, Interaction, Transfer, Xyz};
 use std::path::Path;
 
 use super::icc::{bradford, mat_inv, D50};
@@ -59,8 +62,30 @@ fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
 }
 
-/// The display an ICC profile's bytes describe; `source` names it in errors.
+/// The display an ICC profile's bytes describe (its matrix model); `source` names it in errors.
 pub fn display(bytes: &[u8], source: &str) -> Result<Display> {
+    Ok(read(bytes, source)?.display().clone())
+}
+
+/// The full model of an ICC profile file: its matrix model and, for a LUT profile whose table
+/// holds channel interaction, the lattice that carries it ([`LATTICE_GRID`]).
+pub fn load_model(path: &Path) -> Result<Box<DisplayModel<FULL>>> {
+    let bytes = crate::io::read::bytes(path)?;
+    read(&bytes, &path.display().to_string())
+}
+
+/// Nodes a side of the lattice sampled from a LUT profile's `A2B0` (17, the grid our own
+/// profiles' tables have).
+pub const LATTICE_GRID: usize = 17;
+
+/// Offsets below this share of the white's luminance everywhere mean the table holds no
+/// interaction worth a lattice: a LUT profile of a matrix display differs from its sampled
+/// matrix model only by the table's own sampling (16-bit XYZ, a 17³ grid: 0.04 % of the white
+/// on the Acer's), the Surface's interaction reaches several percent.
+pub const LATTICE_FLOOR: f64 = 1e-3;
+
+/// The model an ICC profile's bytes describe.
+fn read(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
     let bad = |why: String| CliError::data(format!("{source}: {why}"));
     if !is_icc(bytes) {
         return Err(bad("not an ICC profile (no `acsp` signature)".into()));
@@ -118,6 +143,7 @@ pub fn display(bytes: &[u8], source: &str) -> Result<Display> {
         TagSignature::BlueTRCTag,
     ];
     let n = specpoly_core::display::TABLE_MAX;
+    let mut lut = false;
     // primaries (PCS, white Y = 1) and curves sampled at n points (linear light, 0–1)
     let (pcs, curves, black_pcs): ([[f64; 3]; 3], [Vec<f64>; 3], [f64; 3]) =
         if colorants.iter().chain(&trcs).all(|s| p.has_tag(*s)) {
@@ -141,6 +167,7 @@ pub fn display(bytes: &[u8], source: &str) -> Result<Display> {
             }
             (pcs, curves, [0.0; 3])
         } else if p.has_tag(TagSignature::AToB0Tag) {
+            lut = true;
             sample_lut(&p).map_err(bad)?
         } else {
             return Err(bad(
@@ -185,13 +212,61 @@ pub fn display(bytes: &[u8], source: &str) -> Result<Display> {
         xy[c] = [(prim[c][0] / s) as f32, (prim[c][1] / s) as f32];
         lum[c] = prim[c][1] as f32;
     }
-    Display::from_primaries(
+    let display = Display::from_primaries(
         xy,
         lum,
         Xyz::new(black[0] as f32, black[1] as f32, black[2] as f32),
         trc,
     )
-    .map_err(|e| bad(format!("its primaries do not make a display: {e}")))
+    .map_err(|e| bad(format!("its primaries do not make a display: {e}")))?;
+    let lattice = if lut {
+        sample_lattice(&p, &display, |pcs| {
+            mat_vec(&to_display, pcs).map(|v| v * luminance)
+        })
+        .map_err(bad)?
+    } else {
+        None
+    };
+    Ok(Box::new(DisplayModel::new(display, lattice)))
+}
+
+/// A LUT profile's channel interaction as a lattice: at each node of a [`LATTICE_GRID`]³ grid
+/// of device values, the table's XYZ (Little CMS, relative colorimetric, through `to_display`)
+/// less the matrix model's; `None` when every offset is below [`LATTICE_FLOOR`] of the white.
+fn sample_lattice(
+    p: &Profile,
+    display: &Display,
+    to_display: impl Fn([f64; 3]) -> [f64; 3],
+) -> std::result::Result<Option<Interaction<FULL>>, String> {
+    let t = to_pcs(p)?;
+    let g = LATTICE_GRID;
+    let src: Vec<[f64; 3]> = (0..g * g * g)
+        .map(|i| [i / (g * g), i / g % g, i % g].map(|n| n as f64 / (g - 1) as f64))
+        .collect();
+    let mut dst = vec![[0.0; 3]; src.len()];
+    t.transform_pixels(&src, &mut dst);
+    let white = display.white().y as f64;
+    let mut largest = 0.0f64;
+    let offsets: Vec<[f32; 3]> = src
+        .iter()
+        .zip(&dst)
+        .map(|(d, pcs)| {
+            let want = to_display(*pcs);
+            let base = display.device_to_xyz(d.map(|v| v as f32)).to_array();
+            let o = [0, 1, 2].map(|r| want[r] - base[r] as f64);
+            largest = o.iter().fold(largest, |m, v| m.max(v.abs()));
+            o.map(|v| v as f32)
+        })
+        .collect();
+    if !(largest.is_finite()) {
+        return Err("its A2B0 table gives a non-finite XYZ".into());
+    }
+    if largest <= LATTICE_FLOOR * white {
+        return Ok(None);
+    }
+    Interaction::new(g, offsets)
+        .map(Some)
+        .map_err(|e| format!("its A2B0 table as a lattice: {e}"))
 }
 
 /// A pure power law when one fits every sample within 1/2000, else the table.
@@ -213,21 +288,26 @@ fn curve(t: &[f64]) -> std::result::Result<Transfer, String> {
     Transfer::table(&f).map_err(|e| e.to_string())
 }
 
-/// What [`sample_lut`] measures: primaries (PCS, black excluded), curves (0 to 1), black (PCS).
-type Sampled = ([[f64; 3]; 3], [Vec<f64>; 3], [f64; 3]);
-
-/// Samples a LUT profile through Little CMS: full-drive primaries and black (PCS) and each
-/// channel's curve (its luminance over its ramp, black subtracted, normalised).
-fn sample_lut(p: &Profile) -> std::result::Result<Sampled, String> {
+/// Little CMS's relative-colorimetric transform from the profile's device RGB to PCS XYZ.
+fn to_pcs(p: &Profile) -> std::result::Result<Transform<[f64; 3], [f64; 3]>, String> {
     let xyz = Profile::new_xyz();
-    let t: Transform<[f64; 3], [f64; 3]> = Transform::new(
+    Transform::new(
         p,
         PixelFormat::RGB_DBL,
         &xyz,
         PixelFormat::XYZ_DBL,
         Intent::RelativeColorimetric,
     )
-    .map_err(|e| format!("Little CMS cannot use its A2B0 table: {e}"))?;
+    .map_err(|e| format!("Little CMS cannot use its A2B0 table: {e}"))
+}
+
+/// What [`sample_lut`] measures: primaries (PCS, black excluded), curves (0 to 1), black (PCS).
+type Sampled = ([[f64; 3]; 3], [Vec<f64>; 3], [f64; 3]);
+
+/// Samples a LUT profile through Little CMS: full-drive primaries and black (PCS) and each
+/// channel's curve (its luminance over its ramp, black subtracted, normalised).
+fn sample_lut(p: &Profile) -> std::result::Result<Sampled, String> {
+    let t = to_pcs(p)?;
     let n = specpoly_core::display::TABLE_MAX;
     let mut src = vec![[0.0; 3]];
     for c in 0..3 {

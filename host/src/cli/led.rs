@@ -236,6 +236,9 @@ pub fn run(args: &LedArgs) -> Result<()> {
     let mut settings = Vec::new();
     if let Some(path) = &args.calibration {
         settings.extend(lines::calibration(path)?);
+        if let Some(note) = lines::calibration_note(path)? {
+            eprintln!("{note}");
+        }
     }
     if let Some(p) = &args.primaries {
         settings.push(line(&lines::primaries(p)?));

@@ -35,8 +35,8 @@ pub struct XyzArgs {
     #[arg(long, default_value_t = 1.0, value_name = "FACTOR")]
     pub scale: f64,
     /// Also print the device RGB (0–1, clipped to the gamut) on this display: `sRGB`, a
-    /// display TOML, a calibration file or an ICC display profile (XYZ relative to the
-    /// display's white, Y = 100).
+    /// display TOML, a calibration file (through its full model, interaction lattice
+    /// included) or an ICC display profile (XYZ relative to the display's white, Y = 100).
     #[arg(long, value_name = "sRGB|FILE")]
     pub display: Option<String>,
 }
@@ -114,7 +114,7 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
     let display = a
         .display
         .as_deref()
-        .map(crate::render::output::load)
+        .map(crate::render::output::load_model)
         .transpose()?;
     Ok(names
         .into_iter()

@@ -91,6 +91,22 @@ pub fn calibration(path: &std::path::Path) -> Result<Vec<String>> {
     Ok(lines)
 }
 
+/// What `led --calibration FILE` leaves out: a sentence when the calibration's model has an
+/// interaction lattice, which protocol 1 cannot carry (the controller gets the matrix model).
+pub fn calibration_note(path: &std::path::Path) -> Result<Option<String>> {
+    if crate::calibrate::icc_read::is_icc_file(path) {
+        return Ok(None);
+    }
+    let cal = crate::calibrate::file::load(path)?;
+    Ok(cal.data().interaction.as_ref().map(|l| {
+        format!(
+            "note: {}: the interaction lattice ({} nodes a side) is not sent; the controller's protocol carries the matrix model only",
+            path.display(),
+            l.grid
+        )
+    }))
+}
+
 /// The `refl` line for named reflectances (names as in `specpoly xyz`; several are multiplied),
 /// each fitted in `preset`, under `illuminant`.
 pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<String> {

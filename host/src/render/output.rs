@@ -15,11 +15,11 @@
 
 use super::scene::Scene;
 use super::{scene_white, Image};
-use crate::calibrate::file::Calibration;
 use crate::error::{CliError, Result};
 use rayon::prelude::*;
 use serde::Deserialize;
-use specpoly_core::{bradford, quantize8, Display, GamutMap, Mat3, Transfer, Xyz};
+use specpoly_core::display_model::FULL;
+use specpoly_core::{bradford, quantize8, Display, DisplayModel, GamutMap, Mat3, Transfer, Xyz};
 use std::sync::Arc;
 
 /// How XYZ pixels become display values.
@@ -33,12 +33,12 @@ pub struct Output {
     pub exposure: f32,
     /// Chromatic adaptation applied before display (Bradford, scene white → display white).
     pub adapt: Mat3,
-    /// A calibration whose model has channel interaction (`calibrate fit`'s lattice): device
-    /// values then come from its inverse ([`Calibration::inverse`]), so the full model emits
-    /// what the matrix model [`Self::display`] maps the colour to (gamut mapping stays the
-    /// matrix model's); where the inverse misses by more than the matrix model's own values,
-    /// those are kept. `None`: the matrix model alone.
-    pub exact: Option<Arc<Calibration>>,
+    /// A calibration's full model when it has channel interaction (`calibrate fit`'s
+    /// lattice): device values then come from the core's [`DisplayModel::encode_relative`]
+    /// (the matrix model's gamut mapping, then the full model's exact inverse), so the full
+    /// model emits what the matrix model [`Self::display`] maps the colour to. `None`: the
+    /// matrix model alone.
+    pub model: Option<Arc<DisplayModel<FULL>>>,
 }
 
 impl Output {
@@ -57,13 +57,14 @@ impl Output {
             gamut,
             exposure: scene.render.exposure,
             adapt,
-            exact: None,
+            model: None,
         }
     }
 
-    /// The output with the full model of `cal` (see [`Self::exact`]).
-    pub fn with_model(mut self, cal: Option<Calibration>) -> Self {
-        self.exact = cal.map(Arc::new);
+    /// The output with a full model (see [`Self::model`]; a model without interaction is the
+    /// matrix model and is dropped).
+    pub fn with_model(mut self, model: Option<Box<DisplayModel<FULL>>>) -> Self {
+        self.model = model.filter(|m| m.interaction().is_some()).map(Arc::from);
         self
     }
 
@@ -71,31 +72,9 @@ impl Output {
     #[inline]
     pub fn device(&self, xyz: Xyz) -> [f32; 3] {
         let a = Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()));
-        let e = self.display.encode_relative(a, self.gamut);
-        match &self.exact {
-            Some(cal) => {
-                // what the matrix model emits for the mapped colour, made exact by the full
-                // model; the solver can stop in a local minimum (or the colour be outside the
-                // full model's gamut), so the matrix model's values stay when they are closer
-                let target = self
-                    .display
-                    .device_to_xyz(e.device)
-                    .to_array()
-                    .map(f64::from);
-                let white = cal.predict([1.0; 3]);
-                let miss = |d: [f64; 3]| {
-                    crate::calibrate::verify::delta_e00(cal.predict(d), target, white)
-                };
-                let exact = cal.inverse(target);
-                let matrix = e.device.map(f64::from);
-                let best = if miss(exact) <= miss(matrix) {
-                    exact
-                } else {
-                    matrix
-                };
-                best.map(|v| v as f32)
-            }
-            None => e.device,
+        match &self.model {
+            Some(m) => m.encode_relative(a, self.gamut).device,
+            None => self.display.encode_relative(a, self.gamut).device,
         }
     }
 
@@ -154,24 +133,35 @@ pub fn load(spec: &str) -> Result<Display> {
     parse(&text, spec)
 }
 
-/// The calibration behind `--display SPEC` when its model has channel interaction (for
-/// [`Output::with_model`]); `None` for sRGB, display TOML files, ICC profiles and matrix-only
-/// calibrations.
-pub fn interaction_model(spec: &str) -> Result<Option<Calibration>> {
+/// The full model behind `--display SPEC` (`xyz --display`): a calibration's or a LUT ICC
+/// profile's (its interaction lattice included), or the matrix model of sRGB, a display TOML
+/// file or a matrix/TRC profile.
+pub fn load_model(spec: &str) -> Result<Box<DisplayModel<FULL>>> {
+    match interaction_model(spec)? {
+        Some(m) => Ok(m),
+        None => Ok(Box::new(DisplayModel::new(load(spec)?, None))),
+    }
+}
+
+/// The full model behind `--display SPEC` when it has channel interaction (for
+/// [`Output::with_model`]): a calibration with an interaction lattice, or a LUT ICC profile
+/// whose table holds interaction; `None` for sRGB, display TOML files, matrix/TRC profiles and
+/// matrix-only calibrations.
+pub fn interaction_model(spec: &str) -> Result<Option<Box<DisplayModel<FULL>>>> {
     let path = std::path::Path::new(spec);
-    if spec.eq_ignore_ascii_case("srgb")
-        || !path.is_file()
-        || crate::calibrate::icc_read::is_icc_file(path)
-    {
+    if spec.eq_ignore_ascii_case("srgb") || !path.is_file() {
         return Ok(None);
     }
+    if crate::calibrate::icc_read::is_icc_file(path) {
+        let m = crate::calibrate::icc_read::load_model(path)?;
+        return Ok(m.interaction().is_some().then_some(m));
+    }
     let text = crate::io::read::text(path)?;
-    let is_calibration = crate::calibrate::file::is_calibration_text(&text);
-    if !is_calibration {
+    if !crate::calibrate::file::is_calibration_text(&text) {
         return Ok(None);
     }
     let cal = crate::calibrate::file::load(path)?;
-    Ok(cal.has_interaction().then_some(cal))
+    Ok(cal.has_interaction().then(|| Box::new(cal.model().clone())))
 }
 
 /// Parses a display TOML; `source` names it in errors.
