@@ -72,10 +72,10 @@ impl Transfer {
                 if v <= 0.04045 {
                     v / 12.92
                 } else {
-                    math::powf((v + 0.055) / 1.055, 2.4)
+                    math::pow_unit((v + 0.055) / 1.055, 2.4)
                 }
             }
-            Transfer::Gamma(g) => math::powf(v, *g),
+            Transfer::Gamma(g) => math::pow_unit(v, *g),
             Transfer::Table(t) => {
                 let x = v * (t.len() - 1) as f32;
                 let i = (x as usize).min(t.len() - 2);
@@ -94,10 +94,10 @@ impl Transfer {
                 if l <= 0.003_130_8 {
                     12.92 * l
                 } else {
-                    1.055 * math::powf(l, 1.0 / 2.4) - 0.055
+                    1.055 * math::pow_unit(l, 1.0 / 2.4) - 0.055
                 }
             }
-            Transfer::Gamma(g) => math::powf(l, 1.0 / *g),
+            Transfer::Gamma(g) => math::pow_unit(l, 1.0 / *g),
             Transfer::Table(t) => {
                 let n = t.len();
                 if l <= t[0] {

@@ -65,22 +65,23 @@ impl Reflectance {
     }
 
     /// XYZ as a reflectance under a light whose moments for both presets are given
-    /// ([`Moments::xyz`]: three dot products). Here rather than at the caller so that the
-    /// kernel is compiled in this crate, which the firmware builds for speed
-    /// (`opt-level = 3`, docs/performance.md); the controller's own crate is built for size.
+    /// ([`Moments::xyz`]: three dot products), through `specpoly-kernels`, which the firmware
+    /// builds for speed (`opt-level = 3`) while the rest is built for size (docs/performance.md).
     pub fn xyz(&self, paper: &Moments<2, 4, Paper>, default: &Moments<8, 4>) -> Xyz {
         match self {
-            Reflectance::Paper(s) => paper.xyz(s),
-            Reflectance::Default(s) => default.xyz(s),
+            Reflectance::Paper(s) => specpoly_kernels::xyz_paper(paper, s),
+            Reflectance::Default(s) => specpoly_kernels::xyz_default(default, s),
         }
     }
 
     /// The reduced product (the paper's eq. 6, [`Spectrum::mul`]); `None` for two presets.
     pub fn mul(&self, o: &Self) -> Option<Self> {
         match (self, o) {
-            (Reflectance::Paper(a), Reflectance::Paper(b)) => Some(Reflectance::Paper(a.mul(b))),
+            (Reflectance::Paper(a), Reflectance::Paper(b)) => {
+                Some(Reflectance::Paper(specpoly_kernels::mul_paper(a, b)))
+            }
             (Reflectance::Default(a), Reflectance::Default(b)) => {
-                Some(Reflectance::Default(a.mul(b)))
+                Some(Reflectance::Default(specpoly_kernels::mul_default(a, b)))
             }
             _ => None,
         }
@@ -337,10 +338,10 @@ impl Command {
                 let illuminant =
                     Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
                 let (product, factors) = if paper {
-                    let (p, n) = read_product::<2, 4, _>(&mut w)?;
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_paper)?;
                     (Reflectance::Paper(p), n)
                 } else {
-                    let (p, n) = read_product::<8, 4, _>(&mut w)?;
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_default)?;
                     (Reflectance::Default(p), n)
                 };
                 Command::Reflect {
@@ -420,9 +421,11 @@ impl Command {
 }
 
 /// Reads `S·C` coefficients per factor, factors separated by `*`, folding them with the
-/// reduced product. Coefficients are span by span, each span's `c₀ … c_{C−1}`.
+/// reduced product `mul` (the preset's [`Spectrum::mul`] from `specpoly-kernels`). Coefficients
+/// are span by span, each span's `c₀ … c_{C−1}`.
 fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
+    mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
 ) -> Result<(Spectrum<S, C, L>, u8), Fault> {
     let mut product: Option<Spectrum<S, C, L>> = None;
     let mut factors = 0u8;
@@ -440,7 +443,7 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
         factors += 1;
         product = Some(match product {
             None => f,
-            Some(p) => p.mul(&f),
+            Some(p) => mul(&p, &f),
         });
         match w.next() {
             None => break,
