@@ -20,7 +20,7 @@ pub fn powf(x: f32, y: f32) -> f32 {
 }
 
 /// `x^p` for `x ∈ [0, 1]` and `p > 0`, the transfer curves' power (`x` is clamped to `[0, 1]`;
-/// NaN reads as 0). Within [`POW_UNIT_ULPS`] units in the last place of the exact result for
+/// NaN reads as 0). Within 4 units in the last place of the exact result for
 /// `0 < p ≤ 3`, `p/3` times that up to `p = 10` (the unit tests below, against f64 `powf`), in about 50 Cortex-M4 instructions
 /// where libm's `powf` takes ≈ 235: the sRGB colour's six powers were most of its
 /// instructions (docs/performance.md, "Issue 13").
@@ -34,6 +34,7 @@ pub fn powf(x: f32, y: f32) -> f32 {
 /// field. Outside the normal range (a subnormal `x`,
 /// `y < −125`) it is libm's `powf`. Hand-written: no `no_std` crate offers a `powf` both
 /// accurate to a few ulp and cheap on an FPU without double precision.
+#[inline]
 pub fn pow_unit(x: f32, p: f32) -> f32 {
     #[cfg(feature = "fast-math")]
     {
@@ -62,7 +63,7 @@ pub fn pow_unit(x: f32, p: f32) -> f32 {
         let m = f32::from_bits(m_bits);
         let s = (m - 1.0) / (m + 1.0);
         let s2 = s * s;
-        let atanh = s + s * s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 / 9.0)));
+        let atanh = s + s * s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 * (1.0 / 9.0))));
         let log2_m = atanh * (2.0 * core::f32::consts::LOG2_E); // in [−½, ½]
                                                                 // y = p·k + p·log₂ m with p·k in two parts, p = hi + lo where hi keeps 12 bits, so
                                                                 // hi·k (|k| ≤ 149) is exact and the rounding of y does not grow with |y|
@@ -87,17 +88,17 @@ pub fn pow_unit(x: f32, p: f32) -> f32 {
     }
 }
 
-/// The bound of [`pow_unit`] for `0 < p ≤ 3`, in units in the last place of the exact result.
-/// Measured over every f32 of `(0, 1]`: 1.61 for `p = 1/2.4` and 3.42 for `p = 2.4` (libm:
-/// 0.88); over every 7th, at most 3.58 for the gammas 1.8, 2.2, 2.6, 3 and their inverses.
-/// The error grows like `1 + p` ulp (the rounding of `p·log₂ m`): for the curves' gammas up to
-/// 10 the bound is `POW_UNIT_ULPS · p / 3` (measured 12.7 ulp, 7.6·10⁻⁷ relative, at `p = 10`).
-pub const POW_UNIT_ULPS: f64 = 4.0;
-
 #[cfg(all(test, not(feature = "fast-math")))]
 mod tests {
     extern crate std;
     use super::*;
+
+    /// The bound of [`pow_unit`] for `0 < p ≤ 3`, in units in the last place of the exact result.
+    /// Measured over every f32 of `(0, 1]`: 1.61 for `p = 1/2.4` and 3.42 for `p = 2.4` (libm:
+    /// 0.88); over every 7th, at most 3.58 for the gammas 1.8, 2.2, 2.6, 3 and their inverses.
+    /// The error grows like `1 + p` ulp (the rounding of `p·log₂ m`): for the curves' gammas up to
+    /// 10 the bound is `POW_UNIT_ULPS · p / 3` (measured 12.7 ulp, 7.6·10⁻⁷ relative, at `p = 10`).
+    pub const POW_UNIT_ULPS: f64 = 4.0;
 
     /// The worst error of `pow_unit(·, p)` in ulp of the f64 power, over every `stride`-th f32
     /// of `(0, 1]`.

@@ -3,7 +3,7 @@
 //! The core's inner loops — the reduced product ([`specpoly_core::Spectrum::mul`], the paper's
 //! eq. 6) and the integral to XYZ ([`specpoly_core::Moments::xyz`]) — instantiated as plain,
 //! non-generic functions for the two built-in presets (the default, 8 uniform cubic spans, and
-//! the paper's 2 spans split at 550 nm).
+//! the paper's 2 spans split at 550 nm), and the display's drive step ([`Display::drive`]).
 //!
 //! **Why a crate of its own.** Cargo's profile overrides are per crate, and generic code is
 //! compiled in the crate that instantiates it. The firmware is built for size
@@ -17,7 +17,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-use specpoly_core::{DefaultSpectrum, Moments, Paper, PaperSpectrum, Xyz};
+use specpoly_core::{DefaultSpectrum, Display, Drive, GamutMap, Moments, Paper, PaperSpectrum, Xyz};
 
 /// [`Moments::xyz`] for the default preset (8 uniform cubic spans).
 #[inline(never)]
@@ -41,4 +41,11 @@ pub fn mul_default(a: &DefaultSpectrum, b: &DefaultSpectrum) -> DefaultSpectrum 
 #[inline(never)]
 pub fn mul_paper(a: &PaperSpectrum, b: &PaperSpectrum) -> PaperSpectrum {
     a.mul(b)
+}
+
+/// [`Display::drive`], the one drive step (target XYZ → gamut → curve → levels → emitted XYZ),
+/// with its callees (`#[inline]` in the core) compiled here.
+#[inline(never)]
+pub fn drive(display: &Display, target: Xyz, map: GamutMap, max: u16) -> Drive {
+    display.drive(target, map, max)
 }
