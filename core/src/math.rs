@@ -63,7 +63,8 @@ pub fn pow_unit(x: f32, p: f32) -> f32 {
         let m = f32::from_bits(m_bits);
         let s = (m - 1.0) / (m + 1.0);
         let s2 = s * s;
-        let atanh = s + s * s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 * (1.0 / 9.0))));
+        let atanh =
+            s + s * s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 * (1.0 / 9.0))));
         let log2_m = atanh * (2.0 * core::f32::consts::LOG2_E); // in [−½, ½]
                                                                 // y = p·k + p·log₂ m with p·k in two parts, p = hi + lo where hi keeps 12 bits, so
                                                                 // hi·k (|k| ≤ 149) is exact and the rounding of y does not grow with |y|

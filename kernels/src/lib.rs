@@ -17,7 +17,9 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-use specpoly_core::{DefaultSpectrum, Display, Drive, GamutMap, Moments, Paper, PaperSpectrum, Xyz};
+use specpoly_core::{
+    DefaultSpectrum, Display, Drive, GamutMap, Moments, Paper, PaperSpectrum, Xyz,
+};
 
 /// [`Moments::xyz`] for the default preset (8 uniform cubic spans).
 #[inline(never)]

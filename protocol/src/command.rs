@@ -1,10 +1,9 @@
 //! Commands (host → controller): parsing and formatting. The grammar is in firmware/PROTOCOL.md.
 
 use crate::mix::ChannelCommand;
-use crate::number::{parse_f32, write_f32, NumberError};
+use crate::number::{parse_f32, write_f32, write_f32_hex, NumberError};
 use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
-use core::str::SplitAsciiWhitespace;
 use specpoly_core::light::channels::Goal;
 use specpoly_core::{
     display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Moments, Observer, Paper,
@@ -90,16 +89,26 @@ impl Reflectance {
     /// Writes the coefficients on the wire order: span by span, each span's Chebyshev
     /// coefficients `c₀ … c₃` low to high, separated by spaces.
     pub fn write_coefficients<W: Write>(&self, w: &mut W) -> fmt::Result {
+        self.write_coefficients_with(w, write_f32)
+    }
+
+    /// [`Self::write_coefficients`] with each number written by `num` (decimal or the compact
+    /// hexadecimal form, [`crate::number`]).
+    fn write_coefficients_with<W: Write>(&self, w: &mut W, num: NumberWriter<W>) -> fmt::Result {
         match self {
-            Reflectance::Paper(s) => write_spectrum(w, s),
-            Reflectance::Default(s) => write_spectrum(w, s),
+            Reflectance::Paper(s) => write_spectrum(w, s, num),
+            Reflectance::Default(s) => write_spectrum(w, s, num),
         }
     }
 }
 
+/// How a number goes on the wire: [`write_f32`] or [`write_f32_hex`].
+type NumberWriter<W> = fn(&mut W, f32) -> fmt::Result;
+
 fn write_spectrum<W: Write, const S: usize, const C: usize, L: Layout<S>>(
     w: &mut W,
     s: &Spectrum<S, C, L>,
+    num: NumberWriter<W>,
 ) -> fmt::Result {
     let c = s.coefficients();
     for span in 0..S {
@@ -107,7 +116,7 @@ fn write_spectrum<W: Write, const S: usize, const C: usize, L: Layout<S>>(
             if span + k > 0 {
                 w.write_char(' ')?;
             }
-            write_f32(w, c[k][span])?;
+            num(w, c[k][span])?;
         }
     }
     Ok(())
@@ -174,15 +183,43 @@ pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
     })
 }
 
-/// Words of a line with their positions.
+/// Words of a line with their positions: the runs of bytes between ASCII whitespace, as
+/// `str::split_ascii_whitespace` gives them. A loop of its own because that iterator, built
+/// for size, cost the controller ≈ 28 instructions a byte, most of a `refl` line
+/// (docs/performance.md, "Issue 13").
 pub(crate) struct Words<'a> {
-    it: SplitAsciiWhitespace<'a>,
+    rest: &'a str,
     pos: usize,
 }
 
 impl<'a> Words<'a> {
+    fn new(line: &'a str) -> Self {
+        Self { rest: line, pos: 0 }
+    }
+
+    /// The next word, not counted in the positions.
+    fn word(&mut self) -> Option<&'a str> {
+        let b = self.rest.as_bytes();
+        let mut i = 0;
+        while i < b.len() && b[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let mut j = i;
+        while j < b.len() && !b[j].is_ascii_whitespace() {
+            j += 1;
+        }
+        // i and j are at ASCII bytes or the end: always character boundaries
+        let w = self.rest.get(i..j)?;
+        self.rest = self.rest.get(j..)?;
+        if w.is_empty() {
+            None
+        } else {
+            Some(w)
+        }
+    }
+
     pub(crate) fn next(&mut self) -> Option<(&'a str, usize)> {
-        let w = self.it.next()?;
+        let w = self.word()?;
         self.pos += 1;
         Some((w, self.pos))
     }
@@ -206,9 +243,8 @@ impl Command {
     /// Parses one line (without its newline). Never panics; any input gives a command or a
     /// [`Fault`].
     pub fn parse(line: &str) -> Result<Command, Fault> {
-        let mut it = line.split_ascii_whitespace();
-        let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
-        let mut w = Words { it, pos: 0 };
+        let mut w = Words::new(line);
+        let head = w.word().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
@@ -504,6 +540,26 @@ pub fn write_reflect<W: Write>(
     illuminant: Illuminant,
     factors: &[Reflectance],
 ) -> fmt::Result {
+    write_reflect_with(w, illuminant, factors, write_f32)
+}
+
+/// [`write_reflect`] with the coefficients in the compact form `0x` + 8 hexadecimal digits
+/// (each f32's bit pattern, `firmware/PROTOCOL.md`): about a tenth of the instructions to read
+/// on the controller, and exact.
+pub fn write_reflect_hex<W: Write>(
+    w: &mut W,
+    illuminant: Illuminant,
+    factors: &[Reflectance],
+) -> fmt::Result {
+    write_reflect_with(w, illuminant, factors, write_f32_hex)
+}
+
+fn write_reflect_with<W: Write>(
+    w: &mut W,
+    illuminant: Illuminant,
+    factors: &[Reflectance],
+    num: NumberWriter<W>,
+) -> fmt::Result {
     let first = factors.first().ok_or(fmt::Error)?;
     if factors.len() > MAX_FACTORS || factors.iter().any(|f| f.preset() != first.preset()) {
         return Err(fmt::Error);
@@ -514,7 +570,28 @@ pub fn write_reflect<W: Write>(
     w.write_str(illuminant.name())?;
     for (i, f) in factors.iter().enumerate() {
         w.write_str(if i == 0 { " " } else { " * " })?;
-        f.write_coefficients(w)?;
+        f.write_coefficients_with(w, num)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::Words;
+    use std::vec::Vec;
+
+    proptest::proptest! {
+        #[test]
+        fn words_are_the_ascii_whitespace_split(s in "[ a\\t\\n\\r\\x0c\\x0bé0.]{0,40}|\\PC{0,40}") {
+            let mut w = Words::new(&s);
+            let mut ours = Vec::new();
+            while let Some((t, at)) = w.next() {
+                ours.push(t);
+                proptest::prop_assert_eq!(at, ours.len());
+            }
+            let std_words: Vec<&str> = s.split_ascii_whitespace().collect();
+            proptest::prop_assert_eq!(ours, std_words);
+        }
+    }
 }

@@ -7,6 +7,9 @@
 //!
 //! Grammar: `[+-]? digits? ('.' digits?)? ([eE] [+-]? digits)?` with at least one digit before
 //! the exponent, at most [`MAX_NUMBER_LEN`] characters. `nan` and `inf` are not numbers here.
+//! The compact form `0x` followed by exactly eight hexadecimal digits is the f32's IEEE 754
+//! bit pattern (`0x3eaaaaab` is 1/3 rounded), exact by construction and a few instructions a
+//! digit to read; patterns of NaN or infinity are out of range ([`write_f32_hex`] writes it).
 //!
 //! Parsing is correctly rounded (to nearest, ties to even) for up to 19 significant digits;
 //! further digits count only as "something follows" (a sticky bit). With the decimal mantissa
@@ -94,6 +97,9 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     let b = s.as_bytes();
     if b.is_empty() || b.len() > MAX_NUMBER_LEN {
         return Err(NumberError::Syntax);
+    }
+    if b.len() == 10 && b[0] == b'0' && b[1] == b'x' {
+        return parse_hex(&b[2..]);
     }
     let mut i = 0;
     let negative = match b[0] {
@@ -190,41 +196,92 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     Ok(if negative { -v } else { v })
 }
 
+/// Eight hexadecimal digits (either case) as an f32 bit pattern; NaN and infinity are
+/// [`NumberError::Range`].
+fn parse_hex(b: &[u8]) -> Result<f32, NumberError> {
+    let mut bits = 0u32;
+    for &c in b {
+        let d = match c {
+            b'0'..=b'9' => c - b'0',
+            b'a'..=b'f' => c - b'a' + 10,
+            b'A'..=b'F' => c - b'A' + 10,
+            _ => return Err(NumberError::Syntax),
+        };
+        bits = bits << 4 | d as u32;
+    }
+    let v = f32::from_bits(bits);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(NumberError::Range)
+    }
+}
+
+/// Writes `v`'s bit pattern as `0x` and eight lower-case hexadecimal digits (the compact form of
+/// the module docs; NaN and infinity are written too, and refused when read).
+pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
+    let bits = v.to_bits();
+    let mut out = [b'0'; 10];
+    out[1] = b'x';
+    for i in 0..8 {
+        let d = (bits >> (28 - 4 * i)) as u8 & 0xf;
+        out[2 + i] = if d < 10 { b'0' + d } else { b'a' + d - 10 };
+    }
+    // only ASCII was written
+    w.write_str(core::str::from_utf8(&out).map_err(|_| fmt::Error)?)
+}
+
 /// `digits ('.' digits?)?` or `'.' digits` (no sign, no exponent) whose digits read as one
 /// u32 `m`: `(m, digits after the point)`, so the value is `m · 10^−fraction`. `None` for
 /// anything else, which [`parse_f32`]'s general loop then reads (or refuses). A loop of a few
 /// instructions a digit for the numbers the protocol itself writes.
 fn plain(b: &[u8]) -> Option<(u32, u32)> {
+    // the integer digits, then (after a point) the fraction's: two loops, so a digit costs a
+    // load, a compare, a bound and a multiply-add
     let mut m = 0u32;
-    let mut fraction = 0u32;
-    let mut point = 0u32; // 1 once past the point
-    let mut any = false;
-    for &c in b {
-        let d = c.wrapping_sub(b'0');
-        if d < 10 {
-            if m > (u32::MAX - 9) / 10 {
-                return None;
-            }
-            m = m * 10 + d as u32;
-            fraction += point;
-            any = true;
-        } else if c == b'.' && point == 0 {
-            point = 1;
-        } else {
+    let mut i = 0;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            break;
+        }
+        if m > (u32::MAX - 9) / 10 {
             return None;
         }
+        m = m * 10 + d as u32;
+        i += 1;
     }
-    if any {
-        Some((m, fraction))
-    } else {
-        None
+    let int_digits = i;
+    if i == b.len() {
+        return if i > 0 { Some((m, 0)) } else { None };
     }
+    if b[i] != b'.' {
+        return None;
+    }
+    i += 1;
+    let start = i;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            return None;
+        }
+        if m > (u32::MAX - 9) / 10 {
+            return None;
+        }
+        m = m * 10 + d as u32;
+        i += 1;
+    }
+    let fraction = (i - start) as u32;
+    if int_digits + fraction as usize == 0 {
+        return None;
+    }
+    Some((m, fraction))
 }
 
 /// `m · 10^e` (plus a little when `sticky`) as the nearest f32, `None` on overflow; `m > 0`,
 /// `−65 ≤ e ≤ 38`.
 fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
-    if !sticky && m <= 1 << 24 && (-10..=10).contains(&e) {
+    if !sticky && m <= 1 << 24 && -10 <= e && e <= 10 {
         // both operands exact: one correctly rounded operation (Clinger 1990); from u32, one
         // `vcvt` (u64 → f32 is a library call on 32-bit targets)
         let v = m as u32 as f32;
@@ -234,7 +291,7 @@ fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
             v / POW10_F32[(-e) as usize]
         });
     }
-    if !sticky && m <= u32::MAX as u64 && (-POW10_MAX..=POW10_MAX).contains(&e) {
+    if !sticky && m <= u32::MAX as u64 && -POW10_MAX <= e && e <= POW10_MAX {
         if let Some(v) = short_decimal(m as u32, e) {
             return Some(v);
         }
@@ -298,11 +355,12 @@ fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
 /// Largest `|e|` of [`POW10_NORM`].
 const POW10_MAX: i32 = 27;
 
-/// `10^e` for `−27 ≤ e ≤ 27` as `(t, b)` with `t ∈ [2⁶³, 2⁶⁴)` and `10^e = (t + δ) · 2^b`,
-/// `0 ≤ δ < 1`: exact (`δ = 0`) for `e ≥ 0` (`10^e = 5^e · 2^e`, `5²⁷ < 2⁶³`), the floor of
+/// `10^e` for `−27 ≤ e ≤ 27` as `t ∈ [2⁶³, 2⁶⁴)` with `10^e = (t + δ) · 2^b`, `0 ≤ δ < 1`,
+/// `b = ⌊e·log₂ 10⌋ − 63` ([`pow10_exp2`], checked against the construction at compile time):
+/// exact (`δ = 0`) for `e ≥ 0` (`10^e = 5^e · 2^e`, `5²⁷ < 2⁶³`), the floor of
 /// `2^(63 + bitlen 5^n) / 5^n` for `e = −n`. 440 bytes of flash.
-const POW10_NORM: [(u64, i32); 55] = {
-    let mut t = [(0u64, 0i32); 55];
+const POW10_NORM: [u64; 55] = {
+    let mut t = [0u64; 55];
     let mut i = 0;
     while i < 55 {
         let e = i as i32 - POW10_MAX;
@@ -311,16 +369,24 @@ const POW10_NORM: [(u64, i32); 55] = {
         if e >= 0 {
             // 10^e = 5^e · 2^e: normalise 5^e to 64 bits, nothing is lost
             let bits = 128 - five.leading_zeros() as i32;
-            t[i] = ((five << (64 - bits)) as u64, e + bits - 64);
+            t[i] = (five << (64 - bits)) as u64;
+            assert!(pow10_exp2(e) == e + bits - 64);
         } else {
             // 10^−n = 2^−n / 5^n = ⌊2^k / 5^n⌋ · 2^(−k−n), k = 63 + bitlen(5^n)
             let k = 63 + (128 - five.leading_zeros() as i32);
-            t[i] = (((1u128 << k) / five) as u64, -k - e.unsigned_abs() as i32);
+            t[i] = ((1u128 << k) / five) as u64;
+            assert!(pow10_exp2(e) == -k - n as i32);
         }
         i += 1;
     }
     t
 };
+
+/// `⌊e·log₂ 10⌋ − 63`, the binary exponent of [`POW10_NORM`]'s entry for `e` (`217 706 / 2¹⁶`
+/// is `log₂ 10` to well within what `|e| ≤ 27` needs).
+const fn pow10_exp2(e: i32) -> i32 {
+    ((e * 217_706) >> 16) - 63
+}
 
 /// `m · 10^e` for `m < 2³²`, `|e| ≤ 27`, correctly rounded to a normal f32, or `None` when
 /// the fast computation cannot decide (then the exact path in [`decimal_to_f32`] does).
@@ -336,15 +402,18 @@ fn short_decimal(m: u32, e: i32) -> Option<f32> {
     if m == 0 {
         return Some(0.0);
     }
-    let (t, b) = POW10_NORM[(e + POW10_MAX) as usize];
+    let (t, b) = (POW10_NORM[(e + POW10_MAX) as usize], pow10_exp2(e));
     let lz = m.leading_zeros();
     let m = (m << lz) as u64;
     // q = ⌊m · t / 2³²⌋ ∈ [2⁶², 2⁶⁴)
     let q = m * (t >> 32) + ((m * (t & 0xffff_ffff)) >> 32);
-    let sh = if q >> 63 == 1 { 40 } else { 39 };
-    let mant = (q >> sh) as u32; // in [2²³, 2²⁴)
-    let rest = q & ((1u64 << sh) - 1);
-    let half = 1u64 << (sh - 1);
+    // constant shifts (a variable u64 shift is a library call on the Cortex-M4)
+    let (sh, mant, rest, half) = if q >> 63 == 1 {
+        (40, (q >> 40) as u32, q & ((1 << 40) - 1), 1u64 << 39)
+    } else {
+        (39, (q >> 39) as u32, q & ((1 << 39) - 1), 1u64 << 38)
+    };
+    // mant ∈ [2²³, 2²⁴)
     let up = if rest + 2 <= half {
         false
     } else if rest > half {
@@ -831,6 +900,28 @@ mod tests {
     }
 
     #[test]
+    fn the_hex_form_is_the_bit_pattern() {
+        assert_eq!(parse_f32("0x3eaaaaab"), Ok(1.0 / 3.0));
+        assert_eq!(parse_f32("0x3EAAAAAB"), Ok(1.0 / 3.0));
+        assert_eq!(parse_f32("0x80000000").map(f32::to_bits), Ok(0x8000_0000));
+        assert_eq!(parse_f32("0x00000001"), Ok(f32::from_bits(1)));
+        assert_eq!(parse_f32("0x7f800000"), Err(NumberError::Range));
+        assert_eq!(parse_f32("0x7fc00000"), Err(NumberError::Range));
+        for bad in [
+            "0x3eaaaaag",
+            "0x3eaaaaa",
+            "0x3eaaaaab0",
+            "-0x3eaaaaab",
+            "0X3eaaaaab",
+        ] {
+            assert_eq!(parse_f32(bad), Err(NumberError::Syntax), "{bad:?}");
+        }
+        let mut s = String::new();
+        write_f32_hex(&mut s, 1.0 / 3.0).unwrap();
+        assert_eq!(s, "0x3eaaaaab");
+    }
+
+    #[test]
     fn the_short_path_matches_std_on_a_dense_sweep_of_nine_digits() {
         // 9 and 10 decimals below 1 as the protocol writes them, every 997th mantissa:
         // 2 million reads
@@ -896,6 +987,16 @@ mod tests {
                 Err(NumberError::Range) => proptest::prop_assert!(std_v.is_infinite(), "{}", s),
                 Err(e) => proptest::prop_assert!(false, "{}: {:?}", s, e),
             }
+        }
+
+        #[test]
+        fn every_finite_f32_round_trips_through_the_hex_form(bits in proptest::prelude::any::<u32>()) {
+            let v = finite(bits);
+            let mut s = String::new();
+            write_f32_hex(&mut s, v).unwrap();
+            // the same pattern as std's formatting of the bits
+            proptest::prop_assert_eq!(&s, &std::format!("{:#010x}", v.to_bits()));
+            proptest::prop_assert_eq!(parse_f32(&s).map(f32::to_bits), Ok(v.to_bits()));
         }
 
         #[test]
