@@ -4,6 +4,7 @@ use crate::mix::ChannelCommand;
 use crate::number::{parse_f32, write_f32, write_f32_hex, NumberError};
 use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
+use core::str::SplitAsciiWhitespace;
 use specpoly_core::light::channels::Goal;
 use specpoly_core::{
     display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Moments, Observer, Paper,
@@ -183,43 +184,15 @@ pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
     })
 }
 
-/// Words of a line with their positions: the runs of bytes between ASCII whitespace, as
-/// `str::split_ascii_whitespace` gives them. A loop of its own because that iterator, built
-/// for size, cost the controller ≈ 28 instructions a byte, most of a `refl` line
-/// (docs/performance.md, "Issue 13").
+/// Words of a line with their positions.
 pub(crate) struct Words<'a> {
-    rest: &'a str,
+    it: SplitAsciiWhitespace<'a>,
     pos: usize,
 }
 
 impl<'a> Words<'a> {
-    fn new(line: &'a str) -> Self {
-        Self { rest: line, pos: 0 }
-    }
-
-    /// The next word, not counted in the positions.
-    fn word(&mut self) -> Option<&'a str> {
-        let b = self.rest.as_bytes();
-        let mut i = 0;
-        while i < b.len() && b[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        let mut j = i;
-        while j < b.len() && !b[j].is_ascii_whitespace() {
-            j += 1;
-        }
-        // i and j are at ASCII bytes or the end: always character boundaries
-        let w = self.rest.get(i..j)?;
-        self.rest = self.rest.get(j..)?;
-        if w.is_empty() {
-            None
-        } else {
-            Some(w)
-        }
-    }
-
     pub(crate) fn next(&mut self) -> Option<(&'a str, usize)> {
-        let w = self.word()?;
+        let w = self.it.next()?;
         self.pos += 1;
         Some((w, self.pos))
     }
@@ -243,8 +216,9 @@ impl Command {
     /// Parses one line (without its newline). Never panics; any input gives a command or a
     /// [`Fault`].
     pub fn parse(line: &str) -> Result<Command, Fault> {
-        let mut w = Words::new(line);
-        let head = w.word().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
+        let mut it = line.split_ascii_whitespace();
+        let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
+        let mut w = Words { it, pos: 0 };
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
@@ -544,8 +518,8 @@ pub fn write_reflect<W: Write>(
 }
 
 /// [`write_reflect`] with the coefficients in the compact form `0x` + 8 hexadecimal digits
-/// (each f32's bit pattern, `firmware/PROTOCOL.md`): about a tenth of the instructions to read
-/// on the controller, and exact.
+/// (each f32's bit pattern, `firmware/PROTOCOL.md`): exact, and cheaper for the controller to
+/// read than shortest decimals (the word handling around each number stays the same).
 pub fn write_reflect_hex<W: Write>(
     w: &mut W,
     illuminant: Illuminant,
@@ -573,25 +547,4 @@ fn write_reflect_with<W: Write>(
         f.write_coefficients_with(w, num)?;
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    extern crate std;
-    use super::Words;
-    use std::vec::Vec;
-
-    proptest::proptest! {
-        #[test]
-        fn words_are_the_ascii_whitespace_split(s in "[ a\\t\\n\\r\\x0c\\x0bé0.]{0,40}|\\PC{0,40}") {
-            let mut w = Words::new(&s);
-            let mut ours = Vec::new();
-            while let Some((t, at)) = w.next() {
-                ours.push(t);
-                proptest::prop_assert_eq!(at, ours.len());
-            }
-            let std_words: Vec<&str> = s.split_ascii_whitespace().collect();
-            proptest::prop_assert_eq!(ours, std_words);
-        }
-    }
 }

@@ -110,7 +110,7 @@ pub enum LedAction {
         #[arg(required = true)]
         spectra: Vec<String>,
         /// Send the coefficients in the compact form (`0x` + the f32's 8 hex digits): exact,
-        /// and far fewer instructions for the controller to read.
+        /// and fewer instructions for the controller to read.
         #[arg(long)]
         hex: bool,
     },

@@ -100,8 +100,8 @@ pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<
 }
 
 /// [`refl`] with the coefficients in the protocol's compact form, `0x` and the f32's bit
-/// pattern in 8 hexadecimal digits (`firmware/PROTOCOL.md`): exact, and a tenth of the
-/// controller's instructions to read.
+/// pattern in 8 hexadecimal digits (`firmware/PROTOCOL.md`): exact, and fewer instructions
+/// for the controller to read.
 pub fn refl_hex(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<String> {
     refl_form(preset, illuminant, names, true)
 }
