@@ -281,7 +281,7 @@ fn plain(b: &[u8]) -> Option<(u32, u32)> {
 /// `m · 10^e` (plus a little when `sticky`) as the nearest f32, `None` on overflow; `m > 0`,
 /// `−65 ≤ e ≤ 38`.
 fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
-    if !sticky && m <= 1 << 24 && -10 <= e && e <= 10 {
+    if !sticky && m <= 1 << 24 && (-10..=10).contains(&e) {
         // both operands exact: one correctly rounded operation (Clinger 1990); from u32, one
         // `vcvt` (u64 → f32 is a library call on 32-bit targets)
         let v = m as u32 as f32;
@@ -291,7 +291,7 @@ fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
             v / POW10_F32[(-e) as usize]
         });
     }
-    if !sticky && m <= u32::MAX as u64 && -POW10_MAX <= e && e <= POW10_MAX {
+    if !sticky && m <= u32::MAX as u64 && (-POW10_MAX..=POW10_MAX).contains(&e) {
         if let Some(v) = short_decimal(m as u32, e) {
             return Some(v);
         }
@@ -422,7 +422,7 @@ fn short_decimal(m: u32, e: i32) -> Option<f32> {
         return None;
     };
     // value = mant · 2^(sh + 32 + b − lz); the biased exponent of mant · 2^x is x + 150
-    let field = sh as i32 + 32 + b - lz as i32 + 150;
+    let field = sh + 32 + b - lz as i32 + 150;
     if !(1..254).contains(&field) {
         return None; // subnormal, or near overflow: the exact path
     }
