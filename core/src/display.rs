@@ -64,6 +64,7 @@ impl Transfer {
     }
 
     /// Device value → linear light.
+    #[inline]
     pub fn decode(&self, v: f32) -> f32 {
         let v = v.clamp(0.0, 1.0);
         match self {
@@ -72,10 +73,10 @@ impl Transfer {
                 if v <= 0.04045 {
                     v / 12.92
                 } else {
-                    math::powf((v + 0.055) / 1.055, 2.4)
+                    math::pow_unit((v + 0.055) / 1.055, 2.4)
                 }
             }
-            Transfer::Gamma(g) => math::powf(v, *g),
+            Transfer::Gamma(g) => math::pow_unit(v, *g),
             Transfer::Table(t) => {
                 let x = v * (t.len() - 1) as f32;
                 let i = (x as usize).min(t.len() - 2);
@@ -149,6 +150,7 @@ impl Transfer {
     }
 
     /// Linear light → device value (the inverse of [`Self::decode`]; clamps to `[0, 1]`).
+    #[inline]
     pub fn encode(&self, l: f32) -> f32 {
         let l = l.clamp(0.0, 1.0);
         match self {
@@ -157,10 +159,10 @@ impl Transfer {
                 if l <= 0.003_130_8 {
                     12.92 * l
                 } else {
-                    1.055 * math::powf(l, 1.0 / 2.4) - 0.055
+                    1.055 * math::pow_unit(l, 1.0 / 2.4) - 0.055
                 }
             }
-            Transfer::Gamma(g) => math::powf(l, 1.0 / *g),
+            Transfer::Gamma(g) => math::pow_unit(l, 1.0 / *g),
             Transfer::Table(t) => table_inverse(t, l),
         }
     }
@@ -170,6 +172,7 @@ impl Transfer {
 /// reaches `l`: the linear interpolant's inverse (the first crossing on a flat step; 0 below
 /// the curve, 1 above). [`Transfer::encode`] of a table, and the host's ICC writer on its
 /// longer curves.
+#[inline]
 pub fn table_inverse(t: &[f32], l: f32) -> f32 {
     let n = t.len();
     if n < 2 || l <= t[0] {
@@ -340,11 +343,13 @@ impl Display {
     }
 
     /// XYZ at full drive of all three channels, black included.
+    #[inline]
     pub fn white(&self) -> Xyz {
         Xyz::from_array(self.to_xyz.apply([1.0; 3])) + self.black
     }
 
     /// Predicted XYZ for device values `rgb ∈ [0, 1]³` (in the display's luminance units).
+    #[inline]
     pub fn device_to_xyz(&self, rgb: [f32; 3]) -> Xyz {
         let lin = [
             self.transfer[0].decode(rgb[0]),
@@ -355,12 +360,14 @@ impl Display {
     }
 
     /// Linear drive (unclipped) for an absolute XYZ in the display's units.
+    #[inline]
     pub fn xyz_to_linear(&self, xyz: Xyz) -> [f32; 3] {
         let b = self.black;
         self.from_xyz.apply([xyz.x - b.x, xyz.y - b.y, xyz.z - b.z])
     }
 
     /// Encodes an absolute XYZ (display units) into device values, mapping out-of-gamut colours.
+    #[inline]
     pub fn encode(&self, xyz: Xyz, map: GamutMap) -> Encoded {
         let lin = self.xyz_to_linear(xyz);
         let (linear, out_of_gamut) = map_gamut(lin, self.luminance_weights(), map);
@@ -378,12 +385,14 @@ impl Display {
 
     /// Encodes a colour given relative to a white of `Y = 100` (the project's XYZ convention)
     /// by scaling it to the display's white luminance.
+    #[inline]
     pub fn encode_relative(&self, xyz: Xyz, map: GamutMap) -> Encoded {
         let k = (self.white().y - self.black.y) / 100.0;
         self.encode(xyz.scale(k), map)
     }
 
     /// Each channel's share of the white's luminance (row Y of `M`, normalised).
+    #[inline]
     pub fn luminance_weights(&self) -> [f32; 3] {
         let r = self.to_xyz.0[1];
         let s = r[0] + r[1] + r[2];
@@ -403,6 +412,7 @@ pub const SRGB_PRIMARIES: [[f32; 2]; 3] = [[0.64, 0.33], [0.30, 0.60], [0.15, 0.
 pub const D65_XY: [f32; 2] = [0.3127, 0.3290];
 
 /// Brings linear drive into `[0, 1]³`. Returns the mapped drive and whether it was outside.
+#[inline]
 pub fn map_gamut(lin: [f32; 3], weights: [f32; 3], map: GamutMap) -> ([f32; 3], bool) {
     const EPS: f32 = 1e-6;
     let outside = lin
@@ -435,6 +445,7 @@ pub fn map_gamut(lin: [f32; 3], weights: [f32; 3], map: GamutMap) -> ([f32; 3], 
 
 /// Quantises a device value in `[0, 1]` to a level `0 ..= max`: `round(v · max)`, half up;
 /// `v` is clamped to `[0, 1]` and NaN gives 0.
+#[inline]
 pub fn quantize(v: f32, max: u16) -> u16 {
     let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
     (v * max as f32 + 0.5) as u16

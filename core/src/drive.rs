@@ -8,6 +8,9 @@
 //! ─transfer curve⁻¹─▶ device value v ─round(v · max)─▶ level ─transfer curve, M─▶ emitted XYZ`
 //!
 //! (Cowan 1983, the paper's §7.3; quantisation as in [`crate::quantize`].)
+//!
+//! The step and the functions it calls are `#[inline]` so that they are compiled where they are
+//! instantiated: the firmware runs it through `specpoly-kernels`, built for speed.
 
 use crate::{quantize, Display, Encoded, GamutMap, Xyz};
 
@@ -26,6 +29,7 @@ pub struct Drive {
 
 impl Display {
     /// The drive step for `target` (relative to a white of `Y = 100`) on levels `0 ..= max`.
+    #[inline]
     pub fn drive(&self, target: Xyz, map: GamutMap, max: u16) -> Drive {
         step(
             self.encode_relative(target, map),

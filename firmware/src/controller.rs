@@ -205,7 +205,7 @@ impl Controller {
     /// Shows `target` (white `Y = 100`): the core's drive step ([`Display::drive`]: gamut
     /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties).
     pub fn colour(&mut self, target: Xyz) -> ColourReport {
-        let drive = self.display.drive(target, self.map, self.max);
+        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
         self.target = target;
         self.duty = drive.level;
         ColourReport::of(target, &drive, self.map, self.max)
@@ -216,7 +216,7 @@ impl Controller {
     /// f32 (e.g. `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour
     /// replies are made, so no `ok` reply carries `nan` or `inf`.
     fn show(&mut self, target: Xyz) -> Reply {
-        let drive = self.display.drive(target, self.map, self.max);
+        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
         let report = ColourReport::of(target, &drive, self.map, self.max);
         if !report.is_finite() {
             return Reply::Error(Fault::new(ErrorCode::NotFinite));

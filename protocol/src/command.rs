@@ -1,7 +1,7 @@
 //! Commands (host → controller): parsing and formatting. The grammar is in firmware/PROTOCOL.md.
 
 use crate::mix::ChannelCommand;
-use crate::number::{parse_f32, write_f32, NumberError};
+use crate::number::{parse_f32, write_f32, write_f32_hex, NumberError};
 use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
 use core::str::SplitAsciiWhitespace;
@@ -65,22 +65,23 @@ impl Reflectance {
     }
 
     /// XYZ as a reflectance under a light whose moments for both presets are given
-    /// ([`Moments::xyz`]: three dot products). Here rather than at the caller so that the
-    /// kernel is compiled in this crate, which the firmware builds for speed
-    /// (`opt-level = 3`, docs/performance.md); the controller's own crate is built for size.
+    /// ([`Moments::xyz`]: three dot products), through `specpoly-kernels`, which the firmware
+    /// builds for speed (`opt-level = 3`) while the rest is built for size (docs/performance.md).
     pub fn xyz(&self, paper: &Moments<2, 4, Paper>, default: &Moments<8, 4>) -> Xyz {
         match self {
-            Reflectance::Paper(s) => paper.xyz(s),
-            Reflectance::Default(s) => default.xyz(s),
+            Reflectance::Paper(s) => specpoly_kernels::xyz_paper(paper, s),
+            Reflectance::Default(s) => specpoly_kernels::xyz_default(default, s),
         }
     }
 
     /// The reduced product (the paper's eq. 6, [`Spectrum::mul`]); `None` for two presets.
     pub fn mul(&self, o: &Self) -> Option<Self> {
         match (self, o) {
-            (Reflectance::Paper(a), Reflectance::Paper(b)) => Some(Reflectance::Paper(a.mul(b))),
+            (Reflectance::Paper(a), Reflectance::Paper(b)) => {
+                Some(Reflectance::Paper(specpoly_kernels::mul_paper(a, b)))
+            }
             (Reflectance::Default(a), Reflectance::Default(b)) => {
-                Some(Reflectance::Default(a.mul(b)))
+                Some(Reflectance::Default(specpoly_kernels::mul_default(a, b)))
             }
             _ => None,
         }
@@ -89,16 +90,26 @@ impl Reflectance {
     /// Writes the coefficients on the wire order: span by span, each span's Chebyshev
     /// coefficients `c₀ … c₃` low to high, separated by spaces.
     pub fn write_coefficients<W: Write>(&self, w: &mut W) -> fmt::Result {
+        self.write_coefficients_with(w, write_f32)
+    }
+
+    /// [`Self::write_coefficients`] with each number written by `num` (decimal or the compact
+    /// hexadecimal form, [`crate::number`]).
+    fn write_coefficients_with<W: Write>(&self, w: &mut W, num: NumberWriter<W>) -> fmt::Result {
         match self {
-            Reflectance::Paper(s) => write_spectrum(w, s),
-            Reflectance::Default(s) => write_spectrum(w, s),
+            Reflectance::Paper(s) => write_spectrum(w, s, num),
+            Reflectance::Default(s) => write_spectrum(w, s, num),
         }
     }
 }
 
+/// How a number goes on the wire: [`write_f32`] or [`write_f32_hex`].
+type NumberWriter<W> = fn(&mut W, f32) -> fmt::Result;
+
 fn write_spectrum<W: Write, const S: usize, const C: usize, L: Layout<S>>(
     w: &mut W,
     s: &Spectrum<S, C, L>,
+    num: NumberWriter<W>,
 ) -> fmt::Result {
     let c = s.coefficients();
     for span in 0..S {
@@ -106,7 +117,7 @@ fn write_spectrum<W: Write, const S: usize, const C: usize, L: Layout<S>>(
             if span + k > 0 {
                 w.write_char(' ')?;
             }
-            write_f32(w, c[k][span])?;
+            num(w, c[k][span])?;
         }
     }
     Ok(())
@@ -337,10 +348,10 @@ impl Command {
                 let illuminant =
                     Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
                 let (product, factors) = if paper {
-                    let (p, n) = read_product::<2, 4, _>(&mut w)?;
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_paper)?;
                     (Reflectance::Paper(p), n)
                 } else {
-                    let (p, n) = read_product::<8, 4, _>(&mut w)?;
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_default)?;
                     (Reflectance::Default(p), n)
                 };
                 Command::Reflect {
@@ -420,9 +431,11 @@ impl Command {
 }
 
 /// Reads `S·C` coefficients per factor, factors separated by `*`, folding them with the
-/// reduced product. Coefficients are span by span, each span's `c₀ … c_{C−1}`.
+/// reduced product `mul` (the preset's [`Spectrum::mul`] from `specpoly-kernels`). Coefficients
+/// are span by span, each span's `c₀ … c_{C−1}`.
 fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
+    mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
 ) -> Result<(Spectrum<S, C, L>, u8), Fault> {
     let mut product: Option<Spectrum<S, C, L>> = None;
     let mut factors = 0u8;
@@ -440,7 +453,7 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
         factors += 1;
         product = Some(match product {
             None => f,
-            Some(p) => p.mul(&f),
+            Some(p) => mul(&p, &f),
         });
         match w.next() {
             None => break,
@@ -501,6 +514,26 @@ pub fn write_reflect<W: Write>(
     illuminant: Illuminant,
     factors: &[Reflectance],
 ) -> fmt::Result {
+    write_reflect_with(w, illuminant, factors, write_f32)
+}
+
+/// [`write_reflect`] with the coefficients in the compact form `0x` + 8 hexadecimal digits
+/// (each f32's bit pattern, `firmware/PROTOCOL.md`): exact, and cheaper for the controller to
+/// read than shortest decimals (the word handling around each number stays the same).
+pub fn write_reflect_hex<W: Write>(
+    w: &mut W,
+    illuminant: Illuminant,
+    factors: &[Reflectance],
+) -> fmt::Result {
+    write_reflect_with(w, illuminant, factors, write_f32_hex)
+}
+
+fn write_reflect_with<W: Write>(
+    w: &mut W,
+    illuminant: Illuminant,
+    factors: &[Reflectance],
+    num: NumberWriter<W>,
+) -> fmt::Result {
     let first = factors.first().ok_or(fmt::Error)?;
     if factors.len() > MAX_FACTORS || factors.iter().any(|f| f.preset() != first.preset()) {
         return Err(fmt::Error);
@@ -511,7 +544,7 @@ pub fn write_reflect<W: Write>(
     w.write_str(illuminant.name())?;
     for (i, f) in factors.iter().enumerate() {
         w.write_str(if i == 0 { " " } else { " * " })?;
-        f.write_coefficients(w)?;
+        f.write_coefficients_with(w, num)?;
     }
     Ok(())
 }

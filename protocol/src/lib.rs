@@ -25,7 +25,7 @@ pub mod mix;
 pub mod number;
 pub mod reply;
 
-pub use command::{write_reflect, Channels, Command, Reflectance};
+pub use command::{write_reflect, write_reflect_hex, Channels, Command, Reflectance};
 pub use fault::{ErrorCode, Fault};
 pub use line::LineReader;
 pub use mix::{ChannelCommand, DeviceMixer, MixReport, MIX_CHANNELS};

@@ -7,13 +7,18 @@
 //!
 //! Grammar: `[+-]? digits? ('.' digits?)? ([eE] [+-]? digits)?` with at least one digit before
 //! the exponent, at most [`MAX_NUMBER_LEN`] characters. `nan` and `inf` are not numbers here.
+//! The compact form `0x` followed by exactly eight hexadecimal digits is the f32's IEEE 754
+//! bit pattern (`0x3eaaaaab` is 1/3 rounded), exact by construction and a few instructions a
+//! digit to read; patterns of NaN or infinity are out of range ([`write_f32_hex`] writes it).
 //!
 //! Parsing is correctly rounded (to nearest, ties to even) for up to 19 significant digits;
 //! further digits count only as "something follows" (a sticky bit). With the decimal mantissa
 //! `m` and exponent `e` (value `m · 10^e`): for `m ≤ 2²⁴` and `|e| ≤ 10` one f32 multiply or
-//! divide of exact operands (Clinger 1990); otherwise an f32 estimate a few units in the last
-//! place off, corrected by comparing `m · 10^e` exactly with the halfway points between
-//! neighbouring floats.
+//! divide of exact operands (Clinger 1990); for `m < 2³²` (up to nine digits, every number the
+//! protocol writes) and `|e| ≤ 27` the top bits of a 32 × 64-bit product with `10^e`, when they
+//! decide the rounding (Eisel–Lemire, [`short_decimal`]); otherwise an f32 estimate a few units
+//! in the last place off, corrected by comparing `m · 10^e` exactly with the halfway points
+//! between neighbouring floats.
 //!
 //! Formatting writes the shortest digits that read back as the same `f32` (the free-format
 //! problem of Steele & White 1990, solved as Ryū does, Adams 2018): the rounding interval
@@ -93,6 +98,9 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     if b.is_empty() || b.len() > MAX_NUMBER_LEN {
         return Err(NumberError::Syntax);
     }
+    if b.len() == 10 && b[0] == b'0' && b[1] == b'x' {
+        return parse_hex(&b[2..]);
+    }
     let mut i = 0;
     let negative = match b[0] {
         b'-' => {
@@ -105,6 +113,15 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
         }
         _ => false,
     };
+    if let Some((m, fraction)) = plain(&b[i..]) {
+        // the common token: no exponent, the digits fit a u32
+        let v = if m == 0 {
+            0.0
+        } else {
+            decimal_to_f32(m as u64, -(fraction as i32), false).ok_or(NumberError::Range)?
+        };
+        return Ok(if negative { -v } else { v });
+    }
     let mut mantissa: u64 = 0;
     let mut kept = 0u32; // significant digits kept in `mantissa`
     let mut sticky = false; // a non-zero digit was dropped after the 19th
@@ -179,17 +196,105 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     Ok(if negative { -v } else { v })
 }
 
+/// Eight hexadecimal digits (either case) as an f32 bit pattern; NaN and infinity are
+/// [`NumberError::Range`].
+fn parse_hex(b: &[u8]) -> Result<f32, NumberError> {
+    let mut bits = 0u32;
+    for &c in b {
+        let d = match c {
+            b'0'..=b'9' => c - b'0',
+            b'a'..=b'f' => c - b'a' + 10,
+            b'A'..=b'F' => c - b'A' + 10,
+            _ => return Err(NumberError::Syntax),
+        };
+        bits = bits << 4 | d as u32;
+    }
+    let v = f32::from_bits(bits);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(NumberError::Range)
+    }
+}
+
+/// Writes `v`'s bit pattern as `0x` and eight lower-case hexadecimal digits (the compact form of
+/// the module docs; NaN and infinity are written too, and refused when read).
+pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
+    let bits = v.to_bits();
+    let mut out = [b'0'; 10];
+    out[1] = b'x';
+    for i in 0..8 {
+        let d = (bits >> (28 - 4 * i)) as u8 & 0xf;
+        out[2 + i] = if d < 10 { b'0' + d } else { b'a' + d - 10 };
+    }
+    // only ASCII was written
+    w.write_str(core::str::from_utf8(&out).map_err(|_| fmt::Error)?)
+}
+
+/// `digits ('.' digits?)?` or `'.' digits` (no sign, no exponent) whose digits read as one
+/// u32 `m`: `(m, digits after the point)`, so the value is `m · 10^−fraction`. `None` for
+/// anything else, which [`parse_f32`]'s general loop then reads (or refuses). A loop of a few
+/// instructions a digit for the numbers the protocol itself writes.
+fn plain(b: &[u8]) -> Option<(u32, u32)> {
+    // the integer digits, then (after a point) the fraction's: two loops, so a digit costs a
+    // load, a compare, a bound and a multiply-add
+    let mut m = 0u32;
+    let mut i = 0;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            break;
+        }
+        if m > (u32::MAX - 9) / 10 {
+            return None;
+        }
+        m = m * 10 + d as u32;
+        i += 1;
+    }
+    let int_digits = i;
+    if i == b.len() {
+        return if i > 0 { Some((m, 0)) } else { None };
+    }
+    if b[i] != b'.' {
+        return None;
+    }
+    i += 1;
+    let start = i;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            return None;
+        }
+        if m > (u32::MAX - 9) / 10 {
+            return None;
+        }
+        m = m * 10 + d as u32;
+        i += 1;
+    }
+    let fraction = (i - start) as u32;
+    if int_digits + fraction as usize == 0 {
+        return None;
+    }
+    Some((m, fraction))
+}
+
 /// `m · 10^e` (plus a little when `sticky`) as the nearest f32, `None` on overflow; `m > 0`,
 /// `−65 ≤ e ≤ 38`.
 fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
     if !sticky && m <= 1 << 24 && (-10..=10).contains(&e) {
-        // both operands exact: one correctly rounded operation (Clinger 1990)
-        let v = m as f32;
+        // both operands exact: one correctly rounded operation (Clinger 1990); from u32, one
+        // `vcvt` (u64 → f32 is a library call on 32-bit targets)
+        let v = m as u32 as f32;
         return Some(if e >= 0 {
             v * POW10_F32[e as usize]
         } else {
             v / POW10_F32[(-e) as usize]
         });
+    }
+    if !sticky && m <= u32::MAX as u64 && (-POW10_MAX..=POW10_MAX).contains(&e) {
+        if let Some(v) = short_decimal(m as u32, e) {
+            return Some(v);
+        }
     }
     // an estimate within a few units in the last place, then corrected exactly
     let v = m as f32;
@@ -245,6 +350,85 @@ fn decimal_to_f32(m: u64, e: i32, sticky: bool) -> Option<f32> {
         }
     }
     Some(f32::from_bits(c))
+}
+
+/// Largest `|e|` of [`POW10_NORM`].
+const POW10_MAX: i32 = 27;
+
+/// `10^e` for `−27 ≤ e ≤ 27` as `t ∈ [2⁶³, 2⁶⁴)` with `10^e = (t + δ) · 2^b`, `0 ≤ δ < 1`,
+/// `b = ⌊e·log₂ 10⌋ − 63` ([`pow10_exp2`], checked against the construction at compile time):
+/// exact (`δ = 0`) for `e ≥ 0` (`10^e = 5^e · 2^e`, `5²⁷ < 2⁶³`), the floor of
+/// `2^(63 + bitlen 5^n) / 5^n` for `e = −n`. 440 bytes of flash.
+const POW10_NORM: [u64; 55] = {
+    let mut t = [0u64; 55];
+    let mut i = 0;
+    while i < 55 {
+        let e = i as i32 - POW10_MAX;
+        let n = e.unsigned_abs();
+        let five = pow5(n) as u128;
+        if e >= 0 {
+            // 10^e = 5^e · 2^e: normalise 5^e to 64 bits, nothing is lost
+            let bits = 128 - five.leading_zeros() as i32;
+            t[i] = (five << (64 - bits)) as u64;
+            assert!(pow10_exp2(e) == e + bits - 64);
+        } else {
+            // 10^−n = 2^−n / 5^n = ⌊2^k / 5^n⌋ · 2^(−k−n), k = 63 + bitlen(5^n)
+            let k = 63 + (128 - five.leading_zeros() as i32);
+            t[i] = ((1u128 << k) / five) as u64;
+            assert!(pow10_exp2(e) == -k - n as i32);
+        }
+        i += 1;
+    }
+    t
+};
+
+/// `⌊e·log₂ 10⌋ − 63`, the binary exponent of [`POW10_NORM`]'s entry for `e` (`217 706 / 2¹⁶`
+/// is `log₂ 10` to well within what `|e| ≤ 27` needs).
+const fn pow10_exp2(e: i32) -> i32 {
+    ((e * 217_706) >> 16) - 63
+}
+
+/// `m · 10^e` for `m < 2³²`, `|e| ≤ 27`, correctly rounded to a normal f32, or `None` when
+/// the fast computation cannot decide (then the exact path in [`decimal_to_f32`] does).
+///
+/// The idea of Eisel–Lemire (Lemire 2021, "Number parsing at a gigabyte per second"), cut to
+/// f32 and 32 × 64-bit products (two `umull` on the Cortex-M4): with `m` normalised to
+/// `m' ∈ [2³¹, 2³²)` and `10^e = (t + δ) · 2^b` ([`POW10_NORM`]), the exact product
+/// `m' · (t + δ)` lies in `[P, P + 2³²)` for `P = m' · t`, so its top 64 bits `q` are known to
+/// within 2 units. The top 24 bits of `q` are the significand; the bits below decide the
+/// rounding unless they are within 2 units of the halfway point (a tie or too close to
+/// call), which falls back. The answer is then the same as the exact path's.
+fn short_decimal(m: u32, e: i32) -> Option<f32> {
+    if m == 0 {
+        return Some(0.0);
+    }
+    let (t, b) = (POW10_NORM[(e + POW10_MAX) as usize], pow10_exp2(e));
+    let lz = m.leading_zeros();
+    let m = (m << lz) as u64;
+    // q = ⌊m · t / 2³²⌋ ∈ [2⁶², 2⁶⁴)
+    let q = m * (t >> 32) + ((m * (t & 0xffff_ffff)) >> 32);
+    // constant shifts (a variable u64 shift is a library call on the Cortex-M4)
+    let (sh, mant, rest, half) = if q >> 63 == 1 {
+        (40, (q >> 40) as u32, q & ((1 << 40) - 1), 1u64 << 39)
+    } else {
+        (39, (q >> 39) as u32, q & ((1 << 39) - 1), 1u64 << 38)
+    };
+    // mant ∈ [2²³, 2²⁴)
+    let up = if rest + 2 <= half {
+        false
+    } else if rest > half {
+        true
+    } else {
+        return None;
+    };
+    // value = mant · 2^(sh + 32 + b − lz); the biased exponent of mant · 2^x is x + 150
+    let field = sh + 32 + b - lz as i32 + 150;
+    if !(1..254).contains(&field) {
+        return None; // subnormal, or near overflow: the exact path
+    }
+    // a carry out of the significand moves into the exponent field, as it should
+    let bits = ((field as u32) << 23) + (mant - (1 << 23)) + up as u32;
+    Some(f32::from_bits(bits))
 }
 
 /// The value of the positive f32 with bit pattern `c` (`c ≤ 0x7f80_0000`, which reads as
@@ -743,6 +927,41 @@ mod tests {
         }
     }
 
+    #[test]
+    fn the_hex_form_is_the_bit_pattern() {
+        assert_eq!(parse_f32("0x3eaaaaab"), Ok(1.0 / 3.0));
+        assert_eq!(parse_f32("0x3EAAAAAB"), Ok(1.0 / 3.0));
+        assert_eq!(parse_f32("0x80000000").map(f32::to_bits), Ok(0x8000_0000));
+        assert_eq!(parse_f32("0x00000001"), Ok(f32::from_bits(1)));
+        assert_eq!(parse_f32("0x7f800000"), Err(NumberError::Range));
+        assert_eq!(parse_f32("0x7fc00000"), Err(NumberError::Range));
+        for bad in [
+            "0x3eaaaaag",
+            "0x3eaaaaa",
+            "0x3eaaaaab0",
+            "-0x3eaaaaab",
+            "0X3eaaaaab",
+        ] {
+            assert_eq!(parse_f32(bad), Err(NumberError::Syntax), "{bad:?}");
+        }
+        let mut s = String::new();
+        write_f32_hex(&mut s, 1.0 / 3.0).unwrap();
+        assert_eq!(s, "0x3eaaaaab");
+    }
+
+    #[test]
+    fn the_short_path_matches_std_on_a_dense_sweep_of_nine_digits() {
+        // 9 and 10 decimals below 1 as the protocol writes them, every 997th mantissa:
+        // 2 million reads
+        for zeros in ["", "0"] {
+            for m in (1u32..1_000_000_000).step_by(997) {
+                let s = std::format!("0.{zeros}{m:09}");
+                let std_v: f32 = s.parse().unwrap();
+                assert_eq!(parse_f32(&s).map(f32::to_bits), Ok(std_v.to_bits()), "{s}");
+            }
+        }
+    }
+
     /// Any bit pattern as a finite f32 (an all-ones exponent loses its top bit).
     fn finite(bits: u32) -> f32 {
         let v = f32::from_bits(bits);
@@ -772,6 +991,16 @@ mod tests {
         }
 
         #[test]
+        fn the_short_path_matches_std_on_wire_coefficients(m in 1u32..=999_999_999, n in 1u32..=12) {
+            // 1 to 9 significant digits below 1 (a `refl` line's coefficients), the fast path
+            let s = std::format!("0.{:0>width$}", m, width = n.max(m.ilog10() + 1) as usize);
+            let std_v: f32 = s.parse().unwrap();
+            proptest::prop_assert_eq!(parse_f32(&s).map(f32::to_bits), Ok(std_v.to_bits()), "{}", s);
+            let neg = std::format!("-{s}");
+            proptest::prop_assert_eq!(parse_f32(&neg).map(f32::to_bits), Ok((-std_v).to_bits()));
+        }
+
+        #[test]
         fn parse_matches_std_over_the_whole_range(
             m in 1u64..u64::MAX,
             digits in 1usize..20,
@@ -786,6 +1015,16 @@ mod tests {
                 Err(NumberError::Range) => proptest::prop_assert!(std_v.is_infinite(), "{}", s),
                 Err(e) => proptest::prop_assert!(false, "{}: {:?}", s, e),
             }
+        }
+
+        #[test]
+        fn every_finite_f32_round_trips_through_the_hex_form(bits in proptest::prelude::any::<u32>()) {
+            let v = finite(bits);
+            let mut s = String::new();
+            write_f32_hex(&mut s, v).unwrap();
+            // the same pattern as std's formatting of the bits
+            proptest::prop_assert_eq!(&s, &std::format!("{:#010x}", v.to_bits()));
+            proptest::prop_assert_eq!(parse_f32(&s).map(f32::to_bits), Ok(v.to_bits()));
         }
 
         #[test]

@@ -11,8 +11,9 @@ use specpoly_core::{
     DefaultSpectrum, GamutMap, Illuminant, Observer, PaperSpectrum, Transfer, Xyy, Xyz,
 };
 use specpoly_protocol::{
-    write_reflect, ChannelCommand, Channels, ColourReport, Command, CurveSummary, ErrorCode, Fault,
-    Gamut, LineReader, MixReport, Reflectance, Reply, StateReport, MAX_LINE, MAX_REPLY,
+    write_reflect, write_reflect_hex, ChannelCommand, Channels, ColourReport, Command,
+    CurveSummary, ErrorCode, Fault, Gamut, LineReader, MixReport, Reflectance, Reply, StateReport,
+    MAX_LINE, MAX_REPLY,
 };
 
 fn line_of(c: &Command) -> String {
@@ -76,6 +77,10 @@ const WORDS: &[&str] = &[
     "2.2",
     "0.3127",
     "1e-45",
+    "0x3f000000",
+    "0x7fc00000",
+    "0xffffffff",
+    "0x",
     "ok",
     "err",
     "colour",
@@ -186,6 +191,32 @@ proptest! {
             }
             other => prop_assert!(false, "{}: {:?}", line, other),
         }
+    }
+
+    #[test]
+    fn hex_refl_lines_read_as_their_decimal_twins(c in proptest::array::uniform32(any::<u32>()), n in 1usize..=4, paper in any::<bool>()) {
+        // any finite coefficients: the compact form and shortest decimals name the same f32s
+        let f = |i: usize| {
+            let v = f32::from_bits(c[i % 32]);
+            if v.is_finite() { v } else { 0.5 }
+        };
+        let mut d = DefaultSpectrum::ZERO;
+        let mut p = PaperSpectrum::ZERO;
+        for i in 0..32 {
+            d.coefficients_mut()[i % 4][i / 4] = f(i);
+            p.coefficients_mut()[i % 4][(i / 4) % 2] = f(i + 7);
+        }
+        let r = if paper { Reflectance::Paper(p) } else { Reflectance::Default(d) };
+        // MAX_LINE holds two default factors (or four of the paper's) in either form
+        let factors = vec![r; if paper { n } else { n.min(2) }];
+        let (mut dec, mut hex) = (String::new(), String::new());
+        write_reflect(&mut dec, Illuminant::D65, &factors).unwrap();
+        write_reflect_hex(&mut hex, Illuminant::D65, &factors).unwrap();
+        prop_assert!(hex.len() <= MAX_LINE);
+        let (a, b) = (Command::parse(&dec), Command::parse(&hex));
+        prop_assert!(a.is_ok(), "{:?}", a);
+        // bit for bit (NaN products compare unequal as values)
+        prop_assert_eq!(std::format!("{a:?}"), std::format!("{b:?}"));
     }
 
     #[test]

@@ -23,7 +23,7 @@ use specpoly_core::{
 use specpoly_firmware::board::{icount::Counter, stack};
 use specpoly_firmware::Controller;
 use specpoly_protocol::{
-    write_reflect, Command, DeviceMixer, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
+    write_reflect, write_reflect_hex, Command, DeviceMixer, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
 };
 
 /// A smooth test reflectance: a sigmoid-like ramp, as Chebyshev coefficients per span.
@@ -237,8 +237,8 @@ fn main() -> ! {
         core::hint::black_box(Moments::<8, 4>::new(Observer::Cie1931, &ill));
     });
     defmt::info!("insns default moments {}", insns);
-    // the kernels as the controller runs them: through `Reflectance`, compiled in the protocol
-    // crate (built for speed; this crate is built for size, docs/performance.md)
+    // the kernels as the controller runs them: through `Reflectance`, compiled in
+    // `specpoly-kernels` (built for speed; this crate is built for size, docs/performance.md)
     let (fp, fd) = (Reflectance::Paper(rp), Reflectance::Default(rd));
     let insns = counter.insns_per_call(n * 50, || {
         core::hint::black_box(core::hint::black_box(&fp).mul(core::hint::black_box(&fp)));
@@ -316,6 +316,33 @@ fn main() -> ! {
             let _ = reply.write(&mut out);
         });
         defmt::info!("insns {} line-2-factors {}", preset, insns);
+        let decimal = c.handle(Command::parse(&line));
+        // the same line with the coefficients in the compact hex form (`0x` + f32 bits)
+        line.clear();
+        let _ = write_reflect_hex(&mut line, Illuminant::D65, &[r, r]);
+        let insns = counter.insns_per_call(n, || {
+            let reply = c.handle(Command::parse(core::hint::black_box(&line)));
+            out.clear();
+            let _ = reply.write(&mut out);
+        });
+        defmt::info!("insns {} line-2-factors-hex {}", preset, insns);
+        // where a hex line's instructions go: parsing, answering, writing the reply
+        let insns = counter.insns_per_call(n, || {
+            let _ = core::hint::black_box(Command::parse(core::hint::black_box(&line)));
+        });
+        defmt::info!("insns {} line-hex-parse {}", preset, insns);
+        let cmd = Command::parse(&line);
+        let insns = counter.insns_per_call(n, || {
+            core::hint::black_box(c.handle(core::hint::black_box(cmd.clone())));
+        });
+        defmt::info!("insns {} line-handle {}", preset, insns);
+        let reply = c.handle(cmd.clone());
+        let insns = counter.insns_per_call(n, || {
+            out.clear();
+            let _ = core::hint::black_box(&reply).write(&mut out);
+        });
+        defmt::info!("insns {} line-reply {}", preset, insns);
+        checks.check("hex-line-answers-as-decimal", c.handle(Command::parse(&line)) == decimal);
     }
 
     // 4. mixing 3–6 channels (xy/CCT targets solved on the device) and fade steps

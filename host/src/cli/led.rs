@@ -109,6 +109,10 @@ pub enum LedAction {
         /// multiplied.
         #[arg(required = true)]
         spectra: Vec<String>,
+        /// Send the coefficients in the compact form (`0x` + the f32's 8 hex digits): exact,
+        /// and fewer instructions for the controller to read.
+        #[arg(long)]
+        hex: bool,
     },
     /// Mix the channels (--channel) to a chromaticity x, y on the device.
     Xy {
@@ -280,7 +284,14 @@ pub fn run(args: &LedArgs) -> Result<()> {
             repr,
             illuminant,
             spectra,
+            hex: false,
         } => lines::refl(*repr, *illuminant, spectra)?,
+        LedAction::Refl {
+            repr,
+            illuminant,
+            spectra,
+            hex: true,
+        } => lines::refl_hex(*repr, *illuminant, spectra)?,
         LedAction::Xy { x, y, lum } => goal(Goal::Xy {
             xy: [*x, *y],
             lum: *lum,

@@ -6,7 +6,9 @@ use crate::error::{CliError, Result};
 use crate::spectrum_names;
 use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum};
 use specpoly_protocol::number::parse_f32;
-use specpoly_protocol::{write_reflect, Channels, Command, Reflectance, Reply, MAX_FACTORS};
+use specpoly_protocol::{
+    write_reflect, write_reflect_hex, Channels, Command, Reflectance, Reply, MAX_FACTORS,
+};
 
 /// The spectrum presets the controller takes in a `refl` line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -110,6 +112,22 @@ pub fn calibration_note(path: &std::path::Path) -> Result<Option<String>> {
 /// The `refl` line for named reflectances (names as in `specpoly xyz`; several are multiplied),
 /// each fitted in `preset`, under `illuminant`.
 pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<String> {
+    refl_form(preset, illuminant, names, false)
+}
+
+/// [`refl`] with the coefficients in the protocol's compact form, `0x` and the f32's bit
+/// pattern in 8 hexadecimal digits (`firmware/PROTOCOL.md`): exact, and fewer instructions
+/// for the controller to read.
+pub fn refl_hex(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<String> {
+    refl_form(preset, illuminant, names, true)
+}
+
+fn refl_form(
+    preset: Preset,
+    illuminant: Illuminant,
+    names: &[String],
+    hex: bool,
+) -> Result<String> {
     let named = spectrum_names::resolve_all(names)?;
     if named.is_empty() || named.len() > MAX_FACTORS {
         return Err(CliError::usage(format!(
@@ -127,7 +145,11 @@ pub fn refl(preset: Preset, illuminant: Illuminant, names: &[String]) -> Result<
         });
     }
     let mut line = String::new();
-    write_reflect(&mut line, illuminant, &factors)
-        .map_err(|_| CliError::usage("cannot write the refl command"))?;
+    if hex {
+        write_reflect_hex(&mut line, illuminant, &factors)
+    } else {
+        write_reflect(&mut line, illuminant, &factors)
+    }
+    .map_err(|_| CliError::usage("cannot write the refl command"))?;
     Ok(line)
 }
