@@ -23,7 +23,8 @@ use specpoly_core::{
 use specpoly_firmware::board::{icount::Counter, stack};
 use specpoly_firmware::Controller;
 use specpoly_protocol::{
-    write_reflect, write_reflect_hex, Command, DeviceMixer, Gamut, LineReader, Reflectance, Reply, MAX_LINE, MAX_REPLY,
+    write_reflect, write_reflect_hex, Command, DeviceMixer, Gamut, LineReader, Reflectance, Reply,
+    MAX_LINE, MAX_REPLY,
 };
 
 /// A smooth test reflectance: a sigmoid-like ramp, as Chebyshev coefficients per span.
@@ -342,7 +343,10 @@ fn main() -> ! {
             let _ = core::hint::black_box(&reply).write(&mut out);
         });
         defmt::info!("insns {} line-reply {}", preset, insns);
-        checks.check("hex-line-answers-as-decimal", c.handle(Command::parse(&line)) == decimal);
+        checks.check(
+            "hex-line-answers-as-decimal",
+            c.handle(Command::parse(&line)) == decimal,
+        );
     }
 
     // 4. mixing 3–6 channels (xy/CCT targets solved on the device) and fade steps
