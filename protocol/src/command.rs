@@ -466,6 +466,11 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
         }
     }
     match product {
+        // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as
+        // the colour it would give is: it could not be written back as numbers.
+        Some(p) if !p.coefficients().iter().flatten().all(|c| c.is_finite()) => {
+            Err(Fault::new(ErrorCode::NotFinite))
+        }
         Some(p) => Ok((p, factors)),
         None => Err(Fault::new(ErrorCode::WrongCount)),
     }
