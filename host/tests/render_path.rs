@@ -92,7 +92,7 @@ fn cornell_poly_is_close_to_the_1nm_reference() {
     s.render.width = 16;
     s.render.height = 16;
     s.render.spp = 2;
-    let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], &|| ()).unwrap();
+    let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], 1, &|| ()).unwrap();
     let (poly, rgb) = (c.modes[0].stats, c.modes[1].stats);
     assert!(poly.mean < 0.05, "poly mean ΔE00 {}", poly.mean);
     assert!(

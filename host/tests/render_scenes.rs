@@ -16,7 +16,7 @@ fn scene(name: &str, w: u32, h: u32) -> render::scene::Scene {
 fn poly_matches_the_reference_on_the_papers_examples() {
     for name in ["example1", "example2", "interreflection"] {
         let s = scene(name, 64, 48);
-        let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], &|| ()).unwrap();
+        let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], 1, &|| ()).unwrap();
         let poly = c.modes[0].stats;
         assert!(poly.mean <= 0.5, "{name}: poly mean ΔE00 {}", poly.mean);
         assert!(poly.max <= 2.0, "{name}: poly max ΔE00 {}", poly.max);
@@ -26,7 +26,7 @@ fn poly_matches_the_reference_on_the_papers_examples() {
 #[test]
 fn rgb_fails_on_the_interreflection() {
     let s = scene("interreflection", 64, 48);
-    let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], &|| ()).unwrap();
+    let c = render::compare(&s, &[Repr::DEFAULT, Repr::Rgb], 1, &|| ()).unwrap();
     let (poly, rgb) = (c.modes[0].stats, c.modes[1].stats);
     assert!(
         rgb.mean > 10.0 * poly.mean && rgb.p95 > 3.0 && rgb.max > 5.0,

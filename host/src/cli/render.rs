@@ -2,7 +2,8 @@
 //! [--gamut clip|desaturate] [--compare] -o OUT.png`
 //!
 //! Renders a built-in scene or a scene file with the spectral Whitted ray tracer and writes a PNG
-//! encoded for the display. `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` and the 1 nm reference,
+//! encoded for the display. `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` (and `hero:4` with the
+//! path tracer; `--rounds N` times, interleaved) and the 1 nm reference,
 //! writes `rgb | poly | reference | ΔE00 rgb | ΔE00 poly` side by side, and prints the ΔE00
 //! statistics of each mode against the reference.
 
@@ -15,7 +16,6 @@ use crate::render::tracer::Integrator;
 use crate::render::{self, builtin, Output};
 use crate::repr::Repr;
 use crate::size::Size;
-use crate::stats::Stats;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -48,6 +48,9 @@ pub struct RenderArgs {
     /// With --compare and the path tracer: every mode at the time poly takes at --spp, against a --reference-spp 1 nm render.
     #[arg(long, requires = "compare")]
     pub equal_time: bool,
+    /// With --compare: render the modes N times, interleaved, and report each one's median time.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub rounds: u32,
     /// Paths per pixel of the --equal-time reference (1 nm, another seed).
     #[arg(long, value_name = "N", default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
     pub reference_spp: u32,
@@ -153,103 +156,123 @@ pub fn run(a: &RenderArgs) -> Result<()> {
 
 fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Result<()> {
     let (w, h) = (scene.render.width, scene.render.height);
-    let modes = [Repr::Rgb, Repr::Paper, Repr::DEFAULT, Repr::Sampled(81)];
-    let pb = progress::bar(1 + modes.len() as u64, "compare", "renders");
-    let c = render::compare(scene, &modes, &|| pb.inc(1))?;
+    let modes = render::compare_modes(scene.render.integrator);
+    let pb = progress::bar(
+        1 + (a.rounds as usize * modes.len()) as u64,
+        "compare",
+        "renders",
+    );
+    let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1))?;
     pb.finish_and_clear();
     crate::plausible::image(&a.scene, &c.reference.xyz)?;
     for m in &c.modes {
         crate::plausible::image(&format!("{} ({})", a.scene, m.repr), &m.image.xyz)?;
     }
-    use render::compare_image::{compose, Panel};
-    let panel = |label: String, rgb: Vec<u8>| Panel {
-        label,
-        width: w,
-        height: h,
-        rgb,
+    let paths = render::paths_per_pixel(scene);
+    let unit = match scene.render.integrator {
+        Integrator::Path => "paths",
+        Integrator::Whitted => "rays",
     };
-    let image = |img: &render::Image| render::to_rgb8(img, out);
-    let heat = |m: &render::ModeResult| {
-        panel(
-            format!("ΔE00 {} (mean {:.2})", m.repr, m.stats.mean),
-            m.delta_e.iter().flat_map(|d| render::heat(*d)).collect(),
-        )
-    };
-    let (rgb, poly) = (&c.modes[0], &c.modes[2]);
-    let panels = [
-        panel(rgb.repr.to_string(), image(&rgb.image)),
-        panel(poly.repr.to_string(), image(&poly.image)),
-        panel("reference (1 nm)".into(), image(&c.reference)),
-        heat(rgb),
-        heat(poly),
-    ];
-    let (cw, ch, px) = compose(&panels)?;
+    report(
+        a,
+        out,
+        Report {
+            header: format!(
+                "{}: {w}x{h}, {paths} {unit}/pixel, {}, {} round{} of the modes interleaved \
+                 (median time); ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
+                a.scene,
+                scene.render.integrator,
+                a.rounds,
+                if a.rounds == 1 { "" } else { "s" },
+                c.reference_seconds
+            ),
+            modes: &c.modes,
+            // rgb and the default representation side by side
+            shown: c
+                .modes
+                .iter()
+                .filter(|m| m.repr == Repr::Rgb || m.repr == Repr::DEFAULT)
+                .collect(),
+            reference: &c.reference,
+            json: serde_json::json!({
+                "scene": a.scene,
+                "width": w,
+                "height": h,
+                "integrator": scene.render.integrator.to_string(),
+                "paths_per_pixel": paths,
+                "rounds": a.rounds,
+                "reference_seconds": c.reference_seconds,
+            }),
+        },
+    )
+}
+
+/// A comparison to print and write: its header line, its modes (the `shown` ones as panels,
+/// beside the reference), and the JSON fields that go beside `modes` and `output`.
+pub(super) struct Report<'a> {
+    pub header: String,
+    pub modes: &'a [render::ModeResult],
+    pub shown: Vec<&'a render::ModeResult>,
+    pub reference: &'a render::Image,
+    pub json: serde_json::Value,
+}
+
+/// Writes a comparison's image (the shown modes, the reference and the modes' ΔE00 maps,
+/// labelled, over the colour bar) and prints its table of modes (`--json`: as JSON).
+pub(super) fn report(a: &RenderArgs, out: &Output, r: Report<'_>) -> Result<()> {
+    use render::compare_image::{comparison_panels, compose};
+    let (cw, ch, px) = compose(&comparison_panels(&r.shown, r.reference, out))?;
     render::write_png(&a.output, cw, ch, &px)?;
+    let names: Vec<String> = r.shown.iter().map(|m| m.repr.to_string()).collect();
+    let written = format!(
+        "wrote {} ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \
+         yellow, white, its colour bar below)",
+        crate::io::escape::one_line(&a.output.display().to_string()),
+        names.join(" | "),
+        render::HEAT_MAX
+    );
     if a.json {
-        let modes: Vec<_> = c
-            .modes
-            .iter()
-            .map(|m| mode_json(m.repr, m.seconds, m.image.rays, &m.stats))
-            .collect();
-        print_json(&serde_json::json!({
-            "scene": a.scene,
-            "width": w,
-            "height": h,
-            "integrator": scene.render.integrator.to_string(),
-            "paths_per_pixel": render::paths_per_pixel(scene),
-            "reference_seconds": c.reference_seconds,
-            "modes": modes,
-            "output": a.output.display().to_string(),
-        }))?;
-        eprintln!("wrote {}", a.output.display());
+        let mut j = r.json;
+        j["modes"] = r.modes.iter().map(mode_json).collect();
+        j["output"] = a.output.display().to_string().into();
+        print_json(&j)?;
+        eprintln!("{written}");
         return Ok(());
     }
     let mut o = String::new();
+    let _ = writeln!(o, "{}", r.header);
     let _ = writeln!(
         o,
-        "{}: {w}x{h}, {} {}/pixel, {}; ΔE00 (CIEDE2000) against the 1 nm reference ({:.2} s)",
-        a.scene,
-        render::paths_per_pixel(scene),
-        if scene.render.integrator == Integrator::Path {
-            "paths"
-        } else {
-            "rays"
-        },
-        scene.render.integrator,
-        c.reference_seconds
+        "{:<11} {:>7} {:>9} {:>8} {:>8} {:>8}",
+        "mode", "paths", "time (s)", "mean", "95th", "max"
     );
-    let _ = writeln!(
-        o,
-        "{:<11} {:>8} {:>8} {:>8} {:>9}",
-        "mode", "mean", "95th", "max", "time (s)"
-    );
-    for m in &c.modes {
+    for m in r.modes {
         let _ = writeln!(
             o,
-            "{:<11} {:>8.3} {:>8.3} {:>8.3} {:>9.2}",
+            "{:<11} {:>7} {:>9.3} {:>8.3} {:>8.3} {:>8.3}",
             m.repr.to_string(),
+            m.spp,
+            m.seconds,
             m.stats.mean,
             m.stats.p95,
-            m.stats.max,
-            m.seconds
+            m.stats.max
         );
     }
     print(&o)?;
-    eprintln!(
-        "wrote {} (rgb | poly | reference | ΔE00 rgb | ΔE00 poly, labelled; heat map 0 → {} ΔE00: black, blue, red, yellow, white, its colour bar below)",
-        crate::io::escape::one_line(&a.output.display().to_string()),
-        render::HEAT_MAX
-    );
+    eprintln!("{written}");
     Ok(())
 }
 
-/// One mode of a comparison as JSON: its name, time, rays traced and ΔE00 against the 1 nm
-/// reference (mean, 95th percentile, maximum).
-pub(super) fn mode_json(repr: Repr, seconds: f64, rays: u64, s: &Stats) -> serde_json::Value {
+/// One mode of a comparison as JSON: its name, paths per pixel, time (the median of its rounds,
+/// and every round), rays traced and ΔE00 against the 1 nm reference (mean, 95th percentile,
+/// maximum).
+fn mode_json(m: &render::ModeResult) -> serde_json::Value {
     serde_json::json!({
-        "mode": repr.to_string(),
-        "seconds": seconds,
-        "rays": rays,
-        "delta_e00": { "mean": s.mean, "p95": s.p95, "max": s.max },
+        "mode": m.repr.to_string(),
+        "paths_per_pixel": m.spp,
+        "seconds": m.seconds,
+        "seconds_per_round": m.rounds,
+        "rays": m.image.rays,
+        "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
     })
 }

@@ -119,6 +119,37 @@ pub fn compose(panels: &[Panel]) -> Result<(u32, u32, Vec<u8>)> {
     Ok((w, h, out))
 }
 
+/// The panels of a comparison: each mode of `shown`, labelled with its name, then the
+/// reference, then each shown mode's ΔE00 heat map ([`super::heat`]) labelled with its mean; the
+/// images encoded for `out`.
+pub fn comparison_panels(
+    shown: &[&super::ModeResult],
+    reference: &super::Image,
+    out: &super::Output,
+) -> Vec<Panel> {
+    let panel = |label: String, rgb: Vec<u8>| Panel {
+        label,
+        width: reference.width,
+        height: reference.height,
+        rgb,
+    };
+    let mut panels: Vec<Panel> = shown
+        .iter()
+        .map(|m| panel(m.repr.to_string(), super::to_rgb8(&m.image, out)))
+        .collect();
+    panels.push(panel(
+        "reference (1 nm)".into(),
+        super::to_rgb8(reference, out),
+    ));
+    panels.extend(shown.iter().map(|m| {
+        panel(
+            format!("ΔE00 {} (mean {:.2})", m.repr, m.stats.mean),
+            m.delta_e.iter().flat_map(|d| super::heat(*d)).collect(),
+        )
+    }));
+    panels
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,11 +11,9 @@
 //! the reference therefore holds both path noise (less with more paths) and colour error (RGB's
 //! and sampling's bias, hero sampling's wavelength noise): what a user sees at equal time.
 
-use super::{delta_e, render, scene::Scene, scene_white, Image};
+use super::{scene::Scene, scene_white, timed, Image, ModeResult};
 use crate::error::Result;
 use crate::repr::Repr;
-use crate::stats::Stats;
-use std::time::Instant;
 
 /// Renders per mode that measure its time per path.
 pub const CALIBRATION_RUNS: usize = 3;
@@ -23,28 +21,12 @@ pub const CALIBRATION_RUNS: usize = 3;
 /// Mixed into the seed of the reference render, so its paths are independent of the others'.
 const REFERENCE_SEED: u64 = 0x7265_6665_7265_6E63;
 
-/// One mode at the equal time.
-pub struct TimedMode {
-    /// The representation.
-    pub repr: Repr,
-    /// Paths per pixel it got.
-    pub spp: u32,
-    /// Its render time at `spp` (seconds).
-    pub seconds: f64,
-    /// Its image.
-    pub image: Image,
-    /// ΔE00 per pixel against the reference.
-    pub delta_e: Vec<f64>,
-    /// Statistics of `delta_e`.
-    pub stats: Stats,
-}
-
 /// The result of [`equal_time`].
 pub struct EqualTime {
     /// The time budget (seconds): the budget mode's time per path times the scene's `spp`.
     pub budget_seconds: f64,
-    /// The modes, in the order asked.
-    pub modes: Vec<TimedMode>,
+    /// The modes, in the order asked, each with the paths per pixel it got.
+    pub modes: Vec<ModeResult>,
     /// The reference image.
     pub reference: Image,
     /// Its paths per pixel.
@@ -53,12 +35,10 @@ pub struct EqualTime {
     pub reference_seconds: f64,
 }
 
-fn timed(scene: &Scene, repr: Repr, spp: u32) -> Result<(Image, f64)> {
+fn timed_at(scene: &Scene, repr: Repr, spp: u32) -> Result<(Image, f64)> {
     let mut s = scene.clone();
     s.render.spp = spp;
-    let t0 = Instant::now();
-    let img = render(&s, repr, None)?;
-    Ok((img, t0.elapsed().as_secs_f64()))
+    timed(&s, repr)
 }
 
 /// Renders the reference, the budget mode `budget` at the scene's `spp`, and every mode of
@@ -72,14 +52,14 @@ pub fn equal_time(
 ) -> Result<EqualTime> {
     let mut rs = scene.clone();
     rs.render.seed ^= REFERENCE_SEED;
-    let (reference, reference_seconds) = timed(&rs, Repr::Exact, reference_spp)?;
+    let (reference, reference_seconds) = timed_at(&rs, Repr::Exact, reference_spp)?;
     step();
     let spp = scene.render.spp;
     let probe = (spp / 4).max(1);
     let per_path = |repr: Repr| -> Result<f64> {
         let mut best = f64::INFINITY;
         for _ in 0..CALIBRATION_RUNS {
-            best = best.min(timed(scene, repr, probe)?.1 / probe as f64);
+            best = best.min(timed_at(scene, repr, probe)?.1 / probe as f64);
         }
         Ok(best)
     };
@@ -93,17 +73,17 @@ pub fn equal_time(
         } else {
             ((budget_seconds / per_path(repr)?).round() as u32).clamp(1, 1 << 20)
         };
-        let (image, seconds) = timed(scene, repr, n)?;
+        let (image, seconds) = timed_at(scene, repr, n)?;
         step();
-        let de = delta_e(&image, &reference, white, scene.render.exposure);
-        out.push(TimedMode {
+        out.push(ModeResult::measured(
             repr,
-            spp: n,
-            seconds,
-            stats: Stats::of(&de),
-            delta_e: de,
+            n,
             image,
-        });
+            vec![seconds],
+            &reference,
+            white,
+            scene.render.exposure,
+        ));
     }
     Ok(EqualTime {
         budget_seconds,

@@ -128,6 +128,16 @@ pub fn render(scene: &Scene, repr: Repr, progress: Option<Progress<'_>>) -> Resu
     repr::dispatch(repr, RenderVisit { scene, progress })
 }
 
+/// The modes `render --compare` renders: rgb, paper, the default representation and
+/// sampled:81, and with the path tracer hero-wavelength sampling (`hero:4`).
+pub fn compare_modes(integrator: tracer::Integrator) -> Vec<Repr> {
+    let mut m = vec![Repr::Rgb, Repr::Paper, Repr::DEFAULT, Repr::Sampled(81)];
+    if integrator == tracer::Integrator::Path {
+        m.push(Repr::Hero(4));
+    }
+    m
+}
+
 /// Camera paths per pixel: `spp` for the path tracer, `samples²` for Whitted.
 pub fn paths_per_pixel(scene: &Scene) -> u32 {
     match scene.render.integrator {
@@ -196,18 +206,50 @@ pub fn heat(de: f64) -> [u8; 3] {
     c.map(|v| (v * 255.0 + 0.5) as u8)
 }
 
-/// One representation's render in a [`Comparison`].
+/// One representation's render in a [`Comparison`] or an equal-time comparison
+/// ([`equal_time`]).
 pub struct ModeResult {
     /// The representation.
     pub repr: Repr,
+    /// Paths (path tracer) or rays (Whitted) per pixel it was rendered with.
+    pub spp: u32,
     /// Its image.
     pub image: Image,
     /// ΔE00 per pixel against the reference.
     pub delta_e: Vec<f64>,
     /// Statistics of `delta_e`.
     pub stats: Stats,
-    /// Render time, seconds.
+    /// Render time, seconds: the median of `rounds` (nearest rank: the lower middle one).
     pub seconds: f64,
+    /// The render time of every round, seconds, in the order run.
+    pub rounds: Vec<f64>,
+}
+
+impl ModeResult {
+    /// `image`, rendered in `repr` at `spp` per pixel in `rounds` seconds, measured against
+    /// `reference` (CIELAB relative to `white`, after the scene's `exposure`).
+    pub fn measured(
+        repr: Repr,
+        spp: u32,
+        image: Image,
+        rounds: Vec<f64>,
+        reference: &Image,
+        white: Xyz,
+        exposure: f32,
+    ) -> Self {
+        let delta_e = delta_e(&image, reference, white, exposure);
+        let mut sorted = rounds.clone();
+        sorted.sort_by(f64::total_cmp);
+        Self {
+            repr,
+            spp,
+            stats: Stats::of(&delta_e),
+            delta_e,
+            image,
+            seconds: crate::stats::percentile(&sorted, 0.5),
+            rounds,
+        }
+    }
 }
 
 /// The result of [`compare`].
@@ -220,30 +262,48 @@ pub struct Comparison {
     pub reference_seconds: f64,
 }
 
-/// Renders the 1 nm reference and `modes`, and the ΔE00 of each against the reference;
-/// `step` is called after each of the `1 + modes.len()` renders (for a progress bar).
-pub fn compare(scene: &Scene, modes: &[Repr], step: &dyn Fn()) -> Result<Comparison> {
+/// Renders `scene` in `repr` and times it (wall clock, seconds).
+pub fn timed(scene: &Scene, repr: Repr) -> Result<(Image, f64)> {
     let t0 = Instant::now();
-    let reference = render(scene, Repr::Exact, None)?;
-    let reference_seconds = t0.elapsed().as_secs_f64();
+    let img = render(scene, repr, None)?;
+    Ok((img, t0.elapsed().as_secs_f64()))
+}
+
+/// Renders the 1 nm reference and `modes` `rounds` times (≥ 1), the modes interleaved in each
+/// round so that a shared machine's load weighs on every mode alike, and the ΔE00 of each
+/// against the reference; each mode's time is the median of its rounds. `step` is called after
+/// each of the `1 + rounds · modes.len()` renders (for a progress bar). Rendering is
+/// deterministic, so every round gives the same image; the first is kept.
+pub fn compare(scene: &Scene, modes: &[Repr], rounds: u32, step: &dyn Fn()) -> Result<Comparison> {
+    let (reference, reference_seconds) = timed(scene, Repr::Exact)?;
     step();
     let white = scene_white(scene);
-    let mut out = Vec::new();
-    for &repr in modes {
-        let t = Instant::now();
-        let image = render(scene, repr, None)?;
-        let seconds = t.elapsed().as_secs_f64();
-        let delta_e = delta_e(&image, &reference, white, scene.render.exposure);
-        let stats = Stats::of(&delta_e);
-        out.push(ModeResult {
-            repr,
-            image,
-            delta_e,
-            stats,
-            seconds,
-        });
-        step();
+    let mut runs: Vec<(Option<Image>, Vec<f64>)> = modes.iter().map(|_| (None, vec![])).collect();
+    for _ in 0..rounds.max(1) {
+        for (&repr, (image, times)) in modes.iter().zip(&mut runs) {
+            let (img, seconds) = timed(scene, repr)?;
+            times.push(seconds);
+            image.get_or_insert(img);
+            step();
+        }
     }
+    let spp = paths_per_pixel(scene);
+    let out = modes
+        .iter()
+        .zip(runs)
+        .filter_map(|(&repr, (image, times))| {
+            let image = image?;
+            Some(ModeResult::measured(
+                repr,
+                spp,
+                image,
+                times,
+                &reference,
+                white,
+                scene.render.exposure,
+            ))
+        })
+        .collect();
     Ok(Comparison {
         modes: out,
         reference,
