@@ -107,6 +107,85 @@ fn builtin_scene_and_compare() {
     assert!(h > 24 + 20, "labels and colour bar: {h}");
 }
 
+/// `--compare --rounds N --json` with the path tracer: every mode, hero-wavelength sampling
+/// among them, rendered N times (interleaved), its time the middle one of its rounds.
+#[test]
+fn compare_rounds_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = |rounds: &'static str| {
+        [
+            "render",
+            "cornell",
+            "--compare",
+            "--rounds",
+            rounds,
+            "--size",
+            "8x6",
+            "--spp",
+            "2",
+            "--json",
+            "-o",
+            "c.png",
+        ]
+    };
+    let o = specpoly(&args("3"), dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["rounds"], 3);
+    let modes = j["modes"].as_array().unwrap();
+    let names: Vec<&str> = modes.iter().map(|m| m["mode"].as_str().unwrap()).collect();
+    assert_eq!(names, ["rgb", "paper", "poly", "sampled:81", "hero:4"]);
+    for m in modes {
+        let mut r: Vec<f64> = m["seconds_per_round"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert_eq!(r.len(), 3);
+        r.sort_by(f64::total_cmp);
+        assert_eq!(m["seconds"].as_f64().unwrap(), r[1]);
+        assert_eq!(m["paths_per_pixel"], 2);
+    }
+    // no rounds is a usage error
+    let o = specpoly(&args("0"), dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+/// Every scene file shipped in `scenes/` renders from another working folder: the file names
+/// in it (`../data/leds/…` in `lightbooth.toml`) resolve beside the scene file.
+#[test]
+fn shipped_scene_files_render_from_any_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&scenes).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let o = specpoly(
+            &[
+                "render",
+                path.to_str().unwrap(),
+                "--size",
+                "8x6",
+                "--spp",
+                "1",
+                "--samples",
+                "1",
+                "-o",
+                "s.png",
+            ],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{}: {}", path.display(), stderr(&o));
+        assert_eq!(png_size(&dir.path().join("s.png")), (8, 6));
+        n += 1;
+    }
+    assert!(n >= 5, "{n} scene files");
+}
+
 fn fails(scene: &str, code: i32, needle: &str) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("s.toml"), scene).unwrap();

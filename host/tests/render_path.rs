@@ -174,4 +174,26 @@ materials = { right = "green_paint" }
         .unwrap_err()
         .to_string();
     assert!(e.contains("nope.obj") && e.contains("assets"), "{e}");
+
+    // a PLY mesh (ASCII, a unit square at z = 2 as one quad face, scaled and moved by the
+    // scene) resolves beside the scene file too
+    std::fs::write(
+        sub.join("square.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+         property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n\
+         0 0 2\n1 0 2\n1 1 2\n0 1 2\n4 0 1 2 3\n",
+    )
+    .unwrap();
+    let ply_scene = "[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, 1.0]\n\
+                     [materials.paint]\ndiffuse = \"assets/paint.csv\"\n\
+                     [[mesh]]\nfile = \"assets/square.ply\"\nmaterial = \"paint\"\nscale = 2.0\n\
+                     translate = [-1.0, -1.0, 1.0]\n";
+    std::fs::write(&path, ply_scene).unwrap();
+    let s = render::load(path.to_str().unwrap()).unwrap();
+    assert_eq!(s.triangles.len(), 2);
+    // scaled to 2 × 2 at z = 2·2 + 1 = 5, centred on the axis
+    let (t, _, owner) = s.triangles.intersect(&ray(0.5), 1e9).unwrap();
+    assert!((t - 5.0).abs() < 1e-5, "{t}");
+    assert_eq!(owner, render::mesh::Owner::Material(0));
+    assert!(s.triangles.intersect(&ray(1.5), 1e9).is_none());
 }

@@ -243,16 +243,18 @@ pub(super) fn report(a: &RenderArgs, out: &Output, r: Report<'_>) -> Result<()> 
     let _ = writeln!(o, "{}", r.header);
     let _ = writeln!(
         o,
-        "{:<11} {:>7} {:>9} {:>8} {:>8} {:>8}",
-        "mode", "paths", "time (s)", "mean", "95th", "max"
+        "{:<11} {:>7} {:>9} {:>8} {:>8} {:>8} {:>8}",
+        "mode", "per px", "time (s)", "cpu (s)", "mean", "95th", "max"
     );
     for m in r.modes {
+        let cpu = m.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
         let _ = writeln!(
             o,
-            "{:<11} {:>7} {:>9.3} {:>8.3} {:>8.3} {:>8.3}",
+            "{:<11} {:>7} {:>9.3} {:>8} {:>8.3} {:>8.3} {:>8.3}",
             m.repr.to_string(),
             m.spp,
             m.seconds,
+            cpu,
             m.stats.mean,
             m.stats.p95,
             m.stats.max
@@ -263,8 +265,8 @@ pub(super) fn report(a: &RenderArgs, out: &Output, r: Report<'_>) -> Result<()> 
     Ok(())
 }
 
-/// One mode of a comparison as JSON: its name, paths per pixel, time (the median of its rounds,
-/// and every round), rays traced and ΔE00 against the 1 nm reference (mean, 95th percentile,
+/// One mode of a comparison as JSON: its name, paths per pixel, wall and CPU time (the median
+/// of its rounds, and every round; no CPU time where the platform does not tell), rays traced and ΔE00 against the 1 nm reference (mean, 95th percentile,
 /// maximum).
 fn mode_json(m: &render::ModeResult) -> serde_json::Value {
     serde_json::json!({
@@ -272,6 +274,8 @@ fn mode_json(m: &render::ModeResult) -> serde_json::Value {
         "paths_per_pixel": m.spp,
         "seconds": m.seconds,
         "seconds_per_round": m.rounds,
+        "cpu_seconds": m.cpu_seconds,
+        "cpu_seconds_per_round": m.cpu_rounds,
         "rays": m.image.rays,
         "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
     })

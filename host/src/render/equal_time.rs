@@ -11,7 +11,7 @@
 //! the reference therefore holds both path noise (less with more paths) and colour error (RGB's
 //! and sampling's bias, hero sampling's wavelength noise): what a user sees at equal time.
 
-use super::{scene::Scene, scene_white, timed, Image, ModeResult};
+use super::{scene::Scene, scene_white, timed, Image, ModeResult, Timing};
 use crate::error::Result;
 use crate::repr::Repr;
 
@@ -35,7 +35,7 @@ pub struct EqualTime {
     pub reference_seconds: f64,
 }
 
-fn timed_at(scene: &Scene, repr: Repr, spp: u32) -> Result<(Image, f64)> {
+fn timed_at(scene: &Scene, repr: Repr, spp: u32) -> Result<(Image, Timing)> {
     let mut s = scene.clone();
     s.render.spp = spp;
     timed(&s, repr)
@@ -52,14 +52,14 @@ pub fn equal_time(
 ) -> Result<EqualTime> {
     let mut rs = scene.clone();
     rs.render.seed ^= REFERENCE_SEED;
-    let (reference, reference_seconds) = timed_at(&rs, Repr::Exact, reference_spp)?;
+    let (reference, reference_time) = timed_at(&rs, Repr::Exact, reference_spp)?;
     step();
     let spp = scene.render.spp;
     let probe = (spp / 4).max(1);
     let per_path = |repr: Repr| -> Result<f64> {
         let mut best = f64::INFINITY;
         for _ in 0..CALIBRATION_RUNS {
-            best = best.min(timed_at(scene, repr, probe)?.1 / probe as f64);
+            best = best.min(timed_at(scene, repr, probe)?.1.wall / probe as f64);
         }
         Ok(best)
     };
@@ -73,13 +73,13 @@ pub fn equal_time(
         } else {
             ((budget_seconds / per_path(repr)?).round() as u32).clamp(1, 1 << 20)
         };
-        let (image, seconds) = timed_at(scene, repr, n)?;
+        let (image, timing) = timed_at(scene, repr, n)?;
         step();
         out.push(ModeResult::measured(
             repr,
             n,
             image,
-            vec![seconds],
+            &[timing],
             &reference,
             white,
             scene.render.exposure,
@@ -90,6 +90,6 @@ pub fn equal_time(
         modes: out,
         reference,
         reference_spp,
-        reference_seconds,
+        reference_seconds: reference_time.wall,
     })
 }

@@ -9,6 +9,7 @@
 pub mod budget;
 pub mod builtin;
 pub mod compare_image;
+pub mod cpu_time;
 pub mod equal_time;
 mod filter;
 pub mod geometry;
@@ -223,31 +224,54 @@ pub struct ModeResult {
     pub seconds: f64,
     /// The render time of every round, seconds, in the order run.
     pub rounds: Vec<f64>,
+    /// CPU time of the process (all threads) during the render, seconds: the median of
+    /// `cpu_rounds`; `None` where the platform does not tell ([`cpu_time`]).
+    pub cpu_seconds: Option<f64>,
+    /// The CPU time of every round, seconds (empty where the platform does not tell).
+    pub cpu_rounds: Vec<f64>,
+}
+
+/// The median (nearest rank: the lower middle one) of `v`; `None` when empty.
+fn median(v: &[f64]) -> Option<f64> {
+    let mut sorted = v.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    (!sorted.is_empty()).then(|| crate::stats::percentile(&sorted, 0.5))
+}
+
+/// One timed render: wall seconds, and the process's CPU seconds if known.
+#[derive(Clone, Copy, Debug)]
+pub struct Timing {
+    /// Wall-clock seconds.
+    pub wall: f64,
+    /// CPU seconds of the process (user + system, all threads), where the platform tells.
+    pub cpu: Option<f64>,
 }
 
 impl ModeResult {
-    /// `image`, rendered in `repr` at `spp` per pixel in `rounds` seconds, measured against
-    /// `reference` (CIELAB relative to `white`, after the scene's `exposure`).
+    /// `image`, rendered in `repr` at `spp` per pixel with the timings `rounds`, measured
+    /// against `reference` (CIELAB relative to `white`, after the scene's `exposure`).
     pub fn measured(
         repr: Repr,
         spp: u32,
         image: Image,
-        rounds: Vec<f64>,
+        rounds: &[Timing],
         reference: &Image,
         white: Xyz,
         exposure: f32,
     ) -> Self {
         let delta_e = delta_e(&image, reference, white, exposure);
-        let mut sorted = rounds.clone();
-        sorted.sort_by(f64::total_cmp);
+        let wall: Vec<f64> = rounds.iter().map(|t| t.wall).collect();
+        let cpu: Vec<f64> = rounds.iter().filter_map(|t| t.cpu).collect();
         Self {
             repr,
             spp,
             stats: Stats::of(&delta_e),
             delta_e,
             image,
-            seconds: crate::stats::percentile(&sorted, 0.5),
-            rounds,
+            seconds: median(&wall).unwrap_or(0.0),
+            rounds: wall,
+            cpu_seconds: median(&cpu),
+            cpu_rounds: cpu,
         }
     }
 }
@@ -262,11 +286,17 @@ pub struct Comparison {
     pub reference_seconds: f64,
 }
 
-/// Renders `scene` in `repr` and times it (wall clock, seconds).
-pub fn timed(scene: &Scene, repr: Repr) -> Result<(Image, f64)> {
+/// Renders `scene` in `repr` and times it (wall clock and the process's CPU time).
+pub fn timed(scene: &Scene, repr: Repr) -> Result<(Image, Timing)> {
+    let c0 = cpu_time::process_seconds();
     let t0 = Instant::now();
     let img = render(scene, repr, None)?;
-    Ok((img, t0.elapsed().as_secs_f64()))
+    let wall = t0.elapsed().as_secs_f64();
+    let cpu = match (c0, cpu_time::process_seconds()) {
+        (Some(a), Some(b)) => Some(b - a),
+        _ => None,
+    };
+    Ok((img, Timing { wall, cpu }))
 }
 
 /// Renders the 1 nm reference and `modes` `rounds` times (≥ 1), the modes interleaved in each
@@ -275,14 +305,15 @@ pub fn timed(scene: &Scene, repr: Repr) -> Result<(Image, f64)> {
 /// each of the `1 + rounds · modes.len()` renders (for a progress bar). Rendering is
 /// deterministic, so every round gives the same image; the first is kept.
 pub fn compare(scene: &Scene, modes: &[Repr], rounds: u32, step: &dyn Fn()) -> Result<Comparison> {
-    let (reference, reference_seconds) = timed(scene, Repr::Exact)?;
+    let (reference, reference_time) = timed(scene, Repr::Exact)?;
     step();
     let white = scene_white(scene);
-    let mut runs: Vec<(Option<Image>, Vec<f64>)> = modes.iter().map(|_| (None, vec![])).collect();
+    let mut runs: Vec<(Option<Image>, Vec<Timing>)> =
+        modes.iter().map(|_| (None, vec![])).collect();
     for _ in 0..rounds.max(1) {
         for (&repr, (image, times)) in modes.iter().zip(&mut runs) {
-            let (img, seconds) = timed(scene, repr)?;
-            times.push(seconds);
+            let (img, timing) = timed(scene, repr)?;
+            times.push(timing);
             image.get_or_insert(img);
             step();
         }
@@ -297,7 +328,7 @@ pub fn compare(scene: &Scene, modes: &[Repr], rounds: u32, step: &dyn Fn()) -> R
                 repr,
                 spp,
                 image,
-                times,
+                &times,
                 &reference,
                 white,
                 scene.render.exposure,
@@ -307,6 +338,6 @@ pub fn compare(scene: &Scene, modes: &[Repr], rounds: u32, step: &dyn Fn()) -> R
     Ok(Comparison {
         modes: out,
         reference,
-        reference_seconds,
+        reference_seconds: reference_time.wall,
     })
 }
