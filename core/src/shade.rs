@@ -166,7 +166,7 @@ impl<const N: usize> Shade for Sampled<N> {
         // then `(q₀ + q₂) + (q₁ + q₃)`, then the `N mod 8` tail samples. The loops have the
         // shape of `Moments::xyz` (lanes outer, the three axes in registers, index loops, no
         // closures): an axis-outer form over `chunks_exact` compiled well alone but, in the
-        // bench, the compiler vectorised it across the three axes (shuffles, 4.6× slower,
+        // bench, the compiler vectorised it across the three axes (shuffles, 4.5× slower,
         // docs/performance.md, "Kernels at the floor"). The same sums in the same order.
         let w = &light.w;
         let v = &self.0;
