@@ -162,27 +162,40 @@ impl<const N: usize> Shade for Sampled<N> {
     fn xyz(&self, light: &Self::Light) -> Xyz {
         // Eight lane accumulators so the dot products vectorise (a plain iterator sum is
         // sequential in f32): the sampled mode gets the same care as the polynomial one.
-        // The lanes are folded to 4 per axis, then the three axes finished together, as in
-        // `Moments::xyz`.
-        let mut part = [([0.0f32; 4], 0.0f32); 3];
-        for (p, w) in part.iter_mut().zip(light.w.iter()) {
-            let mut lanes = [0.0f32; 8];
-            let mut wc = w.chunks_exact(8);
-            let mut vc = self.0.chunks_exact(8);
-            for (a, b) in (&mut wc).zip(&mut vc) {
-                for l in 0..8 {
-                    lanes[l] += a[l] * b[l];
-                }
+        // Lane `l` sums samples `8i + l` in order of `i`; the lanes are folded to 4 per axis,
+        // then `(q₀ + q₂) + (q₁ + q₃)`, then the `N mod 8` tail samples. The loops have the
+        // shape of `Moments::xyz` (lanes outer, the three axes in registers, index loops, no
+        // closures): an axis-outer form over `chunks_exact` compiled well alone but, in the
+        // bench, the compiler vectorised it across the three axes (shuffles, 4.5× slower,
+        // docs/performance.md, "Kernels at the floor"). The same sums in the same order.
+        let w = &light.w;
+        let v = &self.0;
+        let n8 = N / 8;
+        let mut lanes = [[0.0f32; 8]; 3];
+        for l in 0..8 {
+            let (mut x, mut y, mut z) = (0.0f32, 0.0f32, 0.0f32);
+            for i in 0..n8 {
+                let c = v[8 * i + l];
+                x += w[0][8 * i + l] * c;
+                y += w[1][8 * i + l] * c;
+                z += w[2][8 * i + l] * c;
             }
-            let tail: f32 = wc
-                .remainder()
-                .iter()
-                .zip(vc.remainder())
-                .map(|(a, b)| a * b)
-                .sum();
-            *p = (core::array::from_fn(|l| lanes[l] + lanes[l + 4]), tail);
+            lanes[0][l] = x;
+            lanes[1][l] = y;
+            lanes[2][l] = z;
         }
-        Xyz::from_array(part.map(|(q, tail)| ((q[0] + q[2]) + (q[1] + q[3])) + tail))
+        let mut out = [0.0f32; 3];
+        for axis in 0..3 {
+            let a = &lanes[axis];
+            let (q0, q1) = (a[0] + a[4], a[1] + a[5]);
+            let (q2, q3) = (a[2] + a[6], a[3] + a[7]);
+            let mut tail = -0.0f32;
+            for i in 8 * n8..N {
+                tail += w[axis][i] * v[i];
+            }
+            out[axis] = ((q0 + q2) + (q1 + q3)) + tail;
+        }
+        Xyz::from_array(out)
     }
     fn from_reflectance(r: &Tabulated<'_>, _: &Self::Light) -> Result<Self, Error> {
         let mut s = [0.0f32; N];

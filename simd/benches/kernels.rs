@@ -6,14 +6,18 @@
 //! [`BATCH`] different inputs, writing into a preallocated output slice, and the batch time is
 //! divided by [`BATCH`] (`iter_custom`), so criterion's figures are nanoseconds per call. Only
 //! the slices' addresses pass through `black_box`, once per batch: no per-call read-back of a
-//! 128-byte result, no per-call barrier. Inputs and outputs (≤ 48 KiB) stay in L1/L2.
+//! 128-byte result, no per-call barrier. Inputs and outputs (≤ 62 KiB) stay in L1/L2.
+//!
+//! On a loaded machine criterion's medians swing 2–3×: run with `--sample-size 1000
+//! --measurement-time 4` and take the 5th percentile of the per-sample means
+//! (`target/criterion/*/*/new/sample.json`, `times[i] / iters[i]`), as docs/performance.md does.
 //!
 //! Paths, per representation:
 //! - `naive`: a plain scalar reference — the product span by span (`Cheb::mul_truncated`),
 //!   XYZ as one running sum per axis (no lanes);
 //! - `portable`: the core's kernel as built for the x86-64 baseline (SSE2), inlined in the loop;
 //! - `runtime`: [`Wide`]'s per-call choice, as the ray tracer calls it (a cached flag, then the
-//!   AVX2 + FMA kernel as a call);
+//!   AVX2 + FMA kernel as a call; for sampled-81's product, the portable product inlined);
 //! - `avx2-loop`: the AVX2 + FMA kernel inlined into an AVX2 loop (one check per batch).
 //!
 //! A third group times the renderer's most frequent pair, `xyz(a·b, L)`: portable, as two

@@ -8,7 +8,9 @@
 //!
 //! Kernels exist for the presets the renderer and `xyz` use: the default
 //! (`Spectrum<8, 4>`, one span per 256-bit lane), the paper's (`Spectrum<2, 4, Paper>`) and,
-//! so the speed comparison stays honest, `Sampled<81>`. They are written with `core::arch`
+//! so the speed comparison stays honest, `Sampled<81>` (whose product per call stays the
+//! inlined portable one: an element-wise product has nothing to fuse, and returning 324 bytes
+//! from an out-of-line kernel costs more than AVX2 saves). They are written with `core::arch`
 //! intrinsics because recompiling the core's own code for AVX2 (a `#[target_feature]` wrapper
 //! around the inlined portable kernel) was measured 1.7–3× slower per call: the compiler's
 //! reductions shuffle lane by lane, and the portable kernels are not always inlined
@@ -67,7 +69,9 @@ pub const ULP_BOUND: f64 = 32.0;
 /// A representation with AVX2 + FMA kernels, called through the proof [`Avx2Fma`] that the CPU
 /// has them.
 pub trait Kernels: Shade {
-    /// `a · b` ([`Shade::mul`]).
+    /// `a · b` ([`Shade::mul`]), one call. For `Sampled<81>` this is the portable product
+    /// inlined (the same bits): its 324-byte result costs more to return from an AVX2 call
+    /// than the AVX2 arithmetic saves (docs/performance.md, "Kernels at the floor").
     fn mul_with(k: Avx2Fma, a: &Self, b: &Self) -> Self;
     /// XYZ of `a` under `light` ([`Shade::xyz`]).
     fn xyz_with(k: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz;

@@ -281,13 +281,24 @@ fn mul_xyz_sampled81(a: &Sampled<81>, b: &Sampled<81>, light: &SampledLight<81>)
 
 // ---- the kernels behind the token ----
 
+/// `kernels!(T, mul, xyz, mul_xyz)` implements [`Kernels`] for `T` with these AVX2 kernels;
+/// `kernels!(T, mul, xyz, mul_xyz, per_call_product = portable)` keeps `T`'s own (inlined)
+/// product for `mul_with` and uses `mul` only inside AVX2 loops (`mul_each`).
 macro_rules! kernels {
     ($t:ty, $mul:ident, $xyz:ident, $mul_xyz:ident) => {
+        kernels!(@impl $t, $mul, $xyz, $mul_xyz, |a, b| {
+            // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
+            unsafe { $mul(a, b) }
+        });
+    };
+    ($t:ty, $mul:ident, $xyz:ident, $mul_xyz:ident, per_call_product = portable) => {
+        kernels!(@impl $t, $mul, $xyz, $mul_xyz, |a, b| Shade::mul(a, b));
+    };
+    (@impl $t:ty, $mul:ident, $xyz:ident, $mul_xyz:ident, |$a:ident, $b:ident| $per_call:expr) => {
         impl Kernels for $t {
             #[inline(always)]
-            fn mul_with(_: Avx2Fma, a: &Self, b: &Self) -> Self {
-                // SAFETY: an `Avx2Fma` exists only if `detect` found AVX2 and FMA on this CPU.
-                unsafe { $mul(a, b) }
+            fn mul_with(_: Avx2Fma, $a: &Self, $b: &Self) -> Self {
+                $per_call
             }
             #[inline(always)]
             fn xyz_with(_: Avx2Fma, a: &Self, light: &Self::Light) -> Xyz {
@@ -325,4 +336,15 @@ macro_rules! kernels {
 
 kernels!(DefaultSpectrum, mul_default, xyz_default, mul_xyz_default);
 kernels!(PaperSpectrum, mul_paper, xyz_paper, mul_xyz_paper);
-kernels!(Sampled<81>, mul_sampled81, xyz_sampled81, mul_xyz_sampled81);
+// Sampled-81's product per call is the portable one, inlined: one multiplication per sample,
+// so the same bits, and its 324-byte result returned from an out-of-line AVX2 kernel is copied
+// again by the caller (`memcpy`; the compiler cannot build it in place in a slice element):
+// through `Wide` 37 ns against 12.8 ns inlined (docs/performance.md, "Kernels at the floor").
+// Inside AVX2 loops (`mul_each`) and fused with →XYZ (`mul_xyz_with`) the kernel is used.
+kernels!(
+    Sampled<81>,
+    mul_sampled81,
+    xyz_sampled81,
+    mul_xyz_sampled81,
+    per_call_product = portable
+);
