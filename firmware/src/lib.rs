@@ -28,6 +28,7 @@ pub mod led;
 pub mod lights;
 pub mod mix;
 pub mod settings;
+#[cfg(feature = "settings")]
 pub mod store;
 
 #[cfg(all(target_arch = "arm", target_os = "none", feature = "mps2"))]
@@ -42,7 +43,7 @@ pub mod stm32f4;
     feature = "mps2",
     feature = "stm32f4"
 ))]
-compile_error!("one board at a time: --no-default-features --features stm32f4");
+compile_error!("one board at a time: --no-default-features --features stm32f4,full");
 
 pub use controller::Controller;
 pub use led::{LedError, RgbLed};

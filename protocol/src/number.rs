@@ -814,6 +814,11 @@ pub(crate) fn write_f32_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::
     write_list(w, key, v, |w, x| write_f32(w, *x))
 }
 
+/// Writes ` KEY=n1,n2,…`, each value as [`write_f32_hex`] does.
+pub(crate) fn write_f32_hex_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
+    write_list(w, key, v, |w, x| write_f32_hex(w, *x))
+}
+
 /// Writes ` KEY=n1,n2,…`, each value as [`write_int`] does.
 pub(crate) fn write_int_list<W: Write>(w: &mut W, key: &str, v: &[u16]) -> fmt::Result {
     write_list(w, key, v, |w, n| write_int(w, *n as i64))
