@@ -8,7 +8,9 @@
 //! With 3–6 LED channels uploaded (`channel`), the controller also solves `xy` and `cct` targets
 //! on the device and fades between them ([`mix`], [`fade`]; `specpoly_core::light::channels`).
 //!
-//! Settings survive resets in flash ([`settings`]: the record, [`store`]: `sequential-storage`).
+//! Settings survive resets in flash ([`settings`]: the record, `store`: `sequential-storage`).
+//! Both are Cargo features, `settings` and `mixing` (default `full`): without them the
+//! controller fits a 32 KiB part (README.md).
 //! The controller, the driver and the store are target-independent and unit-tested on the host
 //! (the store against `sequential-storage`'s mock flash); the board
 //! support ([`board`]: UART, a PWM stand-in, stack painting, an instruction counter) exists only
