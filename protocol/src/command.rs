@@ -204,6 +204,10 @@ impl<'a> Words<'a> {
         self.next()
             .ok_or(Fault::at(ErrorCode::MissingArgument, self.pos + 1))
     }
+    /// The next word, not taken.
+    fn peek(&self) -> Option<&'a str> {
+        self.it.clone().next()
+    }
     fn number(&mut self) -> Result<f32, Fault> {
         let (w, at) = self.need()?;
         number(w, at)
@@ -351,12 +355,14 @@ impl Command {
                 let (ill, at) = w.need()?;
                 let illuminant =
                     Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
-                let (product, factors, hex) = if paper {
-                    let (p, n, hex) = read_product(&mut w, specpoly_kernels::mul_paper)?;
-                    (Reflectance::Paper(p), n, hex)
+                // the reply's number form follows the first coefficient's
+                let hex = w.peek().is_some_and(|t| t.starts_with("0x"));
+                let (product, factors) = if paper {
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_paper)?;
+                    (Reflectance::Paper(p), n)
                 } else {
-                    let (p, n, hex) = read_product(&mut w, specpoly_kernels::mul_default)?;
-                    (Reflectance::Default(p), n, hex)
+                    let (p, n) = read_product(&mut w, specpoly_kernels::mul_default)?;
+                    (Reflectance::Default(p), n)
                 };
                 Command::Reflect {
                     illuminant,
@@ -449,15 +455,13 @@ impl Command {
 
 /// Reads `S·C` coefficients per factor, factors separated by `*`, folding them with the
 /// reduced product `mul` (the preset's [`Spectrum::mul`] from `specpoly-kernels`). Coefficients
-/// are span by span, each span's `c₀ … c_{C−1}`. Also whether the first coefficient is in the
-/// compact hexadecimal form (the reply's number form follows it).
+/// are span by span, each span's `c₀ … c_{C−1}`.
 fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
     mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
-) -> Result<(Spectrum<S, C, L>, u8, bool), Fault> {
+) -> Result<(Spectrum<S, C, L>, u8), Fault> {
     let mut product: Option<Spectrum<S, C, L>> = None;
     let mut factors = 0u8;
-    let mut hex = false;
     loop {
         let mut f = Spectrum::<S, C, L>::ZERO;
         for i in 0..S * C {
@@ -466,10 +470,6 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
                 .ok_or(Fault::at(ErrorCode::WrongCount, w.pos + 1))?;
             if tok == "*" {
                 return Err(Fault::at(ErrorCode::WrongCount, at));
-            }
-            if at == 4 {
-                // the first coefficient (`refl PRESET ILLUMINANT c…`)
-                hex = tok.starts_with("0x");
             }
             f.coefficients_mut()[i % C][i / C] = number(tok, at)?;
         }
@@ -494,7 +494,7 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
         Some(p) if !p.coefficients().iter().flatten().all(|c| c.is_finite()) => {
             Err(Fault::new(ErrorCode::NotFinite))
         }
-        Some(p) => Ok((p, factors, hex)),
+        Some(p) => Ok((p, factors)),
         None => Err(Fault::new(ErrorCode::WrongCount)),
     }
 }
