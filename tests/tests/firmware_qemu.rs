@@ -30,17 +30,17 @@ use std::time::{Duration, Instant};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
 /// The full build (features `settings` and `mixing`, the default): the 32 KiB build below
-/// plus settings in flash with `sequential-storage` (≈ 14 KiB with the store's code and its
-/// records) and mixing 3–6 LED channels on the device (issue 15: solver, locus table, four
-/// commands, their settings record; ≈ 9 KiB), with the protocol at `"s"` (+0.7 KiB, the `refl`
-/// line −12 %): 56.7 KiB measured, 57.5 KiB for the STM32F4 image (docs/performance.md,
-/// "Issue 13", "Flash"). The limit is 64 KiB, the first four 16 KiB sectors of an STM32F4; real
-/// parts have 256–512 KiB.
+/// plus settings in flash with `sequential-storage` (+12 952 B: the store, its records,
+/// `save`/`load`) and mixing 3–6 LED channels on the device (+10 188 B; issue 15: solver,
+/// locus table, four commands), +1.1 KiB for the mixer's settings record, with the protocol at
+/// `"s"` (+0.7 KiB, the `refl` line −12 %): 56 712 B measured, 57 324 B for the STM32F4 image
+/// (docs/performance.md, "Issue 13", "Flash, by build and by part"). The limit is 64 KiB, the
+/// first four 16 KiB sectors of an STM32F4; real parts have 256–512 KiB.
 const FLASH_BUDGET: u64 = 64 * 1024;
 /// The 32 KiB build (`--no-default-features --features mps2 --profile small`): the colour
 /// pipeline, `refl` (decimal and hex), `cal`, `trc` (curves and tables), `map`, `observer`,
-/// `state`; no settings store, no mixing. 31.7 KiB measured, so ≈ 1 KiB of headroom for a
-/// 32 KiB part (docs/performance.md, "Issue 13", "Flash").
+/// `state`; no settings store, no mixing. 31 692 B measured: 1 076 B free for a 32 KiB part
+/// (docs/performance.md, "Issue 13").
 const SMALL_FLASH_BUDGET: u64 = 32 * 1024;
 const RAM_BUDGET: u64 = 4 * 1024;
 /// Static RAM plus the deepest stack use (painted) over every command and a start-up that
