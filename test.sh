@@ -43,8 +43,11 @@ say "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
 (cd firmware && cargo clippy --release -- -D warnings)
 # the STM32F4 board build (stm32f4xx-hal); firmware_qemu builds it and runs it on netduinoplus2
-(cd firmware && cargo clippy --release --no-default-features --features stm32f4 --bin stm32f4 \
+(cd firmware && cargo clippy --release --no-default-features --features stm32f4,full --bin stm32f4 \
   --target-dir target/stm32f4 -- -D warnings)
+# the 32 KiB build (no settings store, no mixing); firmware_qemu builds it and runs it
+(cd firmware && cargo clippy --profile small --no-default-features --features mps2 --bins \
+  --target-dir target/small -- -D warnings)
 
 say "specpoly-core and specpoly-graphics for a microcontroller (thumbv7em-none-eabihf)"
 cargo build -p specpoly-core -p specpoly-graphics --target thumbv7em-none-eabihf

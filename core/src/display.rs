@@ -67,23 +67,20 @@ impl Transfer {
     #[inline]
     pub fn decode(&self, v: f32) -> f32 {
         let v = v.clamp(0.0, 1.0);
-        match self {
-            Transfer::Linear => v,
-            Transfer::Srgb => {
-                if v <= 0.04045 {
-                    v / 12.92
-                } else {
-                    math::pow_unit((v + 0.055) / 1.055, 2.4)
-                }
-            }
-            Transfer::Gamma(g) => math::pow_unit(v, *g),
+        // the power laws share one call of `pow_unit`, so that it is inlined once (flash)
+        let (x, p) = match self {
+            Transfer::Linear => return v,
+            Transfer::Srgb if v <= 0.04045 => return v / 12.92,
+            Transfer::Srgb => ((v + 0.055) / 1.055, 2.4),
+            Transfer::Gamma(g) => (v, *g),
             Transfer::Table(t) => {
                 let x = v * (t.len() - 1) as f32;
                 let i = (x as usize).min(t.len() - 2);
                 let f = x - i as f32;
-                t[i] + (t[i + 1] - t[i]) * f
+                return t[i] + (t[i + 1] - t[i]) * f;
             }
-        }
+        };
+        math::pow_unit(x, p)
     }
 
     /// The curve's slope `dl/dv` at `v` (clamped to `[0, 1]`): the derivative on the right of
@@ -153,18 +150,16 @@ impl Transfer {
     #[inline]
     pub fn encode(&self, l: f32) -> f32 {
         let l = l.clamp(0.0, 1.0);
-        match self {
-            Transfer::Linear => l,
-            Transfer::Srgb => {
-                if l <= 0.003_130_8 {
-                    12.92 * l
-                } else {
-                    1.055 * math::pow_unit(l, 1.0 / 2.4) - 0.055
-                }
-            }
-            Transfer::Gamma(g) => math::pow_unit(l, 1.0 / *g),
-            Transfer::Table(t) => table_inverse(t, l),
-        }
+        // `a · l^p + b`: one call of `pow_unit` for both power laws (inlined once: flash);
+        // `1 · x + 0` is `x` exactly
+        let (p, a, b) = match self {
+            Transfer::Linear => return l,
+            Transfer::Srgb if l <= 0.003_130_8 => return 12.92 * l,
+            Transfer::Srgb => (1.0 / 2.4, 1.055, -0.055),
+            Transfer::Gamma(g) => (1.0 / *g, 1.0, 0.0),
+            Transfer::Table(t) => return table_inverse(t, l),
+        };
+        a * math::pow_unit(l, p) + b
     }
 }
 

@@ -31,8 +31,8 @@ pub fn powf(x: f32, y: f32) -> f32 {
 /// `y = p·k + p·ln m / ln 2` (`p·k` in two exact-ish parts, so the error does not grow with
 /// `|y|`), split `y = n + f` with `n` an integer and `|f| ≤ ½`, and `2^f = e^z`, `z = f ln 2`,
 /// by its Taylor series to `z⁷/7!` (remainder below `3·10⁻⁹`); `2^n` goes into the exponent
-/// field. Outside the normal range (a subnormal `x`,
-/// `y < −125`) it is libm's `powf`. Hand-written: no `no_std` crate offers a `powf` both
+/// field. A subnormal `x` is first scaled by `2²⁴`; a result below `2⁻¹²⁵` is made as
+/// `e·2^(n+64)·2⁻⁶⁴` (one rounding); so no libm `powf` is linked (1.7 KiB of flash). Hand-written: no `no_std` crate offers a `powf` both
 /// accurate to a few ulp and cheap on an FPU without double precision.
 #[inline]
 pub fn pow_unit(x: f32, p: f32) -> f32 {
@@ -48,13 +48,15 @@ pub fn pow_unit(x: f32, p: f32) -> f32 {
         if x >= 1.0 {
             return 1.0;
         }
-        let bits = x.to_bits();
-        if bits < 0x0080_0000 {
-            return libm::powf(x, p);
-        }
+        // a subnormal x is scaled by 2²⁴ (exact) into the normal range
+        let (bits, k0) = if x.to_bits() < 0x0080_0000 {
+            ((x * 16_777_216.0).to_bits(), -24)
+        } else {
+            (x.to_bits(), 0)
+        };
         // x = 2^k · m with m ∈ [√½, √2): the significand with the exponent field of 1, halved
         // above √2 (0x3fb504f3 is √2 rounded)
-        let mut k = (bits >> 23) as i32 - 127;
+        let mut k = (bits >> 23) as i32 - 127 + k0;
         let mut m_bits = (bits & 0x007f_ffff) | 0x3f80_0000;
         if m_bits > 0x3fb5_04f3 {
             m_bits -= 0x0080_0000;
@@ -72,21 +74,44 @@ pub fn pow_unit(x: f32, p: f32) -> f32 {
         let (a, b) = (hi * k as f32, (p - hi) * k as f32 + p * log2_m);
         let y = a + b;
         if !(y >= -125.0) {
-            return libm::powf(x, p);
+            return exp2_tiny(a, b, y);
         }
         // y < 0: n = ⌈y − ½⌉ (truncation towards zero) and f = y − n ∈ [−½, ½], with a − n
         // exact (both multiples of hi's last bit, under 2 apart)
         let n = (y - 0.5) as i32;
-        let z = ((a - n as f32) + b) * core::f32::consts::LN_2;
-        let e = 1.0
-            + z * (1.0
-                + z * (1.0 / 2.0
-                    + z * (1.0 / 6.0
-                        + z * (1.0 / 24.0
-                            + z * (1.0 / 120.0 + z * (1.0 / 720.0 + z * (1.0 / 5040.0)))))));
+        let e = exp_taylor(((a - n as f32) + b) * core::f32::consts::LN_2);
         // e ∈ [0.7, 1.42] and n ≥ −125: the result is normal
         f32::from_bits((e.to_bits() as i32 + (n << 23)) as u32)
     }
+}
+
+/// `e^z` for `|z| ≤ ½ ln 2` by its Taylor series to `z⁷/7!` ([`pow_unit`]).
+#[inline(always)]
+fn exp_taylor(z: f32) -> f32 {
+    1.0 + z
+        * (1.0
+            + z * (1.0 / 2.0
+                + z * (1.0 / 6.0
+                    + z * (1.0 / 24.0
+                        + z * (1.0 / 120.0 + z * (1.0 / 720.0 + z * (1.0 / 5040.0)))))))
+}
+
+/// [`pow_unit`]'s `2^y` for `y = a + b < −125` (or NaN): NaN stays, below `2⁻¹⁶⁰` it rounds to 0,
+/// else `e · 2^(n+64)` is normal and its product with `2⁻⁶⁴` rounds once to the subnormal
+/// result. Out of line: the curves' hot path keeps one compare.
+#[cold]
+#[inline(never)]
+#[cfg_attr(feature = "fast-math", allow(dead_code))]
+fn exp2_tiny(a: f32, b: f32, y: f32) -> f32 {
+    if y.is_nan() {
+        return y;
+    }
+    if y < -160.0 {
+        return 0.0;
+    }
+    let n = (y - 0.5) as i32;
+    let e = exp_taylor(((a - n as f32) + b) * core::f32::consts::LN_2);
+    f32::from_bits((e.to_bits() as i32 + ((n + 64) << 23)) as u32) * f32::from_bits(0x1f80_0000)
 }
 
 #[cfg(all(test, not(feature = "fast-math")))]
@@ -138,17 +163,30 @@ mod tests {
     }
 
     #[test]
-    fn the_ends_and_the_libm_ranges() {
+    fn the_ends_and_the_extreme_ranges() {
         for p in [2.4, 1.0 / 2.4] {
             assert_eq!(pow_unit(0.0, p), 0.0);
             assert_eq!(pow_unit(-1.0, p), 0.0);
             assert_eq!(pow_unit(f32::NAN, p), 0.0);
             assert_eq!(pow_unit(1.0, p), 1.0);
             assert_eq!(pow_unit(7.0, p), 1.0);
-            // a subnormal x, and a result below 2⁻¹²⁵: libm's
-            let tiny = f32::from_bits(5);
-            assert_eq!(pow_unit(tiny, p), libm::powf(tiny, p));
         }
-        assert_eq!(pow_unit(1e-30, 2.4), libm::powf(1e-30, 2.4));
+        // subnormal x (scaled into the normal range), and results below 2⁻¹²⁵ (subnormal or 0),
+        // against the f64 power in ulps of the f32 grid there (2⁻¹⁴⁹ for subnormals)
+        for p in [2.4f32, 1.0 / 2.4, 1.0, 3.0, 10.0] {
+            let bound = POW_UNIT_ULPS * (p as f64 / 3.0).max(1.0);
+            let xs = (1..0x0080_0000u32)
+                .step_by(4099)
+                .map(f32::from_bits)
+                .chain((0..300).map(|i| 1e-25f32 * 1.2f32.powi(i)));
+            for x in xs {
+                let exact = (x as f64).powf(p as f64);
+                let near = exact as f32;
+                let ulp = (f32::from_bits(near.to_bits() + 1) - near) as f64;
+                let e = (pow_unit(x, p) as f64 - exact).abs() / ulp;
+                assert!(e <= bound, "p = {p}: {e} ulp at {x:e}");
+            }
+        }
+        assert!(pow_unit(0.5, f32::NAN).is_nan());
     }
 }

@@ -21,10 +21,19 @@ use specpoly_core::{
     display::{D65_XY, SRGB_PRIMARIES},
     Display, GamutMap, Illuminant, Observer, Transfer, Xyz,
 };
+#[cfg(feature = "mixing")]
+use specpoly_protocol::{mix, DeviceMixer, MIX_CHANNELS};
 use specpoly_protocol::{
-    mix, ColourReport, Command, CurveSummary, DeviceMixer, ErrorCode, Fault, Reflectance, Reply,
-    StateReport, MIX_CHANNELS, PROTOCOL_VERSION,
+    ColourReport, Command, CurveSummary, ErrorCode, Fault, Reflectance, Reply, StateReport,
+    PROTOCOL_VERSION,
 };
+
+/// Parses a line (the protocol's [`Command::parse`]) in a frame of its own: its work space
+/// (a 64-point table, the factors of a product) is gone before the command runs.
+#[inline(never)]
+pub fn parse(line: &str) -> Result<Command, Fault> {
+    Command::parse(line)
+}
 
 /// The LED colour controller.
 pub struct Controller {
@@ -36,7 +45,9 @@ pub struct Controller {
     target: Xyz,
     duty: [u16; 3],
     max: u16,
-    /// The multi-channel mixer (`channel`, `xy`, `cct`, `fade`: [`crate::mix`]).
+    /// The multi-channel mixer (`channel`, `xy`, `cct`, `fade`: [`crate::mix`]; feature
+    /// `mixing`).
+    #[cfg(feature = "mixing")]
     pub mixer: DeviceMixer,
 }
 
@@ -61,6 +72,7 @@ impl Controller {
             target: Xyz::default(),
             duty: [0; 3],
             max,
+            #[cfg(feature = "mixing")]
             mixer: DeviceMixer::new(),
         }
     }
@@ -84,11 +96,13 @@ impl Controller {
 
     /// One fade step of the mixer (the next point solved): `(step, steps, duties)`, or `None`
     /// when no fade is under way ([`crate::fade`]).
+    #[cfg(feature = "mixing")]
     pub fn fade_step(&mut self) -> Option<(u16, u16, [u16; MIX_CHANNELS])> {
         self.mixer.step(self.max)
     }
 
     /// The mixed channels' duties shown now (solved again: not kept in RAM).
+    #[cfg(feature = "mixing")]
     pub fn mix_duty(&self) -> [u16; MIX_CHANNELS] {
         self.mixer.duty(self.max)
     }
@@ -141,23 +155,29 @@ impl Controller {
             }
             // not built in (feature `observer-1964`)
             Command::Observer(_) => Reply::Error(Fault::at(ErrorCode::UnknownName, 1)),
-            Command::Xyz(v) => self.show(v),
-            Command::Xyy(v) => self.show(v.to_xyz()),
+            Command::Xyz(v) => self.show(v, false),
+            Command::Xyy(v) => self.show(v.to_xyz(), false),
             Command::Reflect {
                 illuminant,
                 product,
+                hex,
                 ..
             } => {
                 let xyz = self.reflectance_xyz(illuminant, &product);
-                self.show(xyz)
+                self.show(xyz, hex)
             }
             // answered with the flash by `store::handle`; a controller alone has no storage
             Command::Save | Command::Load => Reply::Error(Fault::new(ErrorCode::Storage)),
             // the shared answer of the mixing commands (the host's simulated controller too)
-            // the shared answer of the mixing commands (the host's simulated controller too)
+            #[cfg(feature = "mixing")]
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 mix::answer(&mut self.mixer, &cmd, self.max)
                     .unwrap_or(Reply::Error(Fault::new(ErrorCode::UnknownCommand)))
+            }
+            // not built in (the parser without `mix` never makes them)
+            #[cfg(not(feature = "mixing"))]
+            Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
+                Reply::Error(Fault::new(ErrorCode::UnknownCommand))
             }
         }
     }
@@ -214,10 +234,14 @@ impl Controller {
     /// The reply to a colour command: the colour report, or `err not-finite` (and nothing
     /// changes: target and duties stay) when any number of the report would not be a finite
     /// f32 (e.g. `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour
-    /// replies are made, so no `ok` reply carries `nan` or `inf`.
-    fn show(&mut self, target: Xyz) -> Reply {
+    /// replies are made, so no `ok` reply carries `nan` or `inf`. `hex`: the numbers in the
+    /// compact form (a `refl` line written in it).
+    fn show(&mut self, target: Xyz, hex: bool) -> Reply {
         let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
-        let report = ColourReport::of(target, &drive, self.map, self.max);
+        let report = ColourReport {
+            hex,
+            ..ColourReport::of(target, &drive, self.map, self.max)
+        };
         if !report.is_finite() {
             return Reply::Error(Fault::new(ErrorCode::NotFinite));
         }

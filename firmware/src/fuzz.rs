@@ -1,5 +1,5 @@
 //! The command handler's fuzz target: bytes as they arrive on the UART, through the same
-//! [`LineReader`] and [`store::parse`](crate::store::parse) as `main`, answered by one
+//! [`LineReader`] and [`controller::parse`](crate::controller::parse) as `main`, answered by one
 //! [`Controller`]. It panics only if the controller does, or if an `ok` reply carries a number
 //! that its own reader ([`Reply::parse`]) refuses or that is not finite (the `nan`/`inf`
 //! replies of issue 10). `fuzz/fuzz_targets/firmware_command.rs` runs it under libFuzzer; the
@@ -39,7 +39,7 @@ pub fn command_bytes(data: &[u8]) {
         };
         let reply = match line {
             Ok(l) if l.trim_ascii().is_empty() => continue,
-            Ok(l) => controller.handle(crate::store::parse(l)),
+            Ok(l) => controller.handle(crate::controller::parse(l)),
             Err(f) => Reply::Error(f),
         };
         let mut buf = Buf {

@@ -8,7 +8,9 @@
 //! With 3–6 LED channels uploaded (`channel`), the controller also solves `xy` and `cct` targets
 //! on the device and fades between them ([`mix`], [`fade`]; `specpoly_core::light::channels`).
 //!
-//! Settings survive resets in flash ([`settings`]: the record, [`store`]: `sequential-storage`).
+//! Settings survive resets in flash ([`settings`]: the record, `store`: `sequential-storage`).
+//! Both are Cargo features, `settings` and `mixing` (default `full`): without them the
+//! controller fits a 32 KiB part (README.md).
 //! The controller, the driver and the store are target-independent and unit-tested on the host
 //! (the store against `sequential-storage`'s mock flash); the board
 //! support ([`board`]: UART, a PWM stand-in, stack painting, an instruction counter) exists only
@@ -28,6 +30,7 @@ pub mod led;
 pub mod lights;
 pub mod mix;
 pub mod settings;
+#[cfg(feature = "settings")]
 pub mod store;
 
 #[cfg(all(target_arch = "arm", target_os = "none", feature = "mps2"))]
@@ -42,7 +45,7 @@ pub mod stm32f4;
     feature = "mps2",
     feature = "stm32f4"
 ))]
-compile_error!("one board at a time: --no-default-features --features stm32f4");
+compile_error!("one board at a time: --no-default-features --features stm32f4,full");
 
 pub use controller::Controller;
 pub use led::{LedError, RgbLed};

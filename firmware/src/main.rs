@@ -11,16 +11,21 @@
 use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m_rt::{entry, exception};
-use specpoly_firmware::board::{
-    flash::{RamFlash, PAGE, PAGES},
-    pwm::ReportedPwm,
-    stack,
-    uart::Uart,
-};
+#[cfg(feature = "settings")]
+use specpoly_firmware::board::flash::{RamFlash, PAGE, PAGES};
+use specpoly_firmware::board::{pwm::ReportedPwm, stack, uart::Uart};
+#[cfg(feature = "mixing")]
 use specpoly_firmware::fade::Pacer;
+#[cfg(feature = "settings")]
 use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
 use specpoly_protocol::{Fault, LineReader, Reply, MAX_LINE};
+
+/// The settings store in RAM-backed flash (feature `settings`); nothing without it.
+#[cfg(feature = "settings")]
+type Storage = (Store<Blocking<RamFlash>>, &'static mut Buffer);
+#[cfg(not(feature = "settings"))]
+type Storage = ();
 
 /// SysTick period: the core sleeps in `wfi` and wakes on a UART byte or after 1 ms at most.
 const TICK: u32 = 25_000;
@@ -36,6 +41,7 @@ fn main() -> ! {
     // `MaybeUninit` keeps them in `.bss`: a reader's `None` fault and a controller's niche
     // would otherwise put their whole initial images in `.data`, i.e. in flash too (2 KiB)
     static mut LINES: MaybeUninit<LineReader<MAX_LINE>> = MaybeUninit::uninit();
+    #[cfg(feature = "settings")]
     static mut BUFFER: Buffer = Buffer::new();
     static mut CONTROLLER: MaybeUninit<Controller> = MaybeUninit::uninit();
     stack::paint();
@@ -58,24 +64,34 @@ fn main() -> ! {
         Err(_) => panic!("PWM stand-in"),
     };
     let controller = Controller::init(CONTROLLER, led.max());
-    let (lines, buffer) = (LINES.write(LineReader::new()), BUFFER);
-    let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
-        // whole pages, at least two, by the constants
-        panic!("settings range");
+    let lines = LINES.write(LineReader::new());
+    #[cfg(feature = "settings")]
+    let mut storage: Storage = {
+        let buffer = BUFFER;
+        let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
+            // whole pages, at least two, by the constants
+            panic!("settings range");
+        };
+        match store::restore(controller, &mut store, buffer) {
+            Ok(()) => defmt::info!("settings loaded from flash"),
+            Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
+            Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
+        }
+        #[cfg(feature = "mixing")]
+        match store::restore_mix(controller, &mut store, buffer) {
+            Ok(()) => defmt::info!("mix settings loaded from flash"),
+            Err(LoadError::NotSaved) => {}
+            Err(e) => defmt::warn!("saved mix settings ignored ({=str})", e.name()),
+        }
+        (store, buffer)
     };
-    match store::restore(controller, &mut store, buffer) {
-        Ok(()) => defmt::info!("settings loaded from flash"),
-        Err(LoadError::NotSaved) => defmt::info!("no saved settings: defaults used"),
-        Err(e) => defmt::warn!("saved settings ignored ({=str}): defaults used", e.name()),
-    }
-    match store::restore_mix(controller, &mut store, buffer) {
-        Ok(()) => defmt::info!("mix settings loaded from flash"),
-        Err(LoadError::NotSaved) => {}
-        Err(e) => defmt::warn!("saved mix settings ignored ({=str})", e.name()),
-    }
+    #[cfg(not(feature = "settings"))]
+    let mut storage: Storage = ();
     defmt::info!("specpoly-led ready");
+    #[cfg(feature = "mixing")]
     let mut pacer = Pacer::new(0);
     loop {
+        #[cfg(feature = "mixing")]
         if controller.mixer.fading() && pacer.due(MILLIS.load(Ordering::Relaxed)) {
             fade_step(controller);
         }
@@ -86,9 +102,10 @@ fn main() -> ! {
         let Some(line) = lines.push(byte) else {
             continue;
         };
-        if !answer(line, controller, &mut store, buffer, &mut uart) {
+        if !answer(line, controller, &mut storage, &mut uart) {
             continue;
         }
+        #[cfg(feature = "mixing")]
         if controller.mixer.fading() {
             // a new fade: its first step one period from now
             pacer = Pacer::new(MILLIS.load(Ordering::Relaxed));
@@ -117,13 +134,18 @@ fn main() -> ! {
 fn answer(
     line: Result<&str, Fault>,
     controller: &mut Controller,
-    store: &mut Store<Blocking<RamFlash>>,
-    buffer: &mut Buffer,
+    storage: &mut Storage,
     uart: &mut Uart,
 ) -> bool {
     let reply = match line {
         Ok(l) if l.trim_ascii().is_empty() => return false,
-        Ok(l) => store::handle(controller, store, buffer, l),
+        #[cfg(feature = "settings")]
+        Ok(l) => store::handle(controller, &mut storage.0, storage.1, l),
+        #[cfg(not(feature = "settings"))]
+        Ok(l) => {
+            let () = *storage;
+            controller.handle(specpoly_firmware::controller::parse(l))
+        }
         Err(f) => Reply::Error(f),
     };
     // the UART never refuses a byte
@@ -134,6 +156,7 @@ fn answer(
 
 /// The mixed channels' duties (QEMU has no PWM for them): `mix duty [..]`. Not inlined: the
 /// solve behind them is not wanted in `main`'s frame, which lives for ever.
+#[cfg(feature = "mixing")]
 #[inline(never)]
 fn log_mix(controller: &Controller) {
     let n = controller.mixer.channels.list().len();
@@ -141,6 +164,7 @@ fn log_mix(controller: &Controller) {
 }
 
 /// One fade step, its duties logged (`fade K/N duty [..] stack=BYTES`).
+#[cfg(feature = "mixing")]
 #[inline(never)]
 fn fade_step(controller: &mut Controller) {
     if let Some((k, n, duty)) = controller.fade_step() {

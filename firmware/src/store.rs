@@ -204,12 +204,7 @@ impl<F: NorFlash> Store<F> {
     }
 }
 
-/// Parses a line (the protocol's [`Command::parse`]) in a frame of its own: its work space
-/// (a 64-point table, the factors of a product) is gone before the command runs.
-#[inline(never)]
-pub fn parse(line: &str) -> Result<Command, Fault> {
-    Command::parse(line)
-}
+pub use crate::controller::parse;
 
 /// Answers a line: `save` and `load` with the store; every other command goes to the
 /// controller. Not inlined: the caller's frame (the firmware's `main`, alive for ever) would
@@ -235,10 +230,25 @@ pub fn handle<F: NorFlash>(
 fn save<F: NorFlash>(controller: &Controller, store: &mut Store<F>, buffer: &mut Buffer) -> Reply {
     match store
         .save(&controller.record(), buffer)
-        .and_then(|()| store.save_mix(&mix::Record(&controller.mixer), buffer))
+        .and_then(|()| save_mix(controller, store, buffer))
     {
         Ok(()) => Reply::Done("save"),
         Err(SaveError::Storage) => Reply::Error(Fault::new(ErrorCode::Storage)),
+    }
+}
+
+/// The mixer's record (nothing without feature `mixing`).
+fn save_mix<F: NorFlash>(
+    controller: &Controller,
+    store: &mut Store<F>,
+    buffer: &mut Buffer,
+) -> Result<(), SaveError> {
+    #[cfg(feature = "mixing")]
+    return store.save_mix(&mix::Record(&controller.mixer), buffer);
+    #[cfg(not(feature = "mixing"))]
+    {
+        let _ = (controller, store, buffer);
+        Ok(())
     }
 }
 
@@ -250,11 +260,11 @@ fn load<F: NorFlash>(
     store: &mut Store<F>,
     buffer: &mut Buffer,
 ) -> Reply {
-    let r = restore(controller, store, buffer).and_then(|()| {
-        match restore_mix(controller, store, buffer) {
-            Err(LoadError::NotSaved) => Ok(()),
-            r => r,
-        }
+    let r = restore(controller, store, buffer);
+    #[cfg(feature = "mixing")]
+    let r = r.and_then(|()| match restore_mix(controller, store, buffer) {
+        Err(LoadError::NotSaved) => Ok(()),
+        r => r,
     });
     match r {
         Ok(()) => Reply::Done("load"),
@@ -278,6 +288,7 @@ pub fn restore<F: NorFlash>(
 
 /// Applies the newest saved mixer record ([`crate::mix`]: channels, curves, fade time);
 /// [`LoadError::NotSaved`] when there is none. On an error the mixer is unchanged.
+#[cfg(feature = "mixing")]
 pub fn restore_mix<F: NorFlash>(
     controller: &mut Controller,
     store: &mut Store<F>,

@@ -205,8 +205,9 @@ fn serve(port: TTYPort, stop: Arc<AtomicBool>) {
                 Command::Reflect {
                     illuminant,
                     product,
+                    hex,
                     ..
-                } => model.answer(model.reflectance_xyz(illuminant, &product)),
+                } => model.answer_in(model.reflectance_xyz(illuminant, &product), hex),
                 Command::Transfer { .. } => Reply::Done("trc"),
                 _ => Reply::Done("ok"),
             },

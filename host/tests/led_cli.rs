@@ -82,9 +82,14 @@ fn answer(b: Behaviour, model: &Model, mix: &mut MixModel, line: &str) -> String
             Ok(Command::Reflect {
                 illuminant,
                 product,
+                hex,
                 ..
             }),
-        ) => Reply::Colour(model.colour(model.reflectance_xyz(illuminant, &product))),
+        ) => {
+            let mut c = model.colour(model.reflectance_xyz(illuminant, &product));
+            c.hex = hex;
+            Reply::Colour(c)
+        }
         // the mixing commands: the host's simulated controller (the firmware's own calls)
         (_, Ok(c @ (Command::Channel(_) | Command::Mix(_) | Command::Fade(_)))) => {
             match mix.answer(&c) {

@@ -161,6 +161,10 @@ pub enum Command {
         product: Reflectance,
         /// How many factors were multiplied.
         factors: u8,
+        /// The first coefficient was in the compact hexadecimal form (`0x` + the f32's bits):
+        /// the colour reply's numbers are then written in that form too (PROTOCOL.md,
+        /// "Numbers"), ≈ 1 000 instructions fewer per number on the controller.
+        hex: bool,
     },
     /// `state`: the calibration and the last colour.
     State,
@@ -199,6 +203,10 @@ impl<'a> Words<'a> {
     pub(crate) fn need(&mut self) -> Result<(&'a str, usize), Fault> {
         self.next()
             .ok_or(Fault::at(ErrorCode::MissingArgument, self.pos + 1))
+    }
+    /// The next word, not taken.
+    fn peek(&self) -> Option<&'a str> {
+        self.it.clone().next()
     }
     fn number(&mut self) -> Result<f32, Fault> {
         let (w, at) = self.need()?;
@@ -347,6 +355,8 @@ impl Command {
                 let (ill, at) = w.need()?;
                 let illuminant =
                     Illuminant::from_name(ill).ok_or(Fault::at(ErrorCode::UnknownName, at))?;
+                // the reply's number form follows the first coefficient's
+                let hex = w.peek().is_some_and(|t| t.starts_with("0x"));
                 let (product, factors) = if paper {
                     let (p, n) = read_product(&mut w, specpoly_kernels::mul_paper)?;
                     (Reflectance::Paper(p), n)
@@ -358,11 +368,17 @@ impl Command {
                     illuminant,
                     product,
                     factors,
+                    hex,
                 }
             }
+            // without feature `mix` (a firmware without mixing) these are unknown commands
+            #[cfg(feature = "mix")]
             "channel" => crate::mix::parse_channel(&mut w)?,
+            #[cfg(feature = "mix")]
             "xy" => crate::mix::parse_goal(&mut w, false)?,
+            #[cfg(feature = "mix")]
             "cct" => crate::mix::parse_goal(&mut w, true)?,
+            #[cfg(feature = "mix")]
             "fade" => crate::mix::parse_fade(&mut w)?,
             _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
         };
@@ -421,8 +437,15 @@ impl Command {
             Command::Reflect {
                 illuminant,
                 product,
+                hex: false,
                 ..
             } => write_reflect(w, *illuminant, core::slice::from_ref(product)),
+            Command::Reflect {
+                illuminant,
+                product,
+                hex: true,
+                ..
+            } => write_reflect_hex(w, *illuminant, core::slice::from_ref(product)),
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 crate::mix::write_command(w, self)
             }

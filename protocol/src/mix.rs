@@ -3,11 +3,14 @@
 //! [`Mixer`] call and a reply, shared by the firmware and the host's simulated controller so
 //! the two cannot answer differently.
 
-use crate::command::{write_curve, Command, Words};
+#[cfg(feature = "mix")]
+use crate::command::Words;
+use crate::command::{write_curve, Command};
 use crate::number::{parse_u16, write_f32, write_f32_list, write_int, write_int_list};
 use crate::{ErrorCode, Fault, Reply};
 use core::fmt::{self, Write};
 use specpoly_core::light::channels::{Channel, Curve, Goal, MixError, Mixer};
+#[cfg(feature = "mix")]
 use specpoly_core::light::locus;
 use specpoly_core::Transfer;
 
@@ -81,6 +84,7 @@ fn range(at: usize) -> Fault {
 }
 
 /// A number in `[lo, hi]` (both finite).
+#[cfg(feature = "mix")]
 fn within(w: &mut Words<'_>, lo: f32, hi: f32) -> Result<f32, Fault> {
     let (tok, at) = w.need()?;
     let v = crate::command::number(tok, at)?;
@@ -91,6 +95,7 @@ fn within(w: &mut Words<'_>, lo: f32, hi: f32) -> Result<f32, Fault> {
 }
 
 /// Parses the words after `channel`.
+#[cfg(feature = "mix")]
 pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<Command, Fault> {
     let (first, at) = w.need()?;
     if first == "clear" {
@@ -132,6 +137,7 @@ pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<Command, Fault> {
 }
 
 /// Parses the words after `xy` (`cct == false`) or `cct`.
+#[cfg(feature = "mix")]
 pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Command, Fault> {
     let (a, b) = if cct {
         (within(w, locus::CCT_MIN, locus::CCT_MAX)?, 0.0)
@@ -167,6 +173,7 @@ pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Command, Fault>
 }
 
 /// Parses the words after `fade`: whole milliseconds, 0 to [`FADE_MAX_MS`].
+#[cfg(feature = "mix")]
 pub(crate) fn parse_fade(w: &mut Words<'_>) -> Result<Command, Fault> {
     let (tok, at) = w.need()?;
     let v = crate::command::number(tok, at)?;

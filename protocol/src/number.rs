@@ -201,12 +201,16 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
 fn parse_hex(b: &[u8]) -> Result<f32, NumberError> {
     let mut bits = 0u32;
     for &c in b {
-        let d = match c {
-            b'0'..=b'9' => c - b'0',
-            b'a'..=b'f' => c - b'a' + 10,
-            b'A'..=b'F' => c - b'A' + 10,
-            _ => return Err(NumberError::Syntax),
-        };
+        // a digit, else a letter: `c | 0x20` is in `a..=f` exactly for `a..=f` and `A..=F`
+        // (two compares a digit instead of three ranges)
+        let mut d = c.wrapping_sub(b'0');
+        if d > 9 {
+            d = (c | 0x20).wrapping_sub(b'a');
+            if d > 5 {
+                return Err(NumberError::Syntax);
+            }
+            d += 10;
+        }
         bits = bits << 4 | d as u32;
     }
     let v = f32::from_bits(bits);
@@ -814,6 +818,11 @@ pub(crate) fn write_f32_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::
     write_list(w, key, v, |w, x| write_f32(w, *x))
 }
 
+/// Writes ` KEY=n1,n2,…`, each value as [`write_f32_hex`] does.
+pub(crate) fn write_f32_hex_list<W: Write>(w: &mut W, key: &str, v: &[f32]) -> fmt::Result {
+    write_list(w, key, v, |w, x| write_f32_hex(w, *x))
+}
+
 /// Writes ` KEY=n1,n2,…`, each value as [`write_int`] does.
 pub(crate) fn write_int_list<W: Write>(w: &mut W, key: &str, v: &[u16]) -> fmt::Result {
     write_list(w, key, v, |w, n| write_int(w, *n as i64))
@@ -947,6 +956,27 @@ mod tests {
         let mut s = String::new();
         write_f32_hex(&mut s, 1.0 / 3.0).unwrap();
         assert_eq!(s, "0x3eaaaaab");
+        // every byte in every digit position: exactly the hexadecimal digits are read, with
+        // their value (std's `char::to_digit(16)` as the oracle)
+        for pos in 2..10 {
+            for c in 0..=255u8 {
+                let mut b = *b"0x3f000000";
+                b[pos] = c;
+                let want = char::from(c)
+                    .to_digit(16)
+                    .map(|d| (0x3f00_0000u32 & !(0xf << (4 * (9 - pos)))) | d << (4 * (9 - pos)))
+                    .map(f32::from_bits)
+                    .filter(|v| v.is_finite());
+                match (parse_hex(&b[2..]), want) {
+                    (Ok(v), Some(w)) => assert_eq!(v.to_bits(), w.to_bits(), "{pos} {c}"),
+                    (Err(NumberError::Range), None) => assert!(char::from(c).is_ascii_hexdigit()),
+                    (Err(NumberError::Syntax), None) => {
+                        assert!(!char::from(c).is_ascii_hexdigit(), "{pos} {c}")
+                    }
+                    (got, want) => panic!("{pos} {c}: {got:?}, want {want:?}"),
+                }
+            }
+        }
     }
 
     #[test]

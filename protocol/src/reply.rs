@@ -5,7 +5,9 @@
 //! keys without breaking older hosts.
 
 use crate::command::{map_name, write_curve};
-use crate::number::{parse_f32, parse_u16, write_f32_list, write_int, write_int_list};
+use crate::number::{
+    parse_f32, parse_u16, write_f32_hex_list, write_f32_list, write_int, write_int_list,
+};
 use crate::{ErrorCode, Fault, PROTOCOL_VERSION};
 use core::fmt::{self, Write};
 use specpoly_core::{Drive, GamutMap, Observer, Transfer, Xyz};
@@ -34,6 +36,10 @@ pub struct ColourReport {
     pub max: u16,
     /// In or out of gamut (`gamut=`).
     pub gamut: Gamut,
+    /// The numbers are written in the compact hexadecimal form (`0x` + the f32's bits): the
+    /// reply to a `refl` line whose coefficients are ([`crate::Command::Reflect`]'s `hex`).
+    /// Read back from the `xyz=` value's form.
+    pub hex: bool,
 }
 
 impl ColourReport {
@@ -51,6 +57,7 @@ impl ColourReport {
             } else {
                 Gamut::In
             },
+            hex: false,
         }
     }
 
@@ -175,9 +182,14 @@ impl Reply {
             }
             Reply::Colour(c) => {
                 w.write_str("ok colour")?;
-                write_f32_list(w, "xyz", &c.xyz.to_array())?;
-                write_f32_list(w, "led", &c.led.to_array())?;
-                write_f32_list(w, "linear", &c.linear)?;
+                let list = if c.hex {
+                    write_f32_hex_list
+                } else {
+                    write_f32_list
+                };
+                list(w, "xyz", &c.xyz.to_array())?;
+                list(w, "led", &c.led.to_array())?;
+                list(w, "linear", &c.linear)?;
                 write_duty(w, c.duty, c.max)?;
                 w.write_str(" gamut=")?;
                 w.write_str(gamut_name(c.gamut))
@@ -269,6 +281,7 @@ impl Reply {
                     duty: keys.duty()?,
                     max: keys.int(keys.max)?,
                     gamut,
+                    hex: keys.xyz.is_some_and(|v| v.starts_with("0x")),
                 }))
             }
             "state" => {

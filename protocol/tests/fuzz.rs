@@ -151,8 +151,10 @@ proptest! {
     fn mutated_valid_lines_never_panic(cut in 0usize..400, byte in any::<u8>(), pos in 0usize..400) {
         let valid = [
             line_of(&Command::Calibrate { xy: [[0.64, 0.33], [0.3, 0.6], [0.15, 0.06]], luminance: [21.0, 72.0, 7.0] }),
-            line_of(&Command::Reflect { illuminant: Illuminant::FL11, product: Reflectance::Default(spectrum_default(0.7)), factors: 1 }),
-            reply_of(&Reply::Colour(ColourReport { xyz: Xyz::new(1.0, 2.0, 3.0), led: Xyz::new(1.0, 2.0, 3.0), linear: [0.1, 0.2, 0.3], duty: [1, 2, 3], max: 65535, gamut: Gamut::In })),
+            line_of(&Command::Reflect { illuminant: Illuminant::FL11, product: Reflectance::Default(spectrum_default(0.7)), factors: 1, hex: false }),
+            line_of(&Command::Reflect { illuminant: Illuminant::FL11, product: Reflectance::Default(spectrum_default(0.7)), factors: 1, hex: true }),
+            reply_of(&Reply::Colour(ColourReport { xyz: Xyz::new(1.0, 2.0, 3.0), led: Xyz::new(1.0, 2.0, 3.0), linear: [0.1, 0.2, 0.3], duty: [1, 2, 3], max: 65535, gamut: Gamut::In, hex: false })),
+            reply_of(&Reply::Colour(ColourReport { xyz: Xyz::new(1.0, 2.0, 3.0), led: Xyz::new(1.0, 2.0, 3.0), linear: [0.1, 0.2, 0.3], duty: [1, 2, 3], max: 65535, gamut: Gamut::In, hex: true })),
         ];
         for v in valid {
             let mut b = v.into_bytes();
@@ -213,7 +215,12 @@ proptest! {
         write_reflect(&mut dec, Illuminant::D65, &factors).unwrap();
         write_reflect_hex(&mut hex, Illuminant::D65, &factors).unwrap();
         prop_assert!(hex.len() <= MAX_LINE);
-        let (a, b) = (Command::parse(&dec), Command::parse(&hex));
+        let (a, mut b) = (Command::parse(&dec), Command::parse(&hex));
+        // the hex line says so (its reply's numbers are hex too); otherwise the same command
+        if let Ok(Command::Reflect { hex, .. }) = &mut b {
+            prop_assert!(*hex);
+            *hex = false;
+        }
         // accepted, or refused because the product overflows f32 (`not-finite`)
         prop_assert!(
             a.is_ok() || matches!(&a, Err(f) if f.code == ErrorCode::NotFinite),
@@ -231,7 +238,7 @@ proptest! {
     }
 
     #[test]
-    fn colour_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), d in proptest::array::uniform3(any::<u16>()), m in any::<u16>(), g in 0..3u8) {
+    fn colour_replies_round_trip(v in proptest::array::uniform9(any::<f32>()), d in proptest::array::uniform3(any::<u16>()), m in any::<u16>(), g in 0..3u8, hex in any::<bool>()) {
         prop_assume!(v.iter().all(|x| x.is_finite()));
         let r = Reply::Colour(ColourReport {
             xyz: Xyz::new(v[0], v[1], v[2]),
@@ -240,6 +247,7 @@ proptest! {
             duty: d,
             max: m,
             gamut: [Gamut::In, Gamut::Out(GamutMap::Clip), Gamut::Out(GamutMap::Desaturate)][g as usize],
+            hex,
         });
         let s = reply_of(&r);
         prop_assert!(s.len() <= MAX_REPLY, "{} bytes", s.len());
@@ -322,11 +330,19 @@ fn every_command_round_trips() {
             illuminant: Illuminant::D65,
             product: Reflectance::Paper(PaperSpectrum::constant(0.5)),
             factors: 1,
+            hex: false,
+        },
+        Command::Reflect {
+            illuminant: Illuminant::FL2,
+            product: Reflectance::Paper(PaperSpectrum::constant(0.25)),
+            factors: 1,
+            hex: true,
         },
         Command::Reflect {
             illuminant: Illuminant::A,
             product: Reflectance::Default(spectrum_default(-0.3)),
             factors: 1,
+            hex: false,
         },
         Command::Channel(ChannelCommand::Set {
             index: 5,
@@ -374,6 +390,7 @@ fn products_are_folded_with_the_reduced_product() {
             illuminant,
             product: Reflectance::Default(p),
             factors,
+            ..
         }) => {
             assert_eq!(illuminant, Illuminant::FL2);
             assert_eq!(factors, 3);

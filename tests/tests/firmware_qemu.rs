@@ -29,14 +29,19 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
-/// The controller with defmt alone fits 32 KiB (32 320 B); keeping settings in flash with
-/// `sequential-storage` adds ≈ 13 KiB, mixing 3–6 LED channels on the device (issue 15:
-/// solver, locus table, four commands, their settings record) ≈ 9.5 KiB, and correctly rounded
-/// f32 number reading and shortest round-trip writing (issue 13, replacing soft-f64) ≈ 3 KiB,
-/// and issue 13's speed (kernels at `opt-level = 3`, the protocol at `"s"`, fast number paths)
-/// ≈ 3.8 KiB: 59–60 KiB measured (docs/performance.md, "Issue 13"). The limit is 64 KiB, the
+/// The full build (features `settings` and `mixing`, the default): the 32 KiB build below
+/// plus settings in flash with `sequential-storage` (+12 952 B: the store, its records,
+/// `save`/`load`) and mixing 3–6 LED channels on the device (+10 188 B; issue 15: solver,
+/// locus table, four commands), +1.1 KiB for the mixer's settings record, with the protocol at
+/// `"s"` (+0.7 KiB, the `refl` line −12 %): 56 700 B measured, 57 312 B for the STM32F4 image
+/// (docs/performance.md, "Issue 13", "Flash, by build and by part"). The limit is 64 KiB, the
 /// first four 16 KiB sectors of an STM32F4; real parts have 256–512 KiB.
 const FLASH_BUDGET: u64 = 64 * 1024;
+/// The 32 KiB build (`--no-default-features --features mps2 --profile small`): the colour
+/// pipeline, `refl` (decimal and hex), `cal`, `trc` (curves and tables), `map`, `observer`,
+/// `state`; no settings store, no mixing. 31 680 B measured: 1 088 B free for a 32 KiB part
+/// (docs/performance.md, "Issue 13").
+const SMALL_FLASH_BUDGET: u64 = 32 * 1024;
 const RAM_BUDGET: u64 = 4 * 1024;
 /// Static RAM plus the deepest stack use (painted) over every command and a start-up that
 /// loads saved settings (docs/performance.md, "## Firmware").
@@ -122,6 +127,33 @@ fn build(features: &str) -> PathBuf {
 fn default_build() -> &'static PathBuf {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| build(""))
+}
+
+/// The 32 KiB build: no default features (no settings store, no mixing), board `mps2`, the
+/// `small` profile (the protocol at `"z"` too), into its own target dir; its `small` folder.
+fn small_build() -> &'static PathBuf {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        require_tools();
+        let dir = repo().join("firmware/target/small");
+        let out = cargo()
+            .args(["build", "--profile", "small", "--bins", "--target", TARGET])
+            .args([
+                "--no-default-features",
+                "--features",
+                "mps2",
+                "--target-dir",
+            ])
+            .arg(&dir)
+            .output()
+            .expect("cargo runs");
+        assert!(
+            out.status.success(),
+            "small firmware build failed:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        dir.join(TARGET).join("small")
+    })
 }
 
 fn qemu(elf: &Path, extra: &[&str]) -> Process {
@@ -288,6 +320,82 @@ fn selftest_passes_on_target_within_the_budgets() {
     assert!(ram <= RAM_BUDGET, "static RAM {ram} B over {RAM_BUDGET} B");
 }
 
+/// The 32 KiB build ([`SMALL_FLASH_BUDGET`]): its self-test passes (every check; it has no
+/// mixing to time), and over the UART its colour and `refl` replies (decimal, and hex answered
+/// in hex) agree with the host's independent f64 check ([`Oracle`]); `save`/`load` answer
+/// `err storage` and the mixing words `err unknown-command`.
+#[test]
+fn small_build_fits_32_kib_and_agrees_with_the_f64_check() {
+    let dir = small_build();
+    let (flash, ram) = budget(&dir.join("specpoly-firmware"));
+    println!("32 KiB build: flash {flash} B, static RAM {ram} B");
+    assert!(
+        flash <= SMALL_FLASH_BUDGET,
+        "flash {flash} B over {SMALL_FLASH_BUDGET} B"
+    );
+    assert!(ram <= RAM_BUDGET, "static RAM {ram} B over {RAM_BUDGET} B");
+    let (code, out) = run_to_exit(&dir.join("selftest"), &["-icount", "shift=0"]);
+    assert_eq!(code, Some(0), "small selftest failed under QEMU:\n{out}");
+    assert!(
+        out.contains("selftest: pass") && !out.contains("FAIL"),
+        "{out}"
+    );
+    assert!(!out.contains("insns mix"), "{out}");
+    for l in out.lines().filter(|l| l.starts_with("insns ")) {
+        println!("small build: {l}");
+    }
+
+    let emu = Emulator::start_elf(dir.join("specpoly-firmware"), &[]);
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    let max = link.hello().expect("hello");
+    let xy = [[0.68, 0.31], [0.2, 0.71], [0.14, 0.05]];
+    let lum = [3.0, 8.0, 1.2];
+    let srgb = [Transfer::Srgb, Transfer::Srgb, Transfer::Srgb];
+    assert_eq!(
+        link.send("cal 0.68 0.31 3 0.2 0.71 8 0.14 0.05 1.2")
+            .unwrap(),
+        Reply::Done("cal")
+    );
+    assert_eq!(link.send("trc rgb srgb").unwrap(), Reply::Done("trc"));
+    let two = [
+        "colorchecker#orange".to_owned(),
+        "colorchecker#blue".to_owned(),
+    ];
+    let lines = [
+        "xyz 20 20 20".to_owned(),
+        "xyy 0.2 0.6 30".to_owned(),
+        refl(Preset::Poly, Illuminant::D65, &two).unwrap(),
+        refl_hex(Preset::Poly, Illuminant::D65, &two).unwrap(),
+        refl_hex(Preset::Paper, Illuminant::FL11, &two).unwrap(),
+    ];
+    let oracle = Oracle::new(xy, lum, srgb, GamutMap::Clip, Observer::Cie1931, max);
+    for line in &lines {
+        let dev = colour(link.send(line).unwrap());
+        let cmd = Command::parse(line).unwrap();
+        if let Err(e) = oracle.verify(&cmd, &dev) {
+            panic!("{line:.60}: {e}; device {dev:?}");
+        }
+        assert_eq!(
+            dev.hex,
+            matches!(cmd, Command::Reflect { hex: true, .. }),
+            "{line:.60}"
+        );
+    }
+    for (line, code) in [
+        ("save", "err storage"),
+        ("load", "err storage"),
+        ("cct 4000 0 0.5", "err unknown-command"),
+        ("channel clear", "err unknown-command"),
+    ] {
+        let text = link.exchange_unchecked(line).unwrap();
+        assert!(text.starts_with(code), "{line} → {text}");
+    }
+    std::thread::sleep(Duration::from_millis(200));
+    let log = emu.log();
+    assert_eq!(log.lines().next(), Some("specpoly-led ready"), "{log}");
+    assert_total_ram(&emu.elf, &log);
+}
+
 /// A panic reaches the host as a defmt `error` frame naming its location, and QEMU exits
 /// with a failure code (`firmware/src/bin/panic.rs` panics on purpose).
 #[test]
@@ -329,7 +437,11 @@ impl Emulator {
 
     /// Starts QEMU with `extra` arguments.
     fn start_with(extra: &[&str]) -> Self {
-        let elf = default_build().join("specpoly-firmware");
+        Self::start_elf(default_build().join("specpoly-firmware"), extra)
+    }
+
+    /// Starts QEMU on `elf` with `extra` arguments.
+    fn start_elf(elf: PathBuf, extra: &[&str]) -> Self {
         let mut args = vec!["-serial", "pty"];
         args.extend_from_slice(extra);
         let mut child = qemu(&elf, &args)
@@ -514,6 +626,9 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
             if let Err(e) = oracle.verify(&cmd, &dev) {
                 panic!("{line:.60}: {e}; device {dev:?}");
             }
+            // a hex `refl` line is answered in hex, every other line in decimal
+            let hex = matches!(cmd, Command::Reflect { hex: true, .. });
+            assert_eq!(dev.hex, hex, "{line:.60}");
             if dev.gamut != Gamut::In {
                 out_of_gamut += 1;
                 assert_eq!(dev.gamut, Gamut::Out(map));
@@ -1142,7 +1257,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
                 "--release",
                 "--no-default-features",
                 "--features",
-                "stm32f4",
+                "stm32f4,full",
                 "--bin",
                 "stm32f4",
                 "--target",

@@ -4,12 +4,14 @@
 //! assembly. The only `unsafe` of the project is here: memory-mapped registers, the stack region
 //! and the call into the assembly kernel, each block with its reason.
 
+#[cfg(feature = "settings")]
 pub mod flash;
 pub mod icount;
 pub mod pwm;
 pub mod rgb565;
 pub mod rgb888;
 pub mod stack;
+mod transform_asm;
 pub mod uart;
 pub mod vectors;
 

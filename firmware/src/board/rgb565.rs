@@ -66,7 +66,7 @@ static THRESHOLDS: [[u16; 8]; 8] = {
     t
 };
 
-core::arch::global_asm!(
+core::arch::global_asm!(concat!(
     r#"
     .syntax unified
     .thumb
@@ -79,40 +79,9 @@ core::arch::global_asm!(
 @ r6/r7 m01 R/G, r8 m2rg; temporaries r9-r12, lr. Stack: [sp, 0..16) thresholds, 16 end,
 @ 20 m01b, 24 m2b.
 .macro PIXEL k
-    ldrb    r9, [r0, #2]
-    ldrb    r10, [r0, #1]
-    ldrb    r11, [r0], #3
-    ldrh    r9, [r2, r9, lsl #1]        @ d2
-    ldrh    r10, [r2, r10, lsl #1]      @ d1
-    ldrh    r11, [r2, r11, lsl #1]      @ d0
-    pkhbt   r10, r11, r10, lsl #16      @ d0 | d1 << 16
-    ldr     r11, [sp, #24]
-    smulbb  r11, r11, r9
-    ldr     r12, [sp, #20]
-    smlad   r11, r12, r10, r11          @ acc B
-    smultb  r12, r8, r9
-    smlad   r12, r7, r10, r12           @ acc G
-    smulbb  r9, r8, r9
-    smlad   r10, r6, r10, r9            @ acc R
-    usat    r9, #7, r10, asr #16        @ R: index = Σ usat(acc >> (14 + a), n)
-    add     r9, r3, r9, lsl #1
-    usat    lr, #9, r10, asr #18
-    add     r9, r9, lr, lsl #1
-    usat    r10, #9, r10, asr #20
-    ldrh    r10, [r9, r10, lsl #1]      @ level R (Q8 << 3)
-    usat    r9, #7, r12, asr #16        @ G
-    add     r9, r4, r9, lsl #1
-    usat    lr, #9, r12, asr #18
-    add     r9, r9, lr, lsl #1
-    usat    r12, #9, r12, asr #20
-    ldrh    r12, [r9, r12, lsl #1]      @ level G
-    usat    r9, #7, r11, asr #16        @ B
-    add     r9, r5, r9, lsl #1
-    usat    lr, #9, r11, asr #18
-    add     r9, r9, lr, lsl #1
-    usat    r11, #9, r11, asr #20
-    ldrh    r11, [r9, r11, lsl #1]      @ level B
-    ldrh    r9, [sp, #(2 * \k)]         @ threshold t
+"#,
+    super::transform_asm::transform_asm!("20", "24", ", lsl #1", "ldrh"),
+    r#"    ldrh    r9, [sp, #(2 * \k)]         @ threshold t
     add     r10, r10, r9, lsl #3        @ levels top-aligned: R << 3, G << 2, B << 3
     and     r10, r10, #0xF800           @ R code << 11
     add     r12, r12, r9, lsl #2
@@ -182,7 +151,7 @@ specpoly_rgb565_run:
     pop     {{r4-r11, pc}}
     .size specpoly_rgb565_run, . - specpoly_rgb565_run
 "#
-);
+));
 
 extern "C" {
     fn specpoly_rgb565_run(frame: *const Frame);

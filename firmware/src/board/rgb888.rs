@@ -45,7 +45,7 @@ struct Run {
     m2b: u32,
 }
 
-core::arch::global_asm!(
+core::arch::global_asm!(concat!(
     r#"
     .syntax unified
     .thumb
@@ -54,40 +54,9 @@ core::arch::global_asm!(
 @ r8 m2rg; temporaries r9-r12, lr. Stack: [sp, 0] end, 4 m01b, 8 m2b. \packed: 3 bytes R G B,
 @ else one word 0x00RRGGBB.
 .macro PIXEL888 packed
-    ldrb    r9, [r0, #2]
-    ldrb    r10, [r0, #1]
-    ldrb    r11, [r0], #3
-    ldrh    r9, [r2, r9, lsl #1]        @ d2
-    ldrh    r10, [r2, r10, lsl #1]      @ d1
-    ldrh    r11, [r2, r11, lsl #1]      @ d0
-    pkhbt   r10, r11, r10, lsl #16      @ d0 | d1 << 16
-    ldr     r11, [sp, #8]
-    smulbb  r11, r11, r9
-    ldr     r12, [sp, #4]
-    smlad   r11, r12, r10, r11          @ acc B
-    smultb  r12, r8, r9
-    smlad   r12, r7, r10, r12           @ acc G
-    smulbb  r9, r8, r9
-    smlad   r10, r6, r10, r9            @ acc R
-    usat    r9, #7, r10, asr #16        @ R: index = sum of usat(acc >> (14 + a), n)
-    add     r9, r3, r9
-    usat    lr, #9, r10, asr #18
-    add     r9, r9, lr
-    usat    r10, #9, r10, asr #20
-    ldrb    r10, [r9, r10]              @ code R
-    usat    r9, #7, r12, asr #16        @ G
-    add     r9, r4, r9
-    usat    lr, #9, r12, asr #18
-    add     r9, r9, lr
-    usat    r12, #9, r12, asr #20
-    ldrb    r12, [r9, r12]              @ code G
-    usat    r9, #7, r11, asr #16        @ B
-    add     r9, r5, r9
-    usat    lr, #9, r11, asr #18
-    add     r9, r9, lr
-    usat    r11, #9, r11, asr #20
-    ldrb    r11, [r9, r11]              @ code B
-.if \packed
+"#,
+    super::transform_asm::transform_asm!("4", "8", "", "ldrb"),
+    r#".if \packed
     strb    r12, [r1, #1]
     strb    r11, [r1, #2]
     strb    r10, [r1], #3
@@ -141,7 +110,7 @@ core::arch::global_asm!(
     RUN888 specpoly_rgb888_xrgb_run, 0
     RUN888 specpoly_rgb888_packed_run, 1
 "#
-);
+));
 
 extern "C" {
     fn specpoly_rgb888_xrgb_run(run: *const Run);

@@ -611,6 +611,7 @@ mod tests {
                     illuminant: ill,
                     product,
                     factors: 1,
+                    hex: false,
                 };
                 let want = o.target(&cmd).unwrap();
                 for (g, w) in got.to_array().iter().zip(want) {

@@ -45,11 +45,35 @@ impl Model {
     /// be a finite f32 — what the firmware's `Controller` answers (firmware/PROTOCOL.md,
     /// `not-finite`), so a fake controller built on this model refuses the same inputs.
     pub fn answer(&self, target: Xyz) -> Reply {
-        let report = self.colour(target);
+        self.answer_in(target, false)
+    }
+
+    /// [`Model::answer`] with the numbers in the compact hexadecimal form when `hex` (the
+    /// reply to a `refl` line written in that form, as the firmware answers it).
+    pub fn answer_in(&self, target: Xyz, hex: bool) -> Reply {
+        let report = ColourReport {
+            hex,
+            ..self.colour(target)
+        };
         if report.is_finite() {
             Reply::Colour(report)
         } else {
             Reply::Error(Fault::new(ErrorCode::NotFinite))
+        }
+    }
+
+    /// The reply to a colour command (`xyz`, `xyy`, `refl`); `None` for other commands.
+    pub fn reply(&self, cmd: &Command) -> Option<Reply> {
+        match cmd {
+            Command::Xyz(v) => Some(self.answer(*v)),
+            Command::Xyy(v) => Some(self.answer(v.to_xyz())),
+            Command::Reflect {
+                illuminant,
+                product,
+                hex,
+                ..
+            } => Some(self.answer_in(self.reflectance_xyz(*illuminant, product), *hex)),
+            _ => None,
         }
     }
 }
