@@ -38,6 +38,9 @@ pub struct Controller {
     max: u16,
     /// The multi-channel mixer (`channel`, `xy`, `cct`, `fade`: [`crate::mix`]).
     pub mixer: DeviceMixer,
+    /// The drive-correction table in flash ([`crate::lut`]).
+    #[cfg(feature = "lut")]
+    pub lut: crate::lut::Lut,
 }
 
 impl Controller {
@@ -62,7 +65,49 @@ impl Controller {
             duty: [0; 3],
             max,
             mixer: DeviceMixer::new(),
+            #[cfg(feature = "lut")]
+            lut: crate::lut::Lut::new(),
         }
+    }
+
+    /// The table's flash region ([`crate::lut`]); the table stored there applies when it was
+    /// made for the current calibration.
+    #[cfg(feature = "lut")]
+    pub fn attach_lut(&mut self, region: &'static mut dyn crate::lut::Region) {
+        self.lut.attach(region);
+        self.refresh_lut();
+    }
+
+    /// Whether the stored table applies to the current calibration (after `cal`, `trc`, a
+    /// loaded record, an upload).
+    fn refresh_lut(&mut self) {
+        #[cfg(feature = "lut")]
+        {
+            let key = self.calibration_key();
+            self.lut.refresh(key);
+        }
+    }
+
+    /// The key of the current primaries and curves
+    /// ([`specpoly_core::drive_table::calibration_key`]).
+    #[cfg(feature = "lut")]
+    fn calibration_key(&self) -> u32 {
+        specpoly_core::drive_table::calibration_key(
+            self.xy,
+            self.luminance,
+            self.display.transfer(),
+        )
+    }
+
+    /// The drive step for `target`: the core's matrix-model step, corrected by the table
+    /// when one applies ([`specpoly_core::drive_table::corrected`]).
+    fn drive(&mut self, target: Xyz) -> specpoly_core::Drive {
+        let plain = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        #[cfg(feature = "lut")]
+        if let Some(mut nodes) = self.lut.nodes() {
+            return specpoly_core::drive_table::corrected(&mut nodes, plain, self.max);
+        }
+        plain
     }
 
     /// [`Controller::new`] into `slot` (a static): built in a frame of its own, which is gone
@@ -115,6 +160,7 @@ impl Controller {
                 Ok(()) => {
                     self.xy = xy;
                     self.luminance = luminance;
+                    self.refresh_lut();
                     self.colour(self.target);
                     Reply::Done("cal")
                 }
@@ -127,6 +173,7 @@ impl Controller {
                         *c = curve.clone();
                     }
                 }
+                self.refresh_lut();
                 self.colour(self.target);
                 Reply::Done("trc")
             }
@@ -159,6 +206,16 @@ impl Controller {
                 mix::answer(&mut self.mixer, &cmd, self.max)
                     .unwrap_or(Reply::Error(Fault::new(ErrorCode::UnknownCommand)))
             }
+            #[cfg(feature = "lut")]
+            Command::Lut(c) => {
+                let key = self.calibration_key();
+                let reply = self.lut.command(&c, key);
+                self.colour(self.target);
+                reply
+            }
+            // built without the table (feature `lut`)
+            #[cfg(not(feature = "lut"))]
+            Command::Lut(_) => Reply::Error(Fault::at(ErrorCode::UnknownCommand, 0)),
         }
     }
 
@@ -191,6 +248,7 @@ impl Controller {
         self.luminance = h.luminance;
         self.map = h.map;
         self.observer = h.observer;
+        self.refresh_lut();
         self.colour(self.target);
         Ok(())
     }
@@ -203,9 +261,10 @@ impl Controller {
     }
 
     /// Shows `target` (white `Y = 100`): the core's drive step ([`Display::drive`]: gamut
-    /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties).
+    /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties),
+    /// corrected by the drive table when one applies ([`crate::lut`]).
     pub fn colour(&mut self, target: Xyz) -> ColourReport {
-        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        let drive = self.drive(target);
         self.target = target;
         self.duty = drive.level;
         ColourReport::of(target, &drive, self.map, self.max)
@@ -216,7 +275,7 @@ impl Controller {
     /// f32 (e.g. `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour
     /// replies are made, so no `ok` reply carries `nan` or `inf`.
     fn show(&mut self, target: Xyz) -> Reply {
-        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        let drive = self.drive(target);
         let report = ColourReport::of(target, &drive, self.map, self.max);
         if !report.is_finite() {
             return Reply::Error(Fault::new(ErrorCode::NotFinite));
@@ -242,6 +301,10 @@ impl Controller {
             ],
             map: self.map,
             observer: self.observer,
+            #[cfg(feature = "lut")]
+            lut: self.lut.applied(),
+            #[cfg(not(feature = "lut"))]
+            lut: 0,
             duty: self.duty,
             max: self.max,
         }

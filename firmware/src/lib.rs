@@ -26,6 +26,8 @@ pub mod fade;
 pub mod fuzz;
 pub mod led;
 pub mod lights;
+#[cfg(feature = "lut")]
+pub mod lut;
 pub mod mix;
 pub mod settings;
 pub mod store;

@@ -11,6 +11,8 @@
 use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m_rt::{entry, exception};
+#[cfg(feature = "lut")]
+use specpoly_firmware::board::flash::LutFlash;
 use specpoly_firmware::board::{
     flash::{RamFlash, PAGE, PAGES},
     pwm::ReportedPwm,
@@ -38,6 +40,9 @@ fn main() -> ! {
     static mut LINES: MaybeUninit<LineReader<MAX_LINE>> = MaybeUninit::uninit();
     static mut BUFFER: Buffer = Buffer::new();
     static mut CONTROLLER: MaybeUninit<Controller> = MaybeUninit::uninit();
+    // the drive table's flash region (zero-sized: the region is at a fixed address)
+    #[cfg(feature = "lut")]
+    static mut LUT_FLASH: MaybeUninit<LutFlash> = MaybeUninit::uninit();
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
@@ -58,6 +63,8 @@ fn main() -> ! {
         Err(_) => panic!("PWM stand-in"),
     };
     let controller = Controller::init(CONTROLLER, led.max());
+    #[cfg(feature = "lut")]
+    controller.attach_lut(LUT_FLASH.write(LutFlash::take()));
     let (lines, buffer) = (LINES.write(LineReader::new()), BUFFER);
     let Ok(mut store) = Store::new(Blocking(RamFlash::take()), 0..(PAGE * PAGES) as u32) else {
         // whole pages, at least two, by the constants

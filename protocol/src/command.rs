@@ -175,6 +175,8 @@ pub enum Command {
     Mix(Goal),
     /// `fade MS`: the fade time for new mix targets.
     Fade(u32),
+    /// `lut …`: the drive-correction table's upload ([`crate::lut`]).
+    Lut(crate::lut::LutCommand),
 }
 
 pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
@@ -364,6 +366,7 @@ impl Command {
             "xy" => crate::mix::parse_goal(&mut w, false)?,
             "cct" => crate::mix::parse_goal(&mut w, true)?,
             "fade" => crate::mix::parse_fade(&mut w)?,
+            "lut" => Command::Lut(crate::lut::parse(&mut w)?),
             _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
         };
         w.end()?;
@@ -426,6 +429,7 @@ impl Command {
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 crate::mix::write_command(w, self)
             }
+            Command::Lut(c) => c.write(w),
         }
     }
 }
