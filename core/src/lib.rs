@@ -63,6 +63,7 @@ pub mod colorimetry;
 pub mod display;
 pub mod display_model;
 pub mod drive;
+pub mod drive_table;
 pub mod error;
 pub mod fit;
 pub mod illuminant;

@@ -49,6 +49,9 @@ pub struct Controller {
     /// `mixing`).
     #[cfg(feature = "mixing")]
     pub mixer: DeviceMixer,
+    /// The drive-correction table in flash ([`crate::lut`]).
+    #[cfg(feature = "lut")]
+    pub lut: crate::lut::Lut,
 }
 
 impl Controller {
@@ -74,7 +77,49 @@ impl Controller {
             max,
             #[cfg(feature = "mixing")]
             mixer: DeviceMixer::new(),
+            #[cfg(feature = "lut")]
+            lut: crate::lut::Lut::new(),
         }
+    }
+
+    /// The table's flash region ([`crate::lut`]); the table stored there applies when it was
+    /// made for the current calibration.
+    #[cfg(feature = "lut")]
+    pub fn attach_lut(&mut self, region: &'static mut dyn crate::lut::Region) {
+        self.lut.attach(region);
+        self.refresh_lut();
+    }
+
+    /// Whether the stored table applies to the current calibration (after `cal`, `trc`, a
+    /// loaded record, an upload).
+    fn refresh_lut(&mut self) {
+        #[cfg(feature = "lut")]
+        {
+            let key = self.calibration_key();
+            self.lut.refresh(key);
+        }
+    }
+
+    /// The key of the current primaries and curves
+    /// ([`specpoly_core::drive_table::calibration_key`]).
+    #[cfg(feature = "lut")]
+    fn calibration_key(&self) -> u32 {
+        specpoly_core::drive_table::calibration_key(
+            self.xy,
+            self.luminance,
+            self.display.transfer(),
+        )
+    }
+
+    /// The drive step for `target`: the core's matrix-model step, corrected by the table
+    /// when one applies ([`specpoly_core::drive_table::corrected`]).
+    fn drive(&mut self, target: Xyz) -> specpoly_core::Drive {
+        let plain = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        #[cfg(feature = "lut")]
+        if let Some(mut nodes) = self.lut.nodes() {
+            return specpoly_core::drive_table::corrected(&mut nodes, plain, self.max);
+        }
+        plain
     }
 
     /// [`Controller::new`] into `slot` (a static): built in a frame of its own, which is gone
@@ -129,6 +174,7 @@ impl Controller {
                 Ok(()) => {
                     self.xy = xy;
                     self.luminance = luminance;
+                    self.refresh_lut();
                     self.colour(self.target);
                     Reply::Done("cal")
                 }
@@ -141,6 +187,7 @@ impl Controller {
                         *c = curve.clone();
                     }
                 }
+                self.refresh_lut();
                 self.colour(self.target);
                 Reply::Done("trc")
             }
@@ -179,6 +226,16 @@ impl Controller {
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 Reply::Error(Fault::new(ErrorCode::UnknownCommand))
             }
+            #[cfg(feature = "lut")]
+            Command::Lut(c) => {
+                let key = self.calibration_key();
+                let reply = self.lut.command(&c, key);
+                self.colour(self.target);
+                reply
+            }
+            // built without the table (feature `lut`)
+            #[cfg(not(feature = "lut"))]
+            Command::Lut(_) => Reply::Error(Fault::at(ErrorCode::UnknownCommand, 0)),
         }
     }
 
@@ -211,6 +268,7 @@ impl Controller {
         self.luminance = h.luminance;
         self.map = h.map;
         self.observer = h.observer;
+        self.refresh_lut();
         self.colour(self.target);
         Ok(())
     }
@@ -223,9 +281,10 @@ impl Controller {
     }
 
     /// Shows `target` (white `Y = 100`): the core's drive step ([`Display::drive`]: gamut
-    /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties).
+    /// mapping, transfer curves, quantisation, and the XYZ the LED then emits at those duties),
+    /// corrected by the drive table when one applies ([`crate::lut`]).
     pub fn colour(&mut self, target: Xyz) -> ColourReport {
-        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        let drive = self.drive(target);
         self.target = target;
         self.duty = drive.level;
         ColourReport::of(target, &drive, self.map, self.max)
@@ -237,7 +296,7 @@ impl Controller {
     /// replies are made, so no `ok` reply carries `nan` or `inf`. `hex`: the numbers in the
     /// compact form (a `refl` line written in it).
     fn show(&mut self, target: Xyz, hex: bool) -> Reply {
-        let drive = specpoly_kernels::drive(&self.display, target, self.map, self.max);
+        let drive = self.drive(target);
         let report = ColourReport {
             hex,
             ..ColourReport::of(target, &drive, self.map, self.max)
@@ -266,6 +325,10 @@ impl Controller {
             ],
             map: self.map,
             observer: self.observer,
+            #[cfg(feature = "lut")]
+            lut: self.lut.applied(),
+            #[cfg(not(feature = "lut"))]
+            lut: 0,
             duty: self.duty,
             max: self.max,
         }

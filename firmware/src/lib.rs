@@ -28,6 +28,8 @@ pub mod fade;
 pub mod fuzz;
 pub mod led;
 pub mod lights;
+#[cfg(feature = "lut")]
+pub mod lut;
 pub mod mix;
 pub mod settings;
 #[cfg(feature = "settings")]

@@ -11,6 +11,8 @@
 use core::mem::MaybeUninit;
 use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m_rt::{entry, exception};
+#[cfg(feature = "lut")]
+use specpoly_firmware::board::flash::LutFlash;
 #[cfg(feature = "settings")]
 use specpoly_firmware::board::flash::{RamFlash, PAGE, PAGES};
 use specpoly_firmware::board::{pwm::ReportedPwm, stack, uart::Uart};
@@ -44,6 +46,9 @@ fn main() -> ! {
     #[cfg(feature = "settings")]
     static mut BUFFER: Buffer = Buffer::new();
     static mut CONTROLLER: MaybeUninit<Controller> = MaybeUninit::uninit();
+    // the drive table's flash region (zero-sized: the region is at a fixed address)
+    #[cfg(feature = "lut")]
+    static mut LUT_FLASH: MaybeUninit<LutFlash> = MaybeUninit::uninit();
     stack::paint();
     let mut uart = Uart::uart0();
     if let Some(mut p) = cortex_m::Peripherals::take() {
@@ -64,6 +69,8 @@ fn main() -> ! {
         Err(_) => panic!("PWM stand-in"),
     };
     let controller = Controller::init(CONTROLLER, led.max());
+    #[cfg(feature = "lut")]
+    controller.attach_lut(LUT_FLASH.write(LutFlash::take()));
     let lines = LINES.write(LineReader::new());
     #[cfg(feature = "settings")]
     let mut storage: Storage = {

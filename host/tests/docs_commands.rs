@@ -189,6 +189,7 @@ fn serve(port: TTYPort, stop: Arc<AtomicBool>) {
                     trc: [CurveSummary::Linear; 3],
                     map,
                     observer: model.observer,
+                    lut: 0,
                     duty: [0; 3],
                     max: model.max,
                 }),

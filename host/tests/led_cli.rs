@@ -66,6 +66,7 @@ fn answer(b: Behaviour, model: &Model, mix: &mut MixModel, line: &str) -> String
                 trc: [CurveSummary::Linear; 3],
                 map: model.map,
                 observer: model.observer,
+                lut: 0,
                 duty: [0; 3],
                 max: model.max,
             })

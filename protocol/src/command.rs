@@ -179,6 +179,8 @@ pub enum Command {
     Mix(Goal),
     /// `fade MS`: the fade time for new mix targets.
     Fade(u32),
+    /// `lut …`: the drive-correction table's upload ([`crate::lut`]).
+    Lut(crate::lut::LutCommand),
 }
 
 pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
@@ -380,6 +382,8 @@ impl Command {
             "cct" => crate::mix::parse_goal(&mut w, true)?,
             #[cfg(feature = "mix")]
             "fade" => crate::mix::parse_fade(&mut w)?,
+            #[cfg(feature = "lut")]
+            "lut" => Command::Lut(crate::lut::parse(&mut w)?),
             _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
         };
         w.end()?;
@@ -449,6 +453,7 @@ impl Command {
             Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
                 crate::mix::write_command(w, self)
             }
+            Command::Lut(c) => c.write(w),
         }
     }
 }

@@ -43,11 +43,17 @@ pub enum ErrorCode {
     NoChannels,
     /// A mix target the channels cannot make (`out-of-gamut`); nothing changes.
     OutOfGamut,
+    /// A `lut row` or `lut end` out of order: no upload begun, a row other than the next, or
+    /// an end before the last row (`lut-order`); the upload is abandoned.
+    LutOrder,
+    /// A `lut end` whose checksum is not that of the rows stored (`lut-check`); the table is
+    /// discarded.
+    LutCheck,
 }
 
 impl ErrorCode {
     /// Every code.
-    pub const ALL: [ErrorCode; 17] = [
+    pub const ALL: [ErrorCode; 19] = [
         ErrorCode::TooLong,
         ErrorCode::BadByte,
         ErrorCode::UnknownCommand,
@@ -65,6 +71,8 @@ impl ErrorCode {
         ErrorCode::NotFinite,
         ErrorCode::NoChannels,
         ErrorCode::OutOfGamut,
+        ErrorCode::LutOrder,
+        ErrorCode::LutCheck,
     ];
 
     /// The wire name.
@@ -87,6 +95,8 @@ impl ErrorCode {
             ErrorCode::NotFinite => "not-finite",
             ErrorCode::NoChannels => "no-channels",
             ErrorCode::OutOfGamut => "out-of-gamut",
+            ErrorCode::LutOrder => "lut-order",
+            ErrorCode::LutCheck => "lut-check",
         }
     }
 

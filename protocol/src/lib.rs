@@ -8,6 +8,7 @@
 //!
 //! - [`LineReader`] assembles bounded lines from bytes;
 //! - [`Command`] is a request (host → controller), [`Reply`] an answer (controller → host);
+//! - [`lut`]: the drive-correction table's upload (`lut begin|row|end|off`);
 //! - [`mix`]: the multi-channel mixing commands and the one place they are answered;
 //! - [`number`] reads and writes decimals without `core`'s large float tables.
 //!
@@ -21,6 +22,7 @@
 pub mod command;
 pub mod fault;
 pub mod line;
+pub mod lut;
 pub mod mix;
 pub mod number;
 pub mod reply;
@@ -28,6 +30,7 @@ pub mod reply;
 pub use command::{write_reflect, write_reflect_hex, Channels, Command, Reflectance};
 pub use fault::{ErrorCode, Fault};
 pub use line::LineReader;
+pub use lut::LutCommand;
 pub use mix::{ChannelCommand, DeviceMixer, MixReport, MIX_CHANNELS};
 pub use reply::{ColourReport, CurveSummary, Gamut, Reply, StateReport};
 

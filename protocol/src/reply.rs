@@ -111,6 +111,10 @@ pub struct StateReport {
     pub map: GamutMap,
     /// Observer (`observer=`).
     pub observer: Observer,
+    /// The grid side of the drive-correction table applied to colours (`lut=`; 0: none, or
+    /// one stored for another calibration). A controller that predates tables omits the key:
+    /// read as 0.
+    pub lut: u8,
     /// Current duties (`duty=`) out of `max` (`max=`).
     pub duty: [u16; 3],
     /// Full-scale duty.
@@ -142,8 +146,8 @@ pub enum Reply {
 }
 
 /// Settings acknowledged by [`Reply::Done`].
-pub const SETTINGS: [&str; 8] = [
-    "cal", "trc", "map", "observer", "save", "load", "channel", "fade",
+pub const SETTINGS: [&str; 9] = [
+    "cal", "trc", "map", "observer", "save", "load", "channel", "fade", "lut",
 ];
 
 fn write_duty<W: Write>(w: &mut W, duty: [u16; 3], max: u16) -> fmt::Result {
@@ -221,6 +225,8 @@ impl Reply {
                 w.write_str(map_name(s.map))?;
                 w.write_str(" observer=")?;
                 w.write_str(s.observer.name())?;
+                w.write_str(" lut=")?;
+                write_int(w, s.lut as i64)?;
                 write_duty(w, s.duty, s.max)
             }
             Reply::Mix(r) => crate::mix::write_report(w, r),
@@ -318,6 +324,10 @@ impl Reply {
                     trc,
                     map,
                     observer,
+                    lut: match keys.lut {
+                        None => 0,
+                        Some(v) => parse_u16(v).and_then(|n| u8::try_from(n).ok()).ok_or(bad)?,
+                    },
                     duty: keys.duty()?,
                     max: keys.int(keys.max)?,
                 }))
@@ -364,6 +374,7 @@ struct Keys<'a> {
     trc: Option<&'a str>,
     map: Option<&'a str>,
     observer: Option<&'a str>,
+    lut: Option<&'a str>,
 }
 
 impl<'a> Keys<'a> {
@@ -381,6 +392,7 @@ impl<'a> Keys<'a> {
             "trc" => &mut self.trc,
             "map" => &mut self.map,
             "observer" => &mut self.observer,
+            "lut" => &mut self.lut,
             _ => return,
         };
         *slot = Some(v);

@@ -285,6 +285,7 @@ proptest! {
             trc: [CurveSummary::Gamma(gm), CurveSummary::Table(64), CurveSummary::Srgb],
             map: GamutMap::Desaturate,
             observer: Observer::Cie1964,
+            lut: 17,
             duty: [65535; 3],
             max: 65535,
         });

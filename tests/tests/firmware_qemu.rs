@@ -1490,3 +1490,138 @@ fn host_model_and_firmware_refuse_the_same_colours() {
         "refused {refused}, agreed {agreed}"
     );
 }
+
+/// The full display model on the controller (issue 12): the drive-correction table
+/// (`specpoly_core::drive_table`, `lut` commands) for the Lenovo and the Surface fits of
+/// data/ti3, uploaded as `led --calibration` sends it. Every colour reply equals the host
+/// model's (`Model::answer_with`, the same core calls), and the full model at its duties shows
+/// the asked colour within `TABLE_DE` ΔE00 (the table's interpolation error against the exact
+/// inverse, measured in host/tests/led_table.rs); bad uploads are refused with one-line errors;
+/// `save` and a reset keep the table; the lut path stays within the RAM budget.
+#[test]
+fn the_drive_table_shows_the_full_model_on_the_device() {
+    use specpoly::calibrate::fit::{fit, FitOptions};
+    use specpoly::led::lines::{calibration, calibration_table, line};
+    use specpoly::led::table::{TABLE_DE, TABLE_MEAN_DE};
+    use specpoly::led::Model;
+
+    let dir = tempfile::tempdir().unwrap();
+    let sock = dir.path().join("monitor.sock");
+    let chardev = format!("socket,id=mon,path={},server=on,wait=off", sock.display());
+    let emu = Emulator::start_with(&["-chardev", &chardev, "-mon", "chardev=mon,mode=readline"]);
+    let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
+    let max = link.hello().expect("hello");
+    let mut last = None;
+    for name in [
+        "lenovo-thinkpad-x61_825.ti3",
+        "microsoft-surface-pro-2017_825.ti3",
+    ] {
+        let text = std::fs::read_to_string(repo().join("data/ti3").join(name)).unwrap();
+        let readings = specpoly::io::cgats::read_ti3(&text, name)
+            .unwrap()
+            .measurements;
+        let path = dir.path().join(format!("{name}.toml"));
+        fit(&readings, &FitOptions::default())
+            .unwrap()
+            .save(&path)
+            .unwrap();
+        let t = calibration_table(&path).unwrap().expect("a lattice");
+        let mut bytes = 0;
+        for l in calibration(&path)
+            .unwrap()
+            .into_iter()
+            .chain(t.table.commands().iter().map(line))
+        {
+            bytes += l.len() + 1;
+            assert!(matches!(link.send(&l), Ok(Reply::Done(_))), "{l}");
+        }
+        println!(
+            "{name}: table {}³, {bytes} B sent: {:.2} s at 115 200 baud (8N1)",
+            t.table.grid,
+            bytes as f64 * 10.0 / 115_200.0
+        );
+        assert_eq!(state(&mut link).lut as usize, t.table.grid);
+        let model = Model {
+            display: t.matrix.clone(),
+            map: GamutMap::Clip,
+            observer: Observer::Cie1931,
+            max,
+        };
+        let (mut sum, mut worst, mut n) = (0.0, 0.0f64, 0);
+        let levels = [0.1f32, 0.3, 0.5, 0.7, 0.9];
+        for r in levels {
+            for g in levels {
+                for b in levels {
+                    // a colour the full model shows, as the controller's relative XYZ
+                    let want = t.model.device_to_xyz([r, g, b]);
+                    let rel = want.scale(100.0 / t.matrix.white().y);
+                    let l = line(&Command::Xyz(rel));
+                    let Ok(Command::Xyz(sent)) = Command::parse(&l) else {
+                        panic!("{l}")
+                    };
+                    let reply = link.send(&l).unwrap();
+                    assert_eq!(
+                        reply,
+                        model.answer_with(sent, Some(&t.table)),
+                        "{name}: {l}"
+                    );
+                    let c = colour(reply);
+                    if c.gamut != Gamut::In {
+                        continue;
+                    }
+                    if let Some(de) = t.miss(sent, c.duty, c.max) {
+                        assert!(de <= TABLE_DE, "{name}: {l}: ΔE00 {de}");
+                        (sum, worst, n) = (sum + de, worst.max(de), n + 1);
+                    }
+                }
+            }
+        }
+        let mean = sum / n as f64;
+        println!("{name}: {n} colours, ΔE00 mean {mean:.3} max {worst:.3}");
+        assert!(
+            n >= 100 && mean <= TABLE_MEAN_DE,
+            "{name}: {n} colours, mean {mean}"
+        );
+        last = Some((t, model));
+    }
+    let (t, _) = last.unwrap();
+
+    // refused uploads: one-line errors, and the stored table is gone until a good one
+    let err = |l: &str, link: &mut Link<_>| link.exchange(l).unwrap();
+    assert_eq!(
+        err("lut row 0 1 2 3 4 5 6", &mut link),
+        "err lut-order at=2"
+    );
+    assert_eq!(err("lut begin 14", &mut link), "err out-of-range at=2");
+    assert_eq!(state(&mut link).lut as usize, t.table.grid);
+    let cmds: Vec<String> = t.table.commands().iter().map(line).collect();
+    assert_eq!(link.exchange(&cmds[0]).unwrap(), "ok lut");
+    assert_eq!(state(&mut link).lut, 0);
+    assert_eq!(link.exchange(&cmds[2]).unwrap(), "err lut-order at=2");
+    assert_eq!(link.exchange(&cmds[0]).unwrap(), "ok lut");
+    for c in &cmds[1..cmds.len() - 1] {
+        assert_eq!(link.exchange(c).unwrap(), "ok lut");
+    }
+    assert_eq!(
+        link.exchange("lut end 00000000").unwrap(),
+        "err lut-check at=2"
+    );
+    assert_eq!(state(&mut link).lut, 0);
+    for c in &cmds {
+        assert_eq!(link.exchange(c).unwrap(), "ok lut");
+    }
+    assert_eq!(state(&mut link).lut as usize, t.table.grid);
+
+    // `save` and a reset: the calibration comes back and with it the table
+    let probe = "xyz 30 25 20";
+    let before = link.send(probe).unwrap();
+    assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
+    let mut monitor = std::os::unix::net::UnixStream::connect(&sock).expect("QEMU's monitor");
+    std::io::Write::write_all(&mut monitor, b"system_reset\n").unwrap();
+    wait_for_log_across_reset(&emu, "settings loaded from flash");
+    link.hello().expect("hello after the reset");
+    assert_eq!(state(&mut link).lut as usize, t.table.grid);
+    assert_eq!(link.send(probe).unwrap(), before);
+    std::thread::sleep(Duration::from_millis(200));
+    assert_total_ram(&emu.elf, &emu.log_across_reset());
+}

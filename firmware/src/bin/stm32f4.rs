@@ -7,6 +7,8 @@
 
 use cortex_m_rt::entry;
 use heapless::String;
+#[cfg(feature = "lut")]
+use specpoly_firmware::stm32f4::flash::LutFlash;
 use specpoly_firmware::stm32f4::flash::{SettingsFlash, SECTOR, SECTORS};
 use specpoly_firmware::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_firmware::{Controller, RgbLed};
@@ -15,6 +17,9 @@ use stm32f4xx_hal::{block, nb, pac, prelude::*, rcc::Config, serial::Serial};
 
 #[entry]
 fn main() -> ! {
+    // the drive table's flash handle (cortex-m-rt makes it a `&'static mut`)
+    #[cfg(feature = "lut")]
+    static mut LUT_FLASH: core::mem::MaybeUninit<LutFlash> = core::mem::MaybeUninit::uninit();
     let Some(dp) = pac::Peripherals::take() else {
         panic!("peripherals taken twice");
     };
@@ -38,6 +43,9 @@ fn main() -> ! {
         panic!("TIM3 channels");
     };
     let mut controller = Controller::new(led.max());
+    // the drive table's sector (feature `lut`), before the settings are restored
+    #[cfg(feature = "lut")]
+    controller.attach_lut(LUT_FLASH.write(LutFlash::take()));
     let mut buffer = Buffer::new();
     let flash = Blocking(SettingsFlash::new(dp.FLASH));
     let Ok(mut store) = Store::new(flash, 0..(SECTOR * SECTORS) as u32) else {

@@ -4,7 +4,7 @@
 //! assembly. The only `unsafe` of the project is here: memory-mapped registers, the stack region
 //! and the call into the assembly kernel, each block with its reason.
 
-#[cfg(feature = "settings")]
+#[cfg(any(feature = "settings", feature = "lut"))]
 pub mod flash;
 pub mod icount;
 pub mod pwm;

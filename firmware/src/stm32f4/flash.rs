@@ -25,50 +25,77 @@ pub const FIRST_SECTOR: u8 = 6;
 pub const SECTORS: usize = 2;
 
 /// Sectors 6–7 as a NOR flash; offsets relative to sector 6.
-pub struct SettingsFlash {
+pub type SettingsFlash = SectorFlash<FIRST_SECTOR, SECTORS>;
+
+/// The drive-correction table's sector (feature `lut`, [`crate::lut`]): sector 5, 128 KiB at
+/// `0x0802_0000`, below the settings and outside the image (`memory-stm32f4.x.in` ends FLASH
+/// at sector 5).
+pub type LutFlash = SectorFlash<5, 1>;
+
+/// `N` 128 KiB sectors from sector `FIRST` (5–7) as a NOR flash; offsets relative to sector
+/// `FIRST`.
+pub struct SectorFlash<const FIRST: u8, const N: usize> {
     flash: FLASH,
 }
 
-impl SettingsFlash {
+impl<const FIRST: u8, const N: usize> SectorFlash<FIRST, N> {
     /// Takes the flash interface.
     pub fn new(flash: FLASH) -> Self {
         Self { flash }
     }
+
+    /// Offset of sector `FIRST` from the flash base (sector 5 is at 128 KiB).
+    const OFFSET: usize = 0x2_0000 + (FIRST as usize - 5) * SECTOR;
 }
 
-fn check(offset: u32, len: usize, align: usize) -> Result<usize, NorFlashErrorKind> {
+impl LutFlash {
+    /// The table's sector, through a second handle on the flash interface.
+    pub fn take() -> Self {
+        // SAFETY: the flash interface is shared with the settings' [`SettingsFlash`]; both
+        // are used only from the main loop, one call at a time (a `lut` command or a `save`),
+        // and every call leaves the interface locked, as it found it.
+        Self::new(unsafe { stm32f4xx_hal::pac::Peripherals::steal() }.FLASH)
+    }
+}
+
+fn check<const N: usize>(
+    offset: u32,
+    len: usize,
+    align: usize,
+) -> Result<usize, NorFlashErrorKind> {
     let offset = offset as usize;
     if !offset.is_multiple_of(align) || !len.is_multiple_of(align) {
         return Err(NorFlashErrorKind::NotAligned);
     }
     match offset.checked_add(len) {
-        Some(end) if end <= SECTOR * SECTORS => Ok(offset),
+        Some(end) if end <= SECTOR * N => Ok(offset),
         _ => Err(NorFlashErrorKind::OutOfBounds),
     }
 }
 
-impl ErrorType for SettingsFlash {
+impl<const FIRST: u8, const N: usize> ErrorType for SectorFlash<FIRST, N> {
     type Error = NorFlashErrorKind;
 }
 
-impl ReadNorFlash for SettingsFlash {
+impl<const FIRST: u8, const N: usize> ReadNorFlash for SectorFlash<FIRST, N> {
     const READ_SIZE: usize = 1;
 
     fn read(&mut self, offset: u32, bytes: &mut [u8]) -> Result<(), Self::Error> {
-        let at = FLASH_BASE + OFFSET + check(offset, bytes.len(), 1)?;
+        let at = FLASH_BASE + Self::OFFSET + check::<N>(offset, bytes.len(), 1)?;
         for (i, b) in bytes.iter_mut().enumerate() {
-            // SAFETY: inside sectors 6–7 of the memory-mapped flash (bounds checked above).
+            // SAFETY: inside this region's sectors of the memory-mapped flash (bounds checked
+            // above).
             *b = unsafe { read_volatile((at + i) as *const u8) };
         }
         Ok(())
     }
 
     fn capacity(&self) -> usize {
-        SECTOR * SECTORS
+        SECTOR * N
     }
 }
 
-impl NorFlash for SettingsFlash {
+impl<const FIRST: u8, const N: usize> NorFlash for SectorFlash<FIRST, N> {
     const WRITE_SIZE: usize = 1;
     const ERASE_SIZE: usize = SECTOR;
 
@@ -76,18 +103,18 @@ impl NorFlash for SettingsFlash {
         let len = (to as usize)
             .checked_sub(from as usize)
             .ok_or(NorFlashErrorKind::OutOfBounds)?;
-        let first = check(from, len, SECTOR)? / SECTOR;
+        let first = check::<N>(from, len, SECTOR)? / SECTOR;
         let mut unlocked = self.flash.unlocked();
         for s in first..first + len / SECTOR {
             unlocked
-                .erase(FIRST_SECTOR + s as u8)
+                .erase(FIRST + s as u8)
                 .map_err(|_| NorFlashErrorKind::Other)?;
         }
         Ok(())
     }
 
     fn write(&mut self, offset: u32, bytes: &[u8]) -> Result<(), Self::Error> {
-        let at = OFFSET + check(offset, bytes.len(), 1)?;
+        let at = Self::OFFSET + check::<N>(offset, bytes.len(), 1)?;
         self.flash
             .unlocked()
             .program(at, bytes.iter())
@@ -96,4 +123,4 @@ impl NorFlash for SettingsFlash {
 }
 
 /// The F4's flash has no ECC: programming a byte again only clears more bits.
-impl MultiwriteNorFlash for SettingsFlash {}
+impl<const FIRST: u8, const N: usize> MultiwriteNorFlash for SectorFlash<FIRST, N> {}

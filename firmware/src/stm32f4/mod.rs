@@ -12,7 +12,7 @@
 //! - logs: defmt over RTT (`probe-rs run`, or `defmt-print` on a captured RTT stream);
 //!   panics are logged and end in `udf`, which a debug probe reports.
 
-#[cfg(feature = "settings")]
+#[cfg(any(feature = "settings", feature = "lut"))]
 pub mod flash;
 
 // the global defmt logger: RTT, read by the debug probe

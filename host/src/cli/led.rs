@@ -13,6 +13,7 @@ use crate::error::{CliError, Result};
 use crate::io::stdout::{print, print_json};
 use crate::led::lines::{self, line, reply_line, Preset};
 use crate::led::mix_check::{MixOracle, Weight};
+use crate::led::table::{Correction, TABLE_DE};
 use crate::led::{Link, Oracle};
 use crate::light::load_channel;
 use specpoly_core::light::channels::{Curve as ChannelCurve, Goal};
@@ -156,6 +157,7 @@ fn check(
     got: &Reply,
     curves: Option<[Transfer; 3]>,
     mix: Option<&MixOracle>,
+    table: Option<&Correction>,
 ) -> Result<Option<String>> {
     let dev = match got {
         Reply::Colour(dev) => dev,
@@ -181,6 +183,9 @@ fn check(
     if oracle.target(&cmd).is_none() {
         return Ok(None);
     }
+    if let Some(t) = table {
+        return check_table(&oracle, &cmd, dev, t).map(Some);
+    }
     match oracle.verify(&cmd, dev) {
         Ok(a) => {
             let mut s = String::new();
@@ -197,6 +202,34 @@ fn check(
 }
 
 /// Checks a mix reply against the host's f64 computation from the channels' spectra.
+/// `--check` of a controller holding the drive-correction table: the target, linear drive and
+/// gamut verdict against the f64 reference (the table leaves them the matrix model's), and the
+/// full model's emission at the duties against the target within the table's bound
+/// ([`TABLE_DE`]).
+fn check_table(
+    oracle: &Oracle,
+    cmd: &Command,
+    dev: &specpoly_protocol::ColourReport,
+    t: &Correction,
+) -> Result<String> {
+    oracle
+        .verify_matrix_part(cmd, dev)
+        .map_err(|d| CliError::data(format!("the controller disagrees with the host: {d}")))?;
+    match t.miss(dev.xyz, dev.duty, dev.max) {
+        Some(de) if de <= TABLE_DE => Ok(format!(
+            "the host agrees (full model at the duties: ΔE00 {de:.3} ≤ {TABLE_DE})"
+        )),
+        Some(de) => Err(CliError::data(format!(
+            "the controller disagrees with the host: the full model at duty {:?} is ΔE00 {de:.3} from the target (bound {TABLE_DE})",
+            dev.duty
+        ))),
+        None => Ok(
+            "the host agrees on the target; the colour is outside the full model's gamut (duties not checked)"
+                .to_owned(),
+        ),
+    }
+}
+
 fn check_mix(sent: &str, r: &MixReport, oracle: Option<&MixOracle>) -> Result<String> {
     let oracle =
         oracle.ok_or_else(|| CliError::usage("--check of a mix needs its --channel spectra"))?;
@@ -238,10 +271,14 @@ fn mix_oracle(channels: &[String], weight: Weight) -> Result<MixOracle> {
 pub fn run(args: &LedArgs) -> Result<()> {
     // build every line first: usage errors before touching the device
     let mut settings = Vec::new();
+    let mut table = None;
     if let Some(path) = &args.calibration {
         settings.extend(lines::calibration(path)?);
-        if let Some(note) = lines::calibration_note(path)? {
-            eprintln!("{note}");
+        // the interaction lattice as a drive-correction table, after `cal` and `trc`: the
+        // controller binds it to the calibration it then holds
+        table = lines::calibration_table(path)?;
+        if let Some(t) = &table {
+            settings.extend(t.table.commands().iter().map(line));
         }
     }
     if let Some(p) = &args.primaries {
@@ -327,7 +364,14 @@ pub fn run(args: &LedArgs) -> Result<()> {
             ),
             None => None,
         };
-        agreed = check(&mut link, &action, &reply, curves, mix.as_ref())?;
+        agreed = check(
+            &mut link,
+            &action,
+            &reply,
+            curves,
+            mix.as_ref(),
+            table.as_ref(),
+        )?;
     }
     if args.json {
         let mut v = reply_json(&reply);

@@ -2,6 +2,7 @@
 //! own parser before anything is sent: settings (`cal`, `trc`) from the command line or a
 //! calibration file, and `refl` lines for named reflectances fitted on the host.
 
+use super::table::{Correction, DEFAULT_GRID};
 use crate::error::{CliError, Result};
 use crate::spectrum_names;
 use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum};
@@ -93,20 +94,22 @@ pub fn calibration(path: &std::path::Path) -> Result<Vec<String>> {
     Ok(lines)
 }
 
-/// What `led --calibration FILE` leaves out: a sentence when the calibration's model has an
-/// interaction lattice, which protocol 1 cannot carry (the controller gets the matrix model).
-pub fn calibration_note(path: &std::path::Path) -> Result<Option<String>> {
-    if crate::calibrate::icc_read::is_icc_file(path) {
+/// The drive-correction table for `led --calibration FILE` when the file's model has channel
+/// interaction (a calibration's lattice, or a LUT ICC profile's): built with the full model's
+/// exact inverse against the matrix model the `cal` and `trc` lines give the controller
+/// ([`super::table`]); `None` for a matrix model.
+pub fn calibration_table(path: &std::path::Path) -> Result<Option<Correction>> {
+    let Some(model) = crate::render::output::interaction_model(&path.to_string_lossy())? else {
         return Ok(None);
-    }
-    let cal = crate::calibrate::file::load(path)?;
-    Ok(cal.data().interaction.as_ref().map(|l| {
-        format!(
-            "note: {}: the interaction lattice ({} nodes a side) is not sent; the controller's protocol carries the matrix model only",
-            path.display(),
-            l.grid
-        )
-    }))
+    };
+    Correction::new(model, DEFAULT_GRID)
+        .map(Some)
+        .ok_or_else(|| {
+            CliError::data(format!(
+                "{}: the primaries span no colour space",
+                path.display()
+            ))
+        })
 }
 
 /// The `refl` line for named reflectances (names as in `specpoly xyz`; several are multiplied),

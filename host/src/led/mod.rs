@@ -12,8 +12,10 @@ pub mod lines;
 pub mod link;
 pub mod mix_check;
 pub mod model;
+pub mod table;
 
 pub use check::Oracle;
 pub use error::LedError;
 pub use link::Link;
 pub use model::{MixModel, Model};
+pub use table::DriveTable;

@@ -1,10 +1,12 @@
 //! The controller as the host models it: its settings and the **same core calls** the firmware
-//! makes — the drive step [`specpoly_core::Display::drive`] for a colour and
+//! makes — the drive step [`specpoly_core::Display::drive`] for a colour (corrected by
+//! [`specpoly_core::drive_table::corrected`] when the controller holds a table) and
 //! [`specpoly_core::Moments::xyz`] for a reflectance. The host's tests use it to play a
 //! faithful controller; whether a real controller is right is decided by the independent f64
 //! reference in [`crate::led::check`], not by this.
 
-use specpoly_core::{Display, GamutMap, Illuminant, Moments, Observer, Xyz};
+use super::table::DriveTable;
+use specpoly_core::{drive_table, Display, GamutMap, Illuminant, Moments, Observer, Xyz};
 use specpoly_protocol::{ColourReport, Command, DeviceMixer, ErrorCode, Fault, Reflectance, Reply};
 
 /// A controller's calibration and settings, as the host knows them.
@@ -32,12 +34,17 @@ impl Model {
 
     /// What the controller answers for `target` (white `Y = 100`): the core's drive step.
     pub fn colour(&self, target: Xyz) -> ColourReport {
-        ColourReport::of(
-            target,
-            &self.display.drive(target, self.map, self.max),
-            self.map,
-            self.max,
-        )
+        self.colour_with(target, None)
+    }
+
+    /// [`Model::colour`] on a controller holding the drive-correction table `table`
+    /// (`lut`, applied as the firmware applies it: [`drive_table::corrected`]).
+    pub fn colour_with(&self, target: Xyz, table: Option<&DriveTable>) -> ColourReport {
+        let mut drive = self.display.drive(target, self.map, self.max);
+        if let Some(mut t) = table.and_then(DriveTable::table) {
+            drive = drive_table::corrected(&mut t, drive, self.max);
+        }
+        ColourReport::of(target, &drive, self.map, self.max)
     }
 
     /// The controller's reply to a colour command (`xyz`, `xyy`, `refl`) whose target is
@@ -51,10 +58,19 @@ impl Model {
     /// [`Model::answer`] with the numbers in the compact hexadecimal form when `hex` (the
     /// reply to a `refl` line written in that form, as the firmware answers it).
     pub fn answer_in(&self, target: Xyz, hex: bool) -> Reply {
-        let report = ColourReport {
+        Self::finite(ColourReport {
             hex,
             ..self.colour(target)
-        };
+        })
+    }
+
+    /// [`Model::answer`] with the drive-correction table `table` applied.
+    pub fn answer_with(&self, target: Xyz, table: Option<&DriveTable>) -> Reply {
+        Self::finite(self.colour_with(target, table))
+    }
+
+    /// `report` as the reply, or `err not-finite` when one of its numbers is not finite.
+    fn finite(report: ColourReport) -> Reply {
         if report.is_finite() {
             Reply::Colour(report)
         } else {
