@@ -405,15 +405,12 @@ impl<const CAP: usize> DisplayModel<CAP> {
     ) -> Option<([f32; 3], f32)> {
         let g = l.grid();
         let top = (g - 1) as f32;
-        for i in 0..(g - 1) * (g - 1) * (g - 1) {
-            let j = [i / ((g - 1) * (g - 1)), i / (g - 1) % (g - 1), i % (g - 1)];
-            let lo = j.map(|n| n as f32 / top);
-            let hi = j.map(|n| (n + 1) as f32 / top);
-            if let Some(found) = self.bisect(l, lo, hi, resid, exact, s) {
-                return Some(found);
-            }
-        }
-        None
+        let cells = g - 1;
+        (0..cells * cells * cells).find_map(|i| {
+            let j = [i / (cells * cells), i / cells % cells, i % cells];
+            let (lo, hi) = (j.map(|n| n as f32 / top), j.map(|n| (n + 1) as f32 / top));
+            self.bisect(l, lo, hi, resid, exact, s)
+        })
     }
 
     /// The box `[lo, hi]` (inside one lattice cell): nothing if it cannot hold a root; a
@@ -461,13 +458,10 @@ impl<const CAP: usize> DisplayModel<CAP> {
             );
         }
         order.sort_unstable_by(|p, q| p.1.total_cmp(&q.1));
-        for (i, _) in order {
+        order.iter().find_map(|&(i, _)| {
             let (a, b) = half(i as usize);
-            if let Some(found) = self.bisect(l, a, b, resid, exact, s) {
-                return Some(found);
-            }
-        }
-        None
+            self.bisect(l, a, b, resid, exact, s)
+        })
     }
 
     /// Whether `f − w` may vanish on the box `[lo, hi]` inside one lattice cell: an enclosure
