@@ -429,7 +429,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
             return None;
         }
         s.boxes -= 1;
-        if !self.may_hold(l, lo, hi, s.w, s.k) {
+        if !self.may_hold(l, lo, hi, s) {
             return None;
         }
         let mid = [0, 1, 2].map(|c| 0.5 * (lo[c] + hi[c]));
@@ -464,18 +464,12 @@ impl<const CAP: usize> DisplayModel<CAP> {
         })
     }
 
-    /// Whether `f − w` may vanish on the box `[lo, hi]` inside one lattice cell: an enclosure
+    /// Whether `f − s.w` may vanish on the box `[lo, hi]` inside one lattice cell: an enclosure
     /// of `f` there, the matrix part from each channel's ends (the curves never decrease), the
     /// lattice's from the box's corners (trilinear inside a cell, it takes its extremes
     /// there), each component widened by [`ENCLOSURE_SLACK`] of the white's `Y`.
-    fn may_hold(
-        &self,
-        l: &Interaction<CAP>,
-        lo: [f32; 3],
-        hi: [f32; 3],
-        w: [f32; 3],
-        k: f32,
-    ) -> bool {
+    fn may_hold(&self, l: &Interaction<CAP>, lo: [f32; 3], hi: [f32; 3], s: &Search) -> bool {
+        let (w, k) = (s.w, s.k);
         let m = &self.display.rgb_to_xyz().0;
         let t = self.display.transfer();
         let b = self.display.black().to_array();
