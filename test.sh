@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
 # target, QEMU for the firmware, Chromium for the web patch display, ArgyllCMS for the
-# `--instrument argyll` tests), then formatting, lints,
+# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints,
 # all tests (host, core, cross-crate, firmware under QEMU) and the microcontroller build of the
 # core. Stops with a clear message if something cannot be installed; never skips a test.
 set -euo pipefail
@@ -13,6 +13,8 @@ missing=()
 command -v qemu-system-arm >/dev/null 2>&1 || missing+=(qemu-system-arm)
 command -v chromium >/dev/null 2>&1 || missing+=(chromium)
 command -v spotread >/dev/null 2>&1 || missing+=(argyll)
+command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`'s video LUT
+[ -x /bin/kill ] || missing+=(procps)   # that test ends the X server's process group with kill
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
@@ -25,7 +27,7 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread targen colprof profcheck iccdump applycal cc; do
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then

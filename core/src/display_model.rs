@@ -24,18 +24,27 @@
 //!    where it rises ([`Transfer::rise`]): the way off a flat foot that the true slope, 0,
 //!    cannot show; then once with central secants over 1/64 (slopes averaged across the kinks
 //!    of the table curves and of the lattice's cells).
-//! 3. If the prediction is still more than [`INVERSE_DE`] (ΔE00) off (a local minimum: where a curve is
-//!    nearly flat, a lattice slope of the other sign makes the prediction fold back), each
+//! 3. If the prediction is still more than [`INVERSE_DE`] (ΔE00) off (a local minimum: where a
+//!    curve is nearly flat, a lattice slope of the other sign makes the prediction fold back;
+//!    or a stall on a kink of a table or the lattice), a branch and bound over the lattice's
+//!    cells: a box is dropped when an enclosure of `f` over it excludes `w` (the matrix part
+//!    from each channel's ends, since every curve is non-decreasing; the lattice from the
+//!    box's corners, since it is trilinear inside a cell), otherwise halved on every channel
+//!    (the halves whose centres come nearest first) down to [`LEAF`] a side, and step 2 runs
+//!    from the centre of each box that is left, until one is exact. Every root lies in a box
+//!    that is never dropped, so the descent starts within `LEAF / 2` of it (bounded by
+//!    [`MAX_BOXES`] boxes and [`MAX_LEAF_STARTS`] descents).
+//! 4. If still above (outside the gamut, or out of budget), each
 //!    channel is scanned over its range (`SCAN_STEPS + 1` values, dense near 0, away from the
 //!    current value); at each value the other two are refitted by the matrix model and then
 //!    descended (step 2 with the channel held), and step 2 restarts from each channel's best
 //!    point: at most [`SCAN_ROUNDS`] rounds.
-//! 4. If still above: a coarse search over a `SEARCH_GRID³` lattice of device values (dense
+//! 5. If still above: a coarse search over a `SEARCH_GRID³` lattice of device values (dense
 //!    near 0 as the scans), and
 //!    step 2 from the [`RESTARTS`] best of them.
 //!
 //! Inside the gamut (`w = f(rgb₀)` for some `rgb₀` in the cube) it returns device values whose
-//! prediction is within [`INVERSE_DE`] of `w` (tested on every shipped display: ΔE00 ≤ 0.01
+//! prediction is within [`INVERSE_DE`] of `w` (tested on every shipped display: ΔE00 ≤ 0.001
 //! against an f64 evaluation of the model). Outside the gamut it returns the nearest
 //! prediction the cube allows, in the least-squares sense above, flagged not exact.
 //!
@@ -56,24 +65,38 @@ pub const FULL: usize = nodes(GRID_MAX);
 
 /// The CIEDE2000 difference (CIELAB relative to the model's white) between the prediction and
 /// the wanted colour at or below which the inverse is exact: half the round-trip tolerance the
-/// tests hold it to (0.01), so that f32 evaluation stays inside.
-pub const INVERSE_DE: f64 = 0.005;
+/// tests hold it to (0.001), so that f32 evaluation stays inside.
+pub const INVERSE_DE: f64 = 0.0005;
 
 /// Fixed-point rounds of the start (step 1).
 pub const FIXED_POINT_ROUNDS: usize = 4;
 
-/// Rounds of channel scans (step 3).
+/// Rounds of channel scans (step 4).
 pub const SCAN_ROUNDS: usize = 5;
 
 /// Values a channel scan tries: `(i / SCAN_STEPS)²`, `i = 0 ..= SCAN_STEPS`, dense near 0
 /// where curves are flat.
 pub const SCAN_STEPS: usize = 24;
 
-/// Side of the coarse search lattice (step 4), at device values `(i / (SEARCH_GRID − 1))²`.
+/// Side of the coarse search lattice (step 5), at device values `(i / (SEARCH_GRID − 1))²`.
 pub const SEARCH_GRID: usize = 7;
 
-/// Starts taken from the coarse search (step 4).
+/// Starts taken from the coarse search (step 5).
 pub const RESTARTS: usize = 3;
+
+/// Side below which the cell search (step 3) stops bisecting a box and descends from its
+/// centre: a table step of the finest curve.
+pub const LEAF: f32 = 1.0 / 64.0;
+
+/// Boxes the cell search may test per colour (its cost's bound).
+pub const MAX_BOXES: u32 = 4096;
+
+/// Descents the cell search may start per colour.
+pub const MAX_LEAF_STARTS: u32 = 64;
+
+/// How far outside its enclosure (over the white's `Y`) a box is still searched: the f32
+/// evaluation's error, with room.
+const ENCLOSURE_SLACK: f32 = 1e-5;
 
 /// Levenberg–Marquardt iterations per start.
 const MAX_ITERATIONS: u32 = 60;
@@ -105,8 +128,19 @@ pub struct Solution {
     pub exact: bool,
     /// Levenberg–Marquardt iterations taken, over all starts.
     pub iterations: u32,
-    /// Starts tried (the first, one per scan round, and those of the coarse search).
+    /// Starts tried (the first, one per box the cell search descends from, one per scan
+    /// round, and those of the coarse search).
     pub starts: u32,
+}
+
+/// The cell search's state (step 3): the wanted colour, the residuals' scale, what is left
+/// of its budgets, and the iterations it took.
+struct Search {
+    w: [f32; 3],
+    k: f32,
+    boxes: u32,
+    leaves: u32,
+    iterations: u32,
 }
 
 /// `a + b`, component-wise.
@@ -248,7 +282,25 @@ impl<const CAP: usize> DisplayModel<CAP> {
         // 2. Levenberg–Marquardt from there
         let (mut x, mut cost, mut iterations) = self.descend(&resid, k, best.0, [false; 3]);
         let mut starts = 1;
-        // 3. channel scans: each channel over its whole range, the other two refitted by the
+        // 3. the lattice cells that may hold a root, bisected, a descent from each small box
+        // that still may
+        if let Some(l) = self.interaction.as_ref().filter(|_| miss(x) > INVERSE_DE) {
+            let mut s = Search {
+                w,
+                k,
+                boxes: MAX_BOXES,
+                leaves: MAX_LEAF_STARTS,
+                iterations: 0,
+            };
+            let exact = |y: [f32; 3]| miss(y) <= INVERSE_DE;
+            let found = self.cell_search(l, &resid, &exact, &mut s);
+            iterations += s.iterations;
+            starts += MAX_LEAF_STARTS - s.leaves;
+            if let Some((y, cy)) = found {
+                (x, cost) = (y, cy);
+            }
+        }
+        // 4. channel scans: each channel over its whole range, the other two refitted by the
         // matrix model at each value; a descent from the best point found
         for _ in 0..SCAN_ROUNDS {
             if miss(x) <= INVERSE_DE {
@@ -291,7 +343,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
                 break;
             }
         }
-        // 4. a coarse search, and descents from its best points
+        // 5. a coarse search, and descents from its best points
         if miss(x) > INVERSE_DE {
             let mut seeds = [([0.0f32; 3], f32::INFINITY); RESTARTS];
             let top = (SEARCH_GRID - 1) as f32;
@@ -340,6 +392,116 @@ impl<const CAP: usize> DisplayModel<CAP> {
             iterations,
             starts,
         }
+    }
+
+    /// Step 3: every lattice cell that [`Self::may_hold`] a root, bisected
+    /// ([`Self::bisect`]); the first exact point found and its cost.
+    fn cell_search(
+        &self,
+        l: &Interaction<CAP>,
+        resid: &impl Fn([f32; 3]) -> [f32; 3],
+        exact: &impl Fn([f32; 3]) -> bool,
+        s: &mut Search,
+    ) -> Option<([f32; 3], f32)> {
+        let g = l.grid();
+        let top = (g - 1) as f32;
+        let cells = g - 1;
+        (0..cells * cells * cells).find_map(|i| {
+            let j = [i / (cells * cells), i / cells % cells, i % cells];
+            let (lo, hi) = (j.map(|n| n as f32 / top), j.map(|n| (n + 1) as f32 / top));
+            self.bisect(l, lo, hi, resid, exact, s)
+        })
+    }
+
+    /// The box `[lo, hi]` (inside one lattice cell): nothing if it cannot hold a root; a
+    /// descent from its centre if it is at most [`LEAF`] a side; else its eight halves, those
+    /// whose centres come nearest first. The first exact point found and its cost.
+    fn bisect(
+        &self,
+        l: &Interaction<CAP>,
+        lo: [f32; 3],
+        hi: [f32; 3],
+        resid: &impl Fn([f32; 3]) -> [f32; 3],
+        exact: &impl Fn([f32; 3]) -> bool,
+        s: &mut Search,
+    ) -> Option<([f32; 3], f32)> {
+        if s.boxes == 0 || s.leaves == 0 {
+            return None;
+        }
+        s.boxes -= 1;
+        if !self.may_hold(l, lo, hi, s) {
+            return None;
+        }
+        let mid = [0, 1, 2].map(|c| 0.5 * (lo[c] + hi[c]));
+        if (0..3).all(|c| hi[c] - lo[c] <= LEAF) {
+            s.leaves -= 1;
+            let (y, cy, n) = self.descend(resid, s.k, mid, [false; 3]);
+            s.iterations += n;
+            return exact(y).then_some((y, cy));
+        }
+        // half `i`: bit 2 − c says the upper half of channel c
+        let half = |i: usize| -> ([f32; 3], [f32; 3]) {
+            let (mut a, mut b) = (lo, mid);
+            for c in 0..3 {
+                if i >> (2 - c) & 1 == 1 {
+                    (a[c], b[c]) = (mid[c], hi[c]);
+                }
+            }
+            (a, b)
+        };
+        let mut order = [(0u8, 0.0f32); 8];
+        for (i, o) in order.iter_mut().enumerate() {
+            let (a, b) = half(i);
+            *o = (
+                i as u8,
+                norm2(resid([0, 1, 2].map(|c| 0.5 * (a[c] + b[c])))),
+            );
+        }
+        order.sort_unstable_by(|p, q| p.1.total_cmp(&q.1));
+        order.iter().find_map(|&(i, _)| {
+            let (a, b) = half(i as usize);
+            self.bisect(l, a, b, resid, exact, s)
+        })
+    }
+
+    /// Whether `f − s.w` may vanish on the box `[lo, hi]` inside one lattice cell: an enclosure
+    /// of `f` there, the matrix part from each channel's ends (the curves never decrease), the
+    /// lattice's from the box's corners (trilinear inside a cell, it takes its extremes
+    /// there), each component widened by [`ENCLOSURE_SLACK`] of the white's `Y`.
+    fn may_hold(&self, l: &Interaction<CAP>, lo: [f32; 3], hi: [f32; 3], s: &Search) -> bool {
+        let (w, k) = (s.w, s.k);
+        let m = &self.display.rgb_to_xyz().0;
+        let t = self.display.transfer();
+        let b = self.display.black().to_array();
+        let tl = [0, 1, 2].map(|c| t[c].decode(lo[c]));
+        let th = [0, 1, 2].map(|c| t[c].decode(hi[c]));
+        let mut low = [0, 1, 2].map(|r| b[r] - w[r]);
+        let mut high = low;
+        for r in 0..3 {
+            for c in 0..3 {
+                let (p, q) = (m[r][c] * tl[c], m[r][c] * th[c]);
+                low[r] += p.min(q);
+                high[r] += p.max(q);
+            }
+        }
+        let (mut lmin, mut lmax) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+        for corner in 0..8 {
+            let p = [0, 1, 2].map(|c| {
+                if corner >> (2 - c) & 1 == 1 {
+                    hi[c]
+                } else {
+                    lo[c]
+                }
+            });
+            let v = l.eval(p);
+            for r in 0..3 {
+                lmin[r] = lmin[r].min(v[r]);
+                lmax[r] = lmax[r].max(v[r]);
+            }
+        }
+        (0..3).all(|r| {
+            (low[r] + lmin[r]) * k <= ENCLOSURE_SLACK && (high[r] + lmax[r]) * k >= -ENCLOSURE_SLACK
+        })
     }
 
     /// `q` with the two channels other than `c` set so that the matrix model, with the lattice

@@ -152,21 +152,23 @@ pub fn split(set: &[Patch], taken: &[Measurement]) -> (Vec<Measurement>, Vec<Mea
     )
 }
 
-/// Fits Cowan's model to `fit_set`, verifies it on `verify_set`, records where the readings
-/// came from and writes the calibration to `out`.
+/// Splits the readings `taken` of `set` ([`split`]), fits Cowan's model to the fit patches,
+/// verifies it on the others, records where the readings came from and writes the
+/// calibration to `out`: the calibration and how many patches were fitted and verified.
 pub fn fit_and_save(
     out: &Path,
     ti3: &Path,
     info: &Ti3Info,
     matrix: MatrixFit,
-    fit_set: &[Measurement],
-    verify_set: &[Measurement],
-) -> Result<Calibration> {
+    set: &[Patch],
+    taken: &[Measurement],
+) -> Result<(Calibration, [usize; 2])> {
+    let (fit_set, verify_set) = split(set, taken);
     let opts = FitOptions {
         matrix,
         ..FitOptions::default()
     };
-    let mut cal = fit::fit_and_verify(fit_set, verify_set, &opts)?;
+    let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)?;
     {
         let (_, prov) = cal.report_mut();
         prov.source = ti3.display().to_string();
@@ -174,7 +176,7 @@ pub fn fit_and_save(
         prov.measured = info.created.clone().unwrap_or_default();
     }
     cal.save(out)?;
-    Ok(cal)
+    Ok((cal, [fit_set.len(), verify_set.len()]))
 }
 
 /// The patch set of a run: `patches` (an ArgyllCMS `.ti1`), or the standard ramps and
@@ -283,6 +285,33 @@ impl Rig {
         }
     }
 
+    /// With `--display` and `--instrument`: shows `patches` one at a time (their device values
+    /// through the LUT) and reads each, calling `save` with the readings so far after every
+    /// one. Nothing to show on the ArgyllCMS rig (it reads in batches of its own).
+    fn show_and_read(
+        &mut self,
+        patches: impl Iterator<Item = Patch>,
+        save: impl FnMut(&[Measurement]) -> Result<()>,
+    ) -> Result<Vec<Measurement>> {
+        let Rig::Patch {
+            display,
+            instrument,
+            settle,
+            lut,
+        } = self
+        else {
+            return Ok(Vec::new());
+        };
+        let todo: Vec<Patch> = patches
+            .map(|p| Patch {
+                device: through(lut, p.device),
+                ..p
+            })
+            .collect();
+        measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, save)
+            .map_err(|i| i.error)
+    }
+
     /// Asks the user to place the instrument (ArgyllCMS's window, on a terminal, not fake).
     fn place_instrument(&self) -> Result<()> {
         use std::io::IsTerminal;
@@ -304,27 +333,12 @@ impl Rig {
 impl Meter for Rig {
     fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
         match self {
-            Rig::Patch {
-                display,
-                instrument,
-                settle,
-                lut,
-            } => {
-                let patches: Vec<Patch> = devices
-                    .iter()
-                    .map(|d| Patch {
-                        kind: PatchKind::Mixed,
-                        device: through(lut, *d),
-                    })
-                    .collect();
-                let m = measure_all(
-                    display.as_mut(),
-                    instrument.as_mut(),
-                    &patches,
-                    *settle,
-                    |_| Ok(()),
-                )
-                .map_err(|i| i.error)?;
+            Rig::Patch { .. } => {
+                let patches = devices.iter().map(|d| Patch {
+                    kind: PatchKind::Mixed,
+                    device: *d,
+                });
+                let m = self.show_and_read(patches, |_| Ok(()))?;
                 Ok(m.into_iter().map(|m| m.xyz).collect())
             }
             Rig::Argyll { reader, lut } => {
@@ -368,24 +382,11 @@ pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Re
     rig.place_instrument()?;
     let missing = session.missing();
     match rig {
-        Rig::Patch {
-            display,
-            instrument,
-            settle,
-            lut,
-        } => {
-            let todo: Vec<Patch> = missing
-                .iter()
-                .map(|&i| Patch {
-                    kind: set[i].kind,
-                    device: through(lut, set[i].device),
-                })
-                .collect();
-            measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, |m| {
+        Rig::Patch { .. } => {
+            rig.show_and_read(missing.iter().map(|&i| set[i]), |m| {
                 let k = m.len() - 1;
                 session.record(missing[k], m[k].xyz)
-            })
-            .map_err(|i| i.error)?;
+            })?;
             Ok(())
         }
         Rig::Argyll { reader, lut } => {

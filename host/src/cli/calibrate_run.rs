@@ -13,7 +13,7 @@ use crate::calibrate::file::{self, Calibration};
 use crate::calibrate::fit::MatrixFit;
 use crate::calibrate::interrupt;
 use crate::calibrate::run::{
-    fit_and_save, measure_session, patch_set, raw_primaries, split, ti3_path, Devices,
+    fit_and_save, measure_session, patch_set, raw_primaries, ti3_path, Devices,
 };
 use crate::calibrate::session::{Existing, Session};
 use crate::error::{CliError, Result};
@@ -187,24 +187,17 @@ pub fn run(a: &RunArgs) -> Result<()> {
             ))?;
         }
     }
-    let (fit_set, verify_set) = split(&set, &taken);
-    let cal = fit_and_save(
-        &a.output,
-        &ti3,
-        session.info(),
-        a.matrix,
-        &fit_set,
-        &verify_set,
-    )?;
+    let (cal, [n_fit, n_verify]) =
+        fit_and_save(&a.output, &ti3, session.info(), a.matrix, &set, &taken)?;
     eprintln!(
         "wrote {}",
         crate::io::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
-        let mut v = crate::cli::calibrate::fit_json(&cal, &a.output, fit_set.len());
+        let mut v = crate::cli::calibrate::fit_json(&cal, &a.output, n_fit);
         v["readings"] = serde_json::json!(ti3.display().to_string());
         v["patches_measured"] = serde_json::json!(taken.len());
-        v["patches_verify"] = serde_json::json!(verify_set.len());
+        v["patches_verify"] = serde_json::json!(n_verify);
         return crate::io::stdout::print_json(&v);
     }
     print_fit(&cal, &a.output)

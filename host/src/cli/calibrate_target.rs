@@ -160,15 +160,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
-    let (fit_set, verify_set) = split(c.set, &taken);
-    let mut cal = fit_and_save(
-        &a.output,
-        &ti3,
-        session.info(),
-        a.matrix,
-        &fit_set,
-        &verify_set,
-    )?;
+    let (mut cal, _) = fit_and_save(&a.output, &ti3, session.info(), a.matrix, c.set, &taken)?;
     cal.set_video_lut(Some(outcome.lut.clone()))?;
     cal.report_mut().1.notes.push(format!(
         "calibrated to {} with a video LUT ({}): the model holds while it is loaded",
