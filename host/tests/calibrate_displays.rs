@@ -14,7 +14,7 @@
 #[path = "common/displays.rs"]
 mod displays;
 
-use displays::de00;
+use displays::{de00, shipped};
 use specpoly::calibrate::fit::{fit_and_verify, hold_out_indices, FitOptions};
 use specpoly::io::cgats::read_ti3;
 use specpoly::measurement::Measurement;
@@ -85,18 +85,10 @@ fn ours_full(name: &str) -> (f64, f64, String) {
     (mean, own, what)
 }
 
-/// The shipped readings of every display (data/ti3/).
-const DISPLAYS: [&str; 5] = [
-    "acer-xb271hu-unit1_dispread_2068.ti3",
-    "dell-u2718q_1140.ti3",
-    "hp-hp-elitebook-835-g7_588.ti3",
-    "lenovo-thinkpad-x61_825.ti3",
-    "microsoft-surface-pro-2017_825.ti3",
-];
-
 #[test]
 fn every_display_within_goal() {
-    for name in DISPLAYS {
+    for name in shipped() {
+        let name = name.as_str();
         let (mean, model) = ours(name);
         eprintln!("{name}: held-out ΔE00 mean {mean:.3} ({model})");
         assert!(mean <= GOAL_MEAN, "{name}: {mean} ({model})");
@@ -255,7 +247,8 @@ fn argyll_on_the_same_split() {
 fn table_for_the_docs() {
     let dir = tempfile::tempdir().unwrap();
     let mut rows = Vec::new();
-    for name in DISPLAYS {
+    for name in shipped() {
+        let name = name.as_str();
         let d = dir.path().join(name);
         let runs = [
             argyll_start(name, &["-qm", "-as"], &d),

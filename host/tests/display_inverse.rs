@@ -13,7 +13,7 @@
 #[path = "common/displays.rs"]
 mod displays;
 
-use displays::{de00, fitted};
+use displays::{de00, fitted, shipped, shipped_named};
 use proptest::prelude::*;
 use specpoly::calibrate::file::{Calibration, TransferKind};
 use specpoly_core::Xyz;
@@ -25,14 +25,6 @@ const ROUND_TRIP_DE: f64 = 0.001;
 
 /// Grid points per side of device RGB (dense near 0, where curves are flat: `(i/(n−1))^1.5`).
 const GRID: usize = 13;
-
-const DISPLAYS: [&str; 5] = [
-    "acer-xb271hu-unit1_dispread_2068.ti3",
-    "dell-u2718q_1140.ti3",
-    "hp-hp-elitebook-835-g7_588.ti3",
-    "lenovo-thinkpad-x61_825.ti3",
-    "microsoft-surface-pro-2017_825.ti3",
-];
 
 /// The model in f64 from the file's numbers.
 fn oracle(cal: &Calibration, rgb: [f64; 3]) -> [f64; 3] {
@@ -95,7 +87,8 @@ fn round_trip(cal: &Calibration, rgb: [f64; 3]) -> (f64, u32, u32) {
 fn every_shipped_display_inverts_exactly_on_a_dense_grid() {
     let mut lattices = 0;
     let mut misses = Vec::new();
-    for name in DISPLAYS {
+    for name in shipped() {
+        let name = name.as_str();
         let cal = fitted(name);
         lattices += usize::from(cal.has_interaction());
         let (mut worst, mut iters, mut most_iters, mut restarted, mut n) =
@@ -130,7 +123,7 @@ fn every_shipped_display_inverts_exactly_on_a_dense_grid() {
 
 fn surface() -> &'static Calibration {
     static CAL: OnceLock<Calibration> = OnceLock::new();
-    CAL.get_or_init(|| fitted(DISPLAYS[4]))
+    CAL.get_or_init(|| fitted(&shipped_named("microsoft-surface")))
 }
 
 proptest! {

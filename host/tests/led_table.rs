@@ -12,7 +12,7 @@
 #[path = "common/displays.rs"]
 mod displays;
 
-use displays::{de00, fitted};
+use displays::{de00, fitted, shipped};
 use rayon::prelude::*;
 use specpoly::led::table::{controller_display, DEFAULT_GRID, TABLE_DE, TABLE_MEAN_DE};
 use specpoly::led::DriveTable;
@@ -59,18 +59,11 @@ fn table_error(
     (mean, max, n)
 }
 
-const DISPLAYS: [&str; 5] = [
-    "acer-xb271hu-unit1_dispread_2068.ti3",
-    "dell-u2718q_1140.ti3",
-    "hp-hp-elitebook-835-g7_588.ti3",
-    "lenovo-thinkpad-x61_825.ti3",
-    "microsoft-surface-pro-2017_825.ti3",
-];
-
 #[test]
 #[ignore = "prints the grid-side table for docs/calibration.md (≈ 1 min)"]
 fn grid_sides_against_the_exact_inverse() {
-    for name in DISPLAYS {
+    for name in shipped() {
+        let name = name.as_str();
         let cal = fitted(name);
         let matrix = controller_display(&cal.display()).unwrap();
         let zero = DriveTable {

@@ -12,6 +12,27 @@ use specpoly::io::cgats::read_ti3;
 use specpoly::measurement::Measurement;
 use std::path::Path;
 
+/// Every shipped display's `.ti3` (data/ti3), by file name, sorted: a display added there is
+/// tested by every test that walks this list.
+pub fn shipped() -> Vec<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/ti3");
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".ti3"))
+        .collect();
+    names.sort();
+    names
+}
+
+/// The shipped display whose file name starts with `prefix` (e.g. `"microsoft-surface"`).
+pub fn shipped_named(prefix: &str) -> String {
+    shipped()
+        .into_iter()
+        .find(|n| n.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no data/ti3/{prefix}*.ti3"))
+}
+
 /// The readings of a shipped `.ti3` (data/ti3), in the file's units.
 pub fn readings(name: &str) -> Vec<Measurement> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
