@@ -165,31 +165,40 @@ mod tests {
         );
     }
 
-    /// The f32 inverse against the inverse computed in f64 (adjugate, then rounded): display
+    /// The f32 inverse against the inverse computed in f64 by Gauss–Jordan elimination: display
     /// matrices from random primaries (chromaticities in the spectral locus's box, luminances
     /// over six decades), the worst error in ulps of the largest entry of the f64 inverse.
     #[test]
     fn inverse_matches_f64() {
         /// The one tolerance: ulps of the inverse's largest entry.
         const ULPS: f64 = 1.0;
+        // the oracle: Gauss–Jordan elimination with partial pivoting in f64 (not the
+        // adjugate the code under test uses)
         let f64_inverse = |a: &Mat3| {
-            let m = a.0.map(|r| r.map(|v| v as f64));
-            let c = |r0: usize, c0: usize, r1: usize, c1: usize| {
-                m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-            };
-            let cof = [
-                [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
-                [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
-                [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
-            ];
-            let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
-            let mut r = [[0.0f64; 3]; 3];
-            for i in 0..3 {
+            let mut m = [[0.0f64; 6]; 3];
+            for (i, row) in m.iter_mut().enumerate() {
                 for j in 0..3 {
-                    r[i][j] = cof[j][i] / det;
+                    row[j] = a.0[i][j] as f64;
+                }
+                row[3 + i] = 1.0;
+            }
+            for col in 0..3 {
+                let p = (col..3)
+                    .max_by(|&x, &y| m[x][col].abs().total_cmp(&m[y][col].abs()))
+                    .unwrap_or(col);
+                m.swap(col, p);
+                let d = m[col][col];
+                m[col].iter_mut().for_each(|v| *v /= d);
+                for r in 0..3 {
+                    if r != col {
+                        let f = m[r][col];
+                        for k in 0..6 {
+                            m[r][k] -= f * m[col][k];
+                        }
+                    }
                 }
             }
-            r
+            m.map(|row| [row[3], row[4], row[5]])
         };
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
         let mut uniform = || {
