@@ -14,8 +14,7 @@
 //! promised for `d`: the channel interaction and the black flare are both corrected. Nodes are
 //! stored red slowest, blue fastest (the layout of
 //! [`crate::Interaction`]); each holds `Δ` in i16 fixed point, `Δ = v / ONE` (Q15, so
-//! `−1 ≤ Δ < 1`: 3.1·10⁻⁵ a step, far below a 16-bit duty's 1.5·10⁻⁵ only by half, and
-//! below an 8-bit one's 3.9·10⁻³ by 128×).
+//! `−1 ≤ Δ < 1`: 3.1·10⁻⁵ a step, two steps of a 16-bit duty and 1/128 of an 8-bit one).
 //!
 //! The controller applies it after the matrix model's drive step ([`corrected`]): levels
 //! `l` of `d = t⁻¹(clip(M⁻¹ xyz))`, then `d′ = clamp(l / max + trilinear Δ(l / max))`, levels
@@ -24,7 +23,9 @@
 //! cell from flash; the host from a slice), so the table is never copied into RAM. The host's
 //! model of the controller calls the same function: one implementation.
 //!
-//! [`checksum`] (FNV-1a, 32 bits) guards the upload; [`calibration_key`] binds a table to
+//! [`checksum`] (FNV-1a, 32 bits; written here rather than taken from the `fnv` crate because
+//! it is six lines over bytes that both sides already hold, and the protocol's documentation
+//! can state it in one line for other hosts) guards the upload; [`calibration_key`] binds a table to
 //! the calibration (primaries and curves) it was made for, so that a table is applied only
 //! with that calibration.
 
