@@ -441,6 +441,23 @@ impl Emulator {
         Self::start_elf(default_build().join("specpoly-firmware"), extra)
     }
 
+    /// Starts QEMU with its monitor on a socket in `dir`, for [`Emulator::reset`].
+    fn start_resettable(dir: &Path) -> Self {
+        let sock = dir.join("monitor.sock");
+        let chardev = format!("socket,id=mon,path={},server=on,wait=off", sock.display());
+        Self::start_with(&["-chardev", &chardev, "-mon", "chardev=mon,mode=readline"])
+    }
+
+    /// A machine reset through the monitor of [`Emulator::start_resettable`] in `dir`
+    /// (`system_reset`: the CPU restarts from the vector table, the RAM-backed settings flash
+    /// kept); returns once the restarted firmware has loaded its saved settings.
+    fn reset(&self, dir: &Path) {
+        let mut monitor = std::os::unix::net::UnixStream::connect(dir.join("monitor.sock"))
+            .expect("QEMU's monitor");
+        std::io::Write::write_all(&mut monitor, b"system_reset\n").unwrap();
+        wait_for_log_across_reset(self, "settings loaded from flash");
+    }
+
     /// Starts QEMU on `elf` with `extra` arguments.
     fn start_elf(elf: PathBuf, extra: &[&str]) -> Self {
         let mut args = vec!["-serial", "pty"];
@@ -1176,9 +1193,7 @@ fn state<P: std::io::Read + std::io::Write>(link: &mut Link<P>) -> specpoly_prot
 #[test]
 fn settings_survive_a_reset_and_damaged_flash_is_ignored() {
     let dir = tempfile::tempdir().unwrap();
-    let sock = dir.path().join("monitor.sock");
-    let chardev = format!("socket,id=mon,path={},server=on,wait=off", sock.display());
-    let emu = Emulator::start_with(&["-chardev", &chardev, "-mon", "chardev=mon,mode=readline"]);
+    let emu = Emulator::start_resettable(dir.path());
     let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
     link.hello().expect("hello");
     wait_for_log(&emu, "no saved settings: defaults used");
@@ -1196,9 +1211,7 @@ fn settings_survive_a_reset_and_damaged_flash_is_ignored() {
     let saved = state(&mut link);
     assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
 
-    let mut monitor = std::os::unix::net::UnixStream::connect(&sock).expect("QEMU's monitor");
-    std::io::Write::write_all(&mut monitor, b"system_reset\n").unwrap();
-    wait_for_log_across_reset(&emu, "settings loaded from flash");
+    emu.reset(dir.path());
     link.hello().expect("hello after the reset");
     let after = state(&mut link);
     assert_eq!(
@@ -1507,9 +1520,7 @@ fn the_drive_table_shows_the_full_model_on_the_device() {
     use specpoly::led::Model;
 
     let dir = tempfile::tempdir().unwrap();
-    let sock = dir.path().join("monitor.sock");
-    let chardev = format!("socket,id=mon,path={},server=on,wait=off", sock.display());
-    let emu = Emulator::start_with(&["-chardev", &chardev, "-mon", "chardev=mon,mode=readline"]);
+    let emu = Emulator::start_resettable(dir.path());
     let mut link = Link::open(&emu.pty, Duration::from_secs(10)).expect("open the pty");
     let max = link.hello().expect("hello");
     let mut last = None;
@@ -1617,9 +1628,7 @@ fn the_drive_table_shows_the_full_model_on_the_device() {
     let probe = "xyz 30 25 20";
     let before = link.send(probe).unwrap();
     assert_eq!(link.send("save").unwrap(), Reply::Done("save"));
-    let mut monitor = std::os::unix::net::UnixStream::connect(&sock).expect("QEMU's monitor");
-    std::io::Write::write_all(&mut monitor, b"system_reset\n").unwrap();
-    wait_for_log_across_reset(&emu, "settings loaded from flash");
+    emu.reset(dir.path());
     link.hello().expect("hello after the reset");
     assert_eq!(state(&mut link).lut as usize, t.table.grid);
     assert_eq!(link.send(probe).unwrap(), before);
