@@ -1,0 +1,135 @@
+//! Output paths through the real binary (issue 10): `-o -` is stdout, a symlink is written
+//! through (the link stays), a FIFO is written directly, the temporary file is exclusive and
+//! random (a planted symlink at the old predictable name is not followed), and a temporary file
+//! a killed run left behind is cleaned up.
+
+use std::os::unix::fs::{symlink, FileTypeExt};
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+fn specpoly(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_specpoly"))
+        .args(args)
+        .stdin(Stdio::null())
+        .output()
+        .expect("run specpoly")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// `plot colorchecker#blue -o OUT` (an SVG: deterministic text).
+fn plot(out: &str) -> std::process::Output {
+    specpoly(&["plot", "colorchecker#blue", "-o", out])
+}
+
+/// A real display's measurements (data/README.md).
+const TI3: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
+);
+
+#[test]
+fn dash_writes_to_stdout() {
+    let r = specpoly(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"
+        ),
+        "-o",
+        "-",
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(String::from_utf8_lossy(&r.stdout).contains("format"));
+    assert!(!Path::new("-").exists());
+}
+
+#[test]
+fn symlinks_are_written_through() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("real.svg");
+    std::fs::write(&target, "old").unwrap();
+    let link = dir.path().join("link.svg");
+    symlink("real.svg", &link).unwrap();
+    let r = plot(s(&link));
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(&target).unwrap().contains("<svg"));
+    // a dangling link: the file is created where it points
+    let dangling = dir.path().join("dangling.svg");
+    symlink("new.svg", &dangling).unwrap();
+    assert!(plot(s(&dangling)).status.success());
+    assert!(std::fs::symlink_metadata(&dangling)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(dir.path().join("new.svg").is_file());
+}
+
+#[test]
+fn fifos_and_devices_are_written_directly() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe.svg");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo).unwrap())
+    };
+    let r = plot(s(&fifo));
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let bytes = reader.join().unwrap();
+    assert!(String::from_utf8_lossy(&bytes).contains("<svg"));
+    assert!(std::fs::symlink_metadata(&fifo)
+        .unwrap()
+        .file_type()
+        .is_fifo());
+    let r = specpoly(&["calibrate", "fit", "--ti3", TI3, "-o", "/dev/null"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(std::fs::metadata("/dev/null")
+        .unwrap()
+        .file_type()
+        .is_char_device());
+}
+
+#[test]
+fn temporary_files_are_exclusive_and_stale_ones_cleaned() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.svg");
+    // a link planted at the old predictable temporary name is not followed
+    let victim = dir.path().join("victim.txt");
+    std::fs::write(&victim, "keep me").unwrap();
+    for pid in 0..4 {
+        let _ = symlink(&victim, dir.path().join(format!(".p.svg.tmp{pid}")));
+    }
+    // a temporary file a killed run left an hour ago
+    let stale = dir.path().join(".p.svg.AbC123.specpoly-tmp");
+    std::fs::write(&stale, "half").unwrap();
+    let hour_ago = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+    std::fs::File::options()
+        .write(true)
+        .open(&stale)
+        .unwrap()
+        .set_modified(hour_ago)
+        .unwrap();
+    let r = plot(s(&out));
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+    assert!(!stale.exists(), "stale temporary file left");
+    let ours: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".specpoly-tmp"))
+        .collect();
+    assert!(ours.is_empty());
+}

@@ -1,0 +1,194 @@
+//! `specpoly light` and `specpoly mix` through the real binary: the JSON keys of the issue, the
+//! figures against colour-science 0.4.7 (`core/tests/data/light_colour_science.csv`, same
+//! tolerances as `core/tests/light_colour_science.rs`), the mix's chromaticity against a 1 nm
+//! f64 sum of the channel files done here, and clean failures on bad input.
+
+#[path = "common/cli.rs"]
+mod cli;
+
+fn specpoly(args: &[&str]) -> (i32, String, String) {
+    cli::run_in(cli::ROOT, args).parts()
+}
+
+/// `specpoly mix --channel C… --target TARGET MORE…`.
+fn mix(channels: &[&str], target: &str, more: &[&str]) -> (i32, String, String) {
+    let mut args = vec!["mix"];
+    for c in channels {
+        args.extend(["--channel", c]);
+    }
+    args.extend(["--target", target]);
+    args.extend(more);
+    specpoly(&args)
+}
+
+fn colour_science(name: &str) -> Vec<f64> {
+    let p = format!(
+        "{}/../../core/tests/data/light_colour_science.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(p).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(&format!("{name},")))
+        .unwrap();
+    let f: Vec<&str> = line.split(',').collect();
+    f[f.len() - 8..]
+        .iter()
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn light_json_matches_colour_science() {
+    let (code, out, err) = specpoly(&["light", "data/leds/rgbwa.csv#white", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let mut want = vec![
+        "X", "Y", "Z", "x", "y", "u_prime", "v_prime", "cct", "duv", "ra", "r9", "rf", "rg",
+    ];
+    let mut got = keys.clone();
+    got.sort();
+    want.sort();
+    assert_eq!(got, want);
+    let cs = colour_science("rgbwa:0,0,0,1,0"); // x, y, cct, duv, ra, r9, rf, rg
+    let f = |k: &str| v[k].as_f64().unwrap();
+    assert!((f("x") - cs[0]).abs() < 3e-4 && (f("y") - cs[1]).abs() < 3e-4);
+    assert!((f("cct") - cs[2]).abs() < 1.5e-3 * cs[2]);
+    assert!((f("duv") - cs[3]).abs() < 2e-4);
+    assert!((f("ra") - cs[4]).abs() < 0.5);
+    assert!((f("r9") - cs[5]).abs() < 2.0);
+    assert!((f("rf") - cs[6]).abs() < 0.5);
+    assert!((f("rg") - cs[7]).abs() < 0.5);
+    // the channel files are scaled to lumens: Y is the flux
+    assert!((f("Y") - 250.0).abs() < 0.01, "{}", f("Y"));
+}
+
+#[test]
+fn light_text_and_far_from_locus() {
+    let (code, out, _) = specpoly(&["light", "FL2"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("ra") && out.contains("4225."), "{out}");
+    // a red LED has no CCT: metrics print as '-' / null, colorimetry still printed
+    let (code, out, _) = specpoly(&["light", "data/leds/rgb.csv#red", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["cct"].is_null() && v["rf"].is_null());
+    assert!(v["x"].as_f64().unwrap() > 0.69);
+}
+
+fn uv_prime_1nm(files: &[(&str, &str)], d: &[f64]) -> [f64; 2] {
+    let root = format!("{}/../..", env!("CARGO_MANIFEST_DIR"));
+    let cmf_text =
+        std::fs::read_to_string(format!("{root}/data/cmf/cie1931_2deg_1nm.csv")).unwrap();
+    let cmf: Vec<Vec<f64>> = cmf_text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    let mut xyz = [0.0f64; 3];
+    for ((file, col), di) in files.iter().zip(d) {
+        let text = std::fs::read_to_string(format!("{root}/{file}")).unwrap();
+        let mut lines = text.lines();
+        let c = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .position(|h| h == *col)
+            .unwrap();
+        for l in lines {
+            let r: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+            let row = cmf.iter().find(|m| m[0] == r[0]).unwrap();
+            for k in 0..3 {
+                xyz[k] += di * r[c] * row[k + 1];
+            }
+        }
+    }
+    let den = xyz[0] + 15.0 * xyz[1] + 3.0 * xyz[2];
+    [4.0 * xyz[0] / den, 9.0 * xyz[1] / den]
+}
+
+#[test]
+fn mix_hits_the_target() {
+    let files = [
+        ("data/leds/rgbwa.csv", "red"),
+        ("data/leds/rgbwa.csv", "green"),
+        ("data/leds/rgbwa.csv", "blue"),
+        ("data/leds/rgbwa.csv", "white"),
+        ("data/leds/rgbwa.csv", "amber"),
+    ];
+    let ch: Vec<String> = files.iter().map(|(f, c)| format!("{c}={f}#{c}")).collect();
+    let ch: Vec<&str> = ch.iter().map(String::as_str).collect();
+    let (code, out, err) = mix(
+        &ch,
+        "xy:0.3457,0.3585",
+        &[
+            "--luminance",
+            "0.7",
+            "--optimize",
+            "rf",
+            "--bits",
+            "16",
+            "--json",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for k in [
+        "duties", "x", "y", "u_prime", "v_prime", "cct", "duv", "ra", "rf", "rg", "efficacy",
+    ] {
+        assert!(v.get(k).is_some(), "{k} missing: {out}");
+    }
+    let d: Vec<f64> = cli::numbers(&v["duties"]);
+    assert_eq!(d.len(), 5);
+    for di in &d {
+        // 16-bit steps (printed to 6 decimals)
+        assert!((di * 65535.0 - (di * 65535.0).round()).abs() < 0.07, "{di}");
+    }
+    let uv = uv_prime_1nm(&files, &d);
+    let (x, y) = (0.3457, 0.3585);
+    let den = -2.0 * x + 12.0 * y + 3.0;
+    let want = [4.0 * x / den, 9.0 * y / den];
+    let e = ((uv[0] - want[0]).powi(2) + (uv[1] - want[1]).powi(2)).sqrt();
+    assert!(e < 0.0002, "Δu′v′ {e}");
+    assert!(v["rf"].as_f64().unwrap() > 85.0, "{out}");
+}
+
+#[test]
+fn mix_errors() {
+    let tw = |c: &str| format!("{c}=data/leds/tunable_white.csv#{c}");
+    let (w, c, r) = (tw("warm"), tw("cool"), tw("red"));
+    // outside the gamut: data error, one line
+    let (code, out, err) = mix(&[&w, &c, &r], "xy:0.2,0.7", &[]);
+    assert_eq!(code, 1, "{err}");
+    assert!(out.is_empty());
+    assert!(err.contains("outside the gamut"), "{err}");
+    assert_eq!(err.lines().count(), 1);
+    // usage errors
+    for bad in [
+        mix(&[&w, &c], "cct:3000", &[]),
+        mix(&[&w, &c, &r], "cct:90", &[]),
+        mix(&[&w, &c, &r], "hsv:1", &[]),
+        mix(&[&w, &c, &r], "cct:3000", &["--luminance", "2"]),
+        mix(&["nameless", &c, &r], "cct:3000", &[]),
+        mix(&["x=no-such.csv", &c, &r], "cct:3000", &[]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let (i, (code, out, err)) = bad;
+        assert_eq!(code, 2, "usage case {i}: {err}");
+        assert!(out.is_empty() && !err.contains("panicked"), "{err}");
+    }
+    // malformed SPD file: data error
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("bad.csv");
+    std::fs::write(&p, "wavelength_nm,a\n400,1\n410,NaN\n").unwrap();
+    let (code, _, err) = specpoly(&["light", p.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(!err.contains("panicked"));
+    std::fs::write(&p, "wavelength_nm,a\n400,0\n410,0\n").unwrap();
+    let (code, _, err) = specpoly(&["light", p.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("no luminous power"), "{err}");
+}
