@@ -18,7 +18,7 @@
 //!
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both).
 
-use specpoly::calibrate::verify::delta_e00;
+use specpoly_core::delta_e2000_xyz as delta_e00;
 use specpoly_core::pixel::{Dither, Options, PanelTransform, Source, White};
 use specpoly_core::GamutMap;
 use specpoly_tests::pixel::{gamma_panel, Panel};

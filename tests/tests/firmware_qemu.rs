@@ -4,7 +4,7 @@
 //! - the on-target self-test (semihosting exit code), with the flash and RAM budgets;
 //! - end to end: the host's `specpoly led` code ↔ QEMU's UART on a pseudo-terminal ↔ firmware,
 //!   whose every colour reply must agree with the host's independent f64 computation within
-//!   the one tolerance table `specpoly::led::check::TOLERANCES` (which `led --check` uses too);
+//!   the one tolerance table `specpoly_led::check::TOLERANCES` (which `led --check` uses too);
 //! - the `fast-math` build (micromath): its colour error against the libm build, in ΔE00;
 //! - multi-channel mixing (`channel`, `xy`, `cct`, `fade`): the firmware against the host's
 //!   simulated controller (equal replies) and the independent f64 check from the spectra.
@@ -15,12 +15,12 @@
 //! Needs `qemu-system-arm` and the `thumbv7em-none-eabihf` target (`./test.sh` installs both);
 //! without them these tests fail with a message saying so. They never skip.
 
-use specpoly::led::lines::{refl, refl_hex, Preset};
-use specpoly::led::mix_check::{MixAgreement, MixOracle, Weight};
-use specpoly::led::{Link, MixModel, Oracle};
 use specpoly_core::light::channels::{Curve, Goal};
 use specpoly_core::light::Source;
 use specpoly_core::{delta_e2000, Display, GamutMap, Illuminant, Lab, Observer, Transfer, Xyz};
+use specpoly_led::lines::{refl, refl_hex, Preset};
+use specpoly_led::mix_check::{MixAgreement, MixOracle, Weight};
+use specpoly_led::{Link, MixModel, Oracle};
 use specpoly_protocol::{Command, Gamut, Reply};
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -661,10 +661,7 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     // bad and overlong lines get an error reply, and the controller carries on
     for bad in ["blink", "xyz 1 2", "refl paper D65 1 2 3"] {
         assert!(
-            matches!(
-                link.send(bad),
-                Err(specpoly::led::LedError::Rejected { .. })
-            ),
+            matches!(link.send(bad), Err(specpoly_led::LedError::Rejected { .. })),
             "{bad:.20}"
         );
     }
@@ -758,7 +755,8 @@ fn mix_sets() -> Vec<(&'static str, MixOracle)> {
         cols.iter()
             .map(|c| {
                 let p = repo().join("data/leds").join(format!("{file}#{c}"));
-                let n = specpoly::spectrum_names::light(p.to_str().unwrap()).expect("LED data");
+                let n =
+                    specpoly_spectra::spectrum_names::light(p.to_str().unwrap()).expect("LED data");
                 Source::new(&n.tabulated()).expect("a light")
             })
             .collect()
@@ -876,7 +874,7 @@ fn both<P: std::io::Read + std::io::Write>(
     model: &mut MixModel,
     cmd: &Command,
 ) -> Reply {
-    let line = specpoly::led::lines::line(cmd);
+    let line = specpoly_led::lines::line(cmd);
     let text = link.exchange(&line).expect("a reply");
     let dev = Reply::parse(&text).unwrap_or_else(|e| panic!("{line}: {text}: {e}"));
     let sim = model.answer(cmd).expect("a mixing command");
@@ -889,7 +887,7 @@ fn both<P: std::io::Read + std::io::Write>(
 
 /// `channel`, `xy`, `cct`, `fade` on the device: every reply equals the host's simulated
 /// controller's and passes the independent f64 check from the channels' spectra
-/// (`specpoly::led::mix_check`: Δu′v′ ≤ 0.0005 before quantisation, ≤ 0.0002 after 16-bit
+/// (`specpoly_led::mix_check`: Δu′v′ ≤ 0.0005 before quantisation, ≤ 0.0002 after 16-bit
 /// quantisation, luminance, least weighted drive); out-of-gamut targets are refused where the
 /// host's own mixer finds them out of gamut; a fade logs 10 ms steps that start near the old
 /// target, approach the new one monotonically and end on its duties; the mixer's settings
@@ -1411,7 +1409,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     }
 }
 
-/// The host's model of the controller ([`specpoly::led::Model::answer`], what the host's fake
+/// The host's model of the controller ([`specpoly_led::Model::answer`], what the host's fake
 /// controllers answer) and the firmware refuse the same colours with `err not-finite` and
 /// otherwise report the same gamut and duties (within one tick), on the same seeded inputs:
 /// targets from 1e-45 to 3.4e38, where the conversions overflow (issue 10).
@@ -1426,7 +1424,7 @@ fn host_model_and_firmware_refuse_the_same_colours() {
     let Ok(Command::Calibrate { xy, luminance }) = Command::parse(cal) else {
         panic!("{cal}")
     };
-    let model = specpoly::led::Model {
+    let model = specpoly_led::Model {
         display: Display::from_primaries(
             xy,
             luminance,
@@ -1514,10 +1512,10 @@ fn host_model_and_firmware_refuse_the_same_colours() {
 /// `save` and a reset keep the table; the lut path stays within the RAM budget.
 #[test]
 fn the_drive_table_shows_the_full_model_on_the_device() {
-    use specpoly::calibrate::fit::{fit, FitOptions};
-    use specpoly::led::lines::{calibration, calibration_table, line};
-    use specpoly::led::table::{TABLE_DE, TABLE_MEAN_DE};
-    use specpoly::led::Model;
+    use specpoly_calibrate::fit::{fit, FitOptions};
+    use specpoly_led::lines::{calibration, calibration_table, line};
+    use specpoly_led::table::{TABLE_DE, TABLE_MEAN_DE};
+    use specpoly_led::Model;
 
     let dir = tempfile::tempdir().unwrap();
     let emu = Emulator::start_resettable(dir.path());
@@ -1529,7 +1527,7 @@ fn the_drive_table_shows_the_full_model_on_the_device() {
         "microsoft-surface-pro-2017_825.ti3",
     ] {
         let text = std::fs::read_to_string(repo().join("data/ti3").join(name)).unwrap();
-        let readings = specpoly::io::cgats::read_ti3(&text, name)
+        let readings = specpoly_formats::cgats::read_ti3(&text, name)
             .unwrap()
             .measurements;
         let path = dir.path().join(format!("{name}.toml"));
@@ -1537,9 +1535,10 @@ fn the_drive_table_shows_the_full_model_on_the_device() {
             .unwrap()
             .save(&path)
             .unwrap();
-        let t = calibration_table(&path).unwrap().expect("a lattice");
+        let spec = specpoly_display::spec::DisplaySpec::open_measured(&path).unwrap();
+        let t = calibration_table(&spec).unwrap().expect("a lattice");
         let mut bytes = 0;
-        for l in calibration(&path)
+        for l in calibration(&spec)
             .unwrap()
             .into_iter()
             .chain(t.table.commands().iter().map(line))

@@ -16,12 +16,12 @@
 //! and every 3rd code for the dithered blocks (the figures in docs/calibration.md); the default
 //! stride 5 (and 15 for blocks) keeps the test to seconds.
 
-use specpoly::calibrate::file::Calibration;
-use specpoly::calibrate::fit::{fit, FitOptions};
-use specpoly::calibrate::verify::delta_e00;
-use specpoly::io::cgats::read_ti3;
+use specpoly_calibrate::fit::{fit, FitOptions};
+use specpoly_core::delta_e2000_xyz as delta_e00;
 use specpoly_core::pixel::{CubeTransform, Dither, Options, PanelTransform, Source, White};
 use specpoly_core::GamutMap;
+use specpoly_display::calibration::Calibration;
+use specpoly_formats::cgats::read_ti3;
 use specpoly_tests::pixel::{primaries, spi_lcd, Curve, Panel};
 
 /// The figures: ΔE00 p99 and max before quantisation, and the 8×8 dithered block mean.
@@ -30,7 +30,7 @@ const MAX_LIMIT: f64 = 1.0;
 const BLOCK_LIMIT: f64 = 0.5;
 
 fn acer() -> Panel {
-    let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
+    let t = read_ti3(specpoly_spectra::data::ACER_TI3, "acer.ti3").unwrap();
     let cal: Calibration = fit(&t.best_units().0, &FitOptions::default()).unwrap();
     let d = cal.data();
     let p = d.primaries.array();

@@ -3,7 +3,7 @@
 //! it panics only when the parser panics or breaks one of the invariants checked here:
 //!
 //! - what the project writes, its own readers accept, and read back equal (CSV
-//!   [`crate::io::csv::format`], `.ti3` [`crate::io::cgats::write_ti3`], calibration TOML,
+//!   [`specpoly_formats::csv::format`], `.ti3` [`specpoly_formats::cgats::write_ti3`], calibration TOML,
 //!   protocol lines [`specpoly_protocol::Command::write`] and [`specpoly_protocol::Reply::write`]);
 //! - no accepted value is non-finite;
 //! - errors are one line (messages end up on one stderr line).
@@ -13,7 +13,7 @@
 //! (docs/reliability.md, "Fuzzing"). The firmware's command handler has its own target in
 //! `firmware/src/fuzz.rs` (it is not a dependency of the host).
 
-use crate::error::CliError;
+use specpoly_formats::error::CliError;
 
 /// A fuzz target: arbitrary bytes in, a panic only on a bug.
 pub type Target = fn(&[u8]);
@@ -37,14 +37,14 @@ fn one_line(e: &CliError) {
 }
 
 fn text(data: &[u8]) -> String {
-    crate::io::read::decode(data.to_vec())
+    specpoly_formats::read::decode(data.to_vec())
 }
 
-/// Spectral CSV ([`crate::io::csv::parse`]): an accepted table is finite, and formatting it
+/// Spectral CSV ([`specpoly_formats::csv::parse`]): an accepted table is finite, and formatting it
 /// gives a file that reads back equal.
 pub fn csv(data: &[u8]) {
     let text = text(data);
-    match crate::io::csv::parse(&text, "fuzz.csv") {
+    match specpoly_formats::csv::parse(&text, "fuzz.csv") {
         Err(e) => one_line(&e),
         Ok(t) => {
             assert!(t.wavelengths.iter().all(|w| w.is_finite()));
@@ -53,8 +53,8 @@ pub fn csv(data: &[u8]) {
                 assert_eq!(v.len(), t.wavelengths.len());
                 assert!(v.iter().all(|x| x.is_finite()));
             }
-            let again = crate::io::csv::format(&t);
-            match crate::io::csv::parse(&again, "again.csv") {
+            let again = specpoly_formats::csv::format(&t);
+            match specpoly_formats::csv::parse(&again, "again.csv") {
                 Ok(u) => assert_eq!(u, t, "{again}"),
                 Err(e) => panic!("the formatted table does not read back: {e}\n{again}"),
             }
@@ -62,21 +62,21 @@ pub fn csv(data: &[u8]) {
     }
 }
 
-/// CGATS ([`crate::io::cgats::parse`], [`crate::io::cgats::read_ti3`],
-/// [`crate::io::ti1::read_ti1`]): a `.ti3` that reads and is written again reads back.
+/// CGATS ([`specpoly_formats::cgats::parse`], [`specpoly_formats::cgats::read_ti3`],
+/// [`specpoly_formats::ti1::read_ti1`]): a `.ti3` that reads and is written again reads back.
 pub fn cgats(data: &[u8]) {
     let text = text(data);
-    if let Err(e) = crate::io::cgats::parse(&text, "fuzz.ti3") {
+    if let Err(e) = specpoly_formats::cgats::parse(&text, "fuzz.ti3") {
         one_line(&e);
     }
-    if let Err(e) = crate::io::ti1::read_ti1(&text, "fuzz.ti1") {
+    if let Err(e) = specpoly_formats::ti1::read_ti1(&text, "fuzz.ti1") {
         one_line(&e);
     }
     ti3_roundtrip(&text);
 }
 
 fn ti3_roundtrip(text: &str) {
-    use crate::io::cgats::{read_ti3, write_ti3, Ti3Info};
+    use specpoly_formats::cgats::{read_ti3, write_ti3, Ti3Info};
     match read_ti3(text, "fuzz.ti3") {
         Err(e) => one_line(&e),
         Ok(t) => {
@@ -98,16 +98,16 @@ fn ti3_roundtrip(text: &str) {
 }
 
 /// ArgyllCMS's `dispread` output as `calibrate run --instrument argyll` reads it: a `.ti3`
-/// after [`crate::calibrate::instrument::argyll::strip_noise`].
+/// after [`specpoly_calibrate::instrument::argyll::strip_noise`].
 pub fn argyll_ti3(data: &[u8]) {
-    let text = crate::calibrate::instrument::argyll::strip_noise(&text(data));
+    let text = specpoly_calibrate::instrument::argyll::strip_noise(&text(data));
     ti3_roundtrip(&text);
 }
 
-/// A scene file ([`crate::render::scene::SceneFile`]): parsed, resolved (built-in spectra
+/// A scene file ([`specpoly_render::scene::SceneFile`]): parsed, resolved (built-in spectra
 /// only, no base folder) and one pixel traced at the smallest size, within the render budget.
 pub fn scene_toml(data: &[u8]) {
-    use crate::render::scene::SceneFile;
+    use specpoly_render::scene::SceneFile;
     let text = text(data);
     let file = match SceneFile::parse(&text, "fuzz.toml") {
         Ok(f) => f,
@@ -121,15 +121,15 @@ pub fn scene_toml(data: &[u8]) {
     scene.render.height = 1;
     scene.render.samples = 1;
     scene.render.spp = scene.render.spp.min(2);
-    if let Err(e) = crate::render::render(&scene, crate::repr::Repr::Rgb, None) {
+    if let Err(e) = specpoly_render::render(&scene, specpoly_spectra::repr::Repr::Rgb, None) {
         one_line(&e);
     }
 }
 
-/// A calibration file ([`crate::calibrate::file::Calibration::from_toml`]): one that reads is
-/// written ([`crate::calibrate::file::Calibration::to_toml`]) and reads back equal.
+/// A calibration file ([`specpoly_display::calibration::Calibration::from_toml`]): one that reads is
+/// written ([`specpoly_display::calibration::Calibration::to_toml`]) and reads back equal.
 pub fn calibration_toml(data: &[u8]) {
-    use crate::calibrate::file::Calibration;
+    use specpoly_display::calibration::Calibration;
     let text = text(data);
     match Calibration::from_toml(&text, "fuzz.toml") {
         Err(e) => one_line(&e),
@@ -142,9 +142,9 @@ pub fn calibration_toml(data: &[u8]) {
     }
 }
 
-/// A display file ([`crate::render::output::parse`]): primaries, luminances, transfer curves.
+/// A display file ([`specpoly_display::spec::parse`]): primaries, luminances, transfer curves.
 pub fn display_toml(data: &[u8]) {
-    if let Err(e) = crate::render::output::parse(&text(data), "fuzz.toml") {
+    if let Err(e) = specpoly_display::spec::parse(&text(data), "fuzz.toml") {
         one_line(&e);
     }
 }
@@ -186,11 +186,11 @@ pub fn protocol_line(data: &[u8]) {
     }
 }
 
-/// A PR-655 reply line ([`crate::calibrate::instrument::serial::parse_reply`] and
-/// [`crate::calibrate::instrument::serial::find_reply`]): an accepted successful reading is
+/// A PR-655 reply line ([`specpoly_calibrate::instrument::serial::parse_reply`] and
+/// [`specpoly_calibrate::instrument::serial::find_reply`]): an accepted successful reading is
 /// finite.
 pub fn pr655_reply(data: &[u8]) {
-    use crate::calibrate::instrument::serial::{find_reply, parse_reply};
+    use specpoly_calibrate::instrument::serial::{find_reply, parse_reply};
     // The instrument link reads lines of at most a few hundred bytes.
     let text = text(&data[..data.len().min(4096)]);
     for line in text.lines() {

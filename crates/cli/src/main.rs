@@ -10,7 +10,10 @@ fn main() {
         Err(e) => match specpoly::error::clap_error_line(&e) {
             None => e.exit(),
             Some(line) => {
-                eprintln!("specpoly: error: {}", specpoly::io::escape::one_line(&line));
+                eprintln!(
+                    "specpoly: error: {}",
+                    specpoly_formats::escape::one_line(&line)
+                );
                 std::process::exit(2);
             }
         },
@@ -18,7 +21,7 @@ fn main() {
     if let Err(e) = specpoly::cli::run(cli) {
         eprintln!(
             "specpoly: error: {}",
-            specpoly::io::escape::one_line(&e.to_string())
+            specpoly_formats::escape::one_line(&e.to_string())
         );
         std::process::exit(e.exit_code());
     }

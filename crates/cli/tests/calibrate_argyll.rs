@@ -21,10 +21,9 @@
 //! (`unshare -m`, root): what a machine with a USB bus and no instrument on it looks like.
 //! Without that, `dispread` hangs — which `no_instrument_…_within_30_s` uses on purpose.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
-use specpoly::io::{cgats, ti1};
+use specpoly_formats::{cgats, ti1};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -228,7 +227,7 @@ fn fake_device_end_to_end() {
         "white − black: Y = {wk}, model {want}"
     );
     // the fit says the same
-    let cal = specpoly::calibrate::file::load(&dir.path().join("fake.toml")).unwrap();
+    let cal = specpoly_display::calibration::load(&dir.path().join("fake.toml")).unwrap();
     let red = cal.data().primaries.red;
     assert!((red.x - 0.41 / 0.64).abs() < XY_TOL, "{red:?}");
     // running again refuses to overwrite the readings
@@ -311,7 +310,7 @@ fn our_ti1_is_read_by_dispread() {
     );
     assert_eq!(w.code, Some(0), "{w:?}");
     assert!(w.stderr.contains("wrote ours.ti1"), "{w:?}");
-    let n = specpoly::calibrate::patches::standard(3, 2).unwrap().len();
+    let n = specpoly_calibrate::patches::standard(3, 2).unwrap().len();
     let mut c = contained(Path::new("/usr/bin/dispread"), &dir.path().join("fakebus"));
     c.args(["-w", "-dfake", "ours"]);
     let d = run(c, dir.path(), Duration::from_secs(60));
@@ -437,7 +436,7 @@ fn instrument_error_mid_run_keeps_finished_batches_and_resume_completes() {
     assert!(done.stderr.contains("8 of 49 patches measured"), "{done:?}");
     let (_, all) = readings(&dir.path().join("m.ti3"));
     assert_eq!(all.len(), 49);
-    let set = specpoly::calibrate::patches::standard(9, 16).unwrap();
+    let set = specpoly_calibrate::patches::standard(9, 16).unwrap();
     for ((d, x), p) in all.iter().zip(&set) {
         // device values as the .ti3 writes them (0–100, five decimals)
         for k in 0..3 {

@@ -2,13 +2,12 @@
 //! run; its panel levels and dithered RGB565 codes must equal the Rust transform's on a sample
 //! of pixels. The Rust form is compiled by the firmware's build (firmware/build.rs, QEMU tests).
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use cli::s;
-use specpoly::calibrate::file;
 use specpoly_core::pixel::{Dither, Options, PanelTransform, Source, White};
 use specpoly_core::GamutMap;
+use specpoly_display::calibration;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -74,7 +73,7 @@ fn c_tables_compute_what_the_rust_transform_computes() {
     let run = Command::new(&exe).output().unwrap();
     assert!(run.status.success());
 
-    let cal = file::load(&toml).unwrap();
+    let cal = calibration::load(&toml).unwrap();
     let opts = Options {
         source: Source::DisplayP3,
         white: White::Adapt,

@@ -5,18 +5,17 @@
 //! predicts its patches within a mean ΔE00 of [`ARGYLL_DE`] (an independent model of the same
 //! display); broken and non-display profiles are one-line errors.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
+use crate::common::displays;
 use cli::{output as specpoly, s};
-#[path = "common/displays.rs"]
-mod displays;
 
-use specpoly::calibrate::file::{self, Calibration};
-use specpoly::calibrate::fit::{fit, FitOptions, InteractionChoice};
-use specpoly::calibrate::icc::{self, IccOptions, IccVersion};
-use specpoly::calibrate::verify::delta_e00;
-use specpoly::io::cgats::read_ti3;
+use specpoly_calibrate::fit::{fit, FitOptions, InteractionChoice};
+use specpoly_core::delta_e2000_xyz as delta_e00;
+use specpoly_display::calibration::Calibration;
+use specpoly_display::icc::{self, IccOptions, IccVersion};
+use specpoly_display::spec::DisplaySpec;
+use specpoly_formats::cgats::read_ti3;
 use std::path::Path;
 use std::process::Command;
 
@@ -29,7 +28,7 @@ const ARGYLL_DE: f64 = 1.0;
 
 /// The matrix model (what a `Display` and a matrix/TRC profile hold).
 fn acer() -> Calibration {
-    let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
+    let t = read_ti3(specpoly_spectra::data::ACER_TI3, "acer.ti3").unwrap();
     let opts = FitOptions {
         interaction: InteractionChoice::None,
         ..FitOptions::default()
@@ -84,7 +83,8 @@ fn our_profiles_give_the_calibrations_device_values() {
         eprintln!("{version:?}: max |ΔRGB| {worst:.2e}");
         assert!(worst < RGB, "{version:?}: {worst}");
         // the LED controller's lines come from the same loader
-        let lines = specpoly::led::lines::calibration(&p).unwrap();
+        let lines =
+            specpoly_led::lines::calibration(&DisplaySpec::open_measured(&p).unwrap()).unwrap();
         assert_eq!(lines.len(), 4, "{lines:?}");
     }
     // a LUT profile: the same with tables, its colorant and curve tags renamed away
@@ -108,8 +108,12 @@ fn our_profiles_give_the_calibrations_device_values() {
 #[test]
 fn argyll_profiles_describe_the_display() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("acer.ti3"), specpoly::data::ACER_TI3).unwrap();
-    let t = read_ti3(specpoly::data::ACER_TI3, "acer.ti3").unwrap();
+    std::fs::write(
+        dir.path().join("acer.ti3"),
+        specpoly_spectra::data::ACER_TI3,
+    )
+    .unwrap();
+    let t = read_ti3(specpoly_spectra::data::ACER_TI3, "acer.ti3").unwrap();
     let (meas, _) = t.best_units();
     {
         let name = "shaper";
@@ -120,7 +124,9 @@ fn argyll_profiles_describe_the_display() {
             .output()
             .expect("colprof (test.sh installs ArgyllCMS)");
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let d = file::load_display(&dir.path().join(name)).unwrap();
+        let d = DisplaySpec::open_measured(&dir.path().join(name))
+            .unwrap()
+            .display();
         let w = d.white().to_array().map(|v| v as f64);
         let des: Vec<f64> = meas
             .iter()

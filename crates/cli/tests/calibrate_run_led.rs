@@ -1,18 +1,16 @@
 //! `calibrate run --display led:PORT`: the RGB-LED controller as the display, played by a fake
 //! controller on a pseudo-terminal that answers with the host's own model of the firmware
-//! (`specpoly::led::Model`, the specification the firmware is tested against). The duties it
+//! (`specpoly_led::Model`, the specification the firmware is tested against). The duties it
 //! is asked for must be the patches'.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
-#[path = "common/pty.rs"]
-mod pty;
+use crate::common::pty;
 
 use pty::{Answer, FakePort};
-use specpoly::calibrate::patches;
-use specpoly::led::Model;
+use specpoly_calibrate::patches;
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
+use specpoly_led::Model;
 use specpoly_protocol::{Command, Reply};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;

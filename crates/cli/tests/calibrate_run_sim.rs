@@ -2,11 +2,11 @@
 //! the real binary: the primaries recovered from noisy readings agree with the SPD-integrated
 //! truth within 0.001 in x and y and 0.5 % in luminance; the manual display; usage errors.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
-use specpoly::calibrate::sim::SimModel;
-use specpoly::calibrate::{file, patches};
+use specpoly_calibrate::patches;
+use specpoly_calibrate::sim::SimModel;
+use specpoly_display::calibration;
 use std::time::Duration;
 
 fn xyy(p: [f64; 3]) -> [f64; 3] {
@@ -61,7 +61,7 @@ fn readings_give_the_primaries_of_the_simulated_crt() {
         );
     }
     // the fitted calibration: primaries within 0.001 in x, y and 0.5 % in Y of the truth
-    let cal = file::load(&dir.path().join("crt.toml")).unwrap();
+    let cal = calibration::load(&dir.path().join("crt.toml")).unwrap();
     let d = cal.data();
     assert_eq!(d.units, "cd/m2");
     let mut worst = [0.0f64; 3];

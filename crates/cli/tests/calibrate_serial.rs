@@ -3,21 +3,18 @@
 //! instrument, a missing port, and a port that disappears mid-run — through the library and
 //! through the real binary (with the web display and a fake browser as the screen).
 
-#[path = "common/calibrate_run.rs"]
-mod common;
-#[path = "common/pr655.rs"]
-mod pr655;
-#[path = "common/pr655_rig.rs"]
-mod rig;
+use crate::common::calibrate_run as common;
+use crate::common::pr655;
+use crate::common::pr655_rig as rig;
 
 use pr655::Faults;
 use rig::{assert_readings_match, emulated, emulated_screen, measure_standard, open_and_measure};
-use specpoly::calibrate::instrument::serial::{Pr6xx, SerialOptions};
-use specpoly::calibrate::instrument::Instrument;
-use specpoly::calibrate::patch_display::sim::SimDisplay;
-use specpoly::calibrate::patches;
-use specpoly::calibrate::run::measure_all;
-use specpoly::calibrate::sim::SimModel;
+use specpoly_calibrate::instrument::serial::{Pr6xx, SerialOptions};
+use specpoly_calibrate::instrument::Instrument;
+use specpoly_calibrate::patch_display::sim::SimDisplay;
+use specpoly_calibrate::patches;
+use specpoly_calibrate::run::measure_all;
+use specpoly_calibrate::sim::SimModel;
 use std::time::{Duration, Instant};
 
 fn quick() -> SerialOptions {

@@ -4,16 +4,13 @@
 //! what this guards against); and Ctrl-C during a run returns the instrument to local mode
 //! (`Q`) and keeps the readings.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
-#[path = "common/pr655.rs"]
-mod pr655;
-#[path = "common/pr655_rig.rs"]
-mod rig;
+use crate::common::calibrate_run as common;
+use crate::common::pr655;
+use crate::common::pr655_rig as rig;
 
 use pr655::Faults;
 use rig::{assert_readings_match, emulated, emulated_screen, open_and_measure};
-use specpoly::calibrate::instrument::serial::SerialOptions;
+use specpoly_calibrate::instrument::serial::SerialOptions;
 use std::time::Duration;
 
 fn opts() -> SerialOptions {

@@ -5,10 +5,9 @@
 //! uninterrupted run of the same noiseless simulated display: the completed file must hold
 //! the same readings.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
-use specpoly::io::cgats;
+use specpoly_formats::cgats;
 use std::path::Path;
 use std::time::{Duration, Instant};
 

@@ -5,16 +5,15 @@
 //! here from its definition) within [`TONE`] of the white's luminance. One run is through the
 //! real binary; the others call the solve directly.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
-use specpoly::calibrate::fit::{fit, FitOptions};
-use specpoly::calibrate::patches;
-use specpoly::calibrate::sim::{SimHandle, SimModel};
-use specpoly::calibrate::target::{self, Meter, Target, Tone, White};
-use specpoly::calibrate::video_lut::VideoLut;
-use specpoly::error::Result;
-use specpoly::measurement::Measurement;
+use specpoly_calibrate::fit::{fit, FitOptions};
+use specpoly_calibrate::patches;
+use specpoly_calibrate::sim::{SimHandle, SimModel};
+use specpoly_display::target::{self, Meter, Target, Tone, White};
+use specpoly_display::video_lut::VideoLut;
+use specpoly_formats::error::Result;
+use specpoly_formats::measurement::Measurement;
 use std::time::Duration;
 
 /// The largest distance in xy of the calibrated white from the target's.
@@ -205,7 +204,7 @@ fn the_cli_writes_the_cal_the_ti3_and_the_calibration() {
     assert!(tone_err <= TONE, "{tone_err}");
     assert!((lum / 70.0 - 1.0).abs() <= TONE, "{lum}");
     // the calibration holds the LUT and fits the readings taken through it
-    let c = specpoly::calibrate::file::load(&cal).unwrap();
+    let c = specpoly_display::calibration::load(&cal).unwrap();
     let held = c.video_lut().expect("the calibration holds the LUT");
     for ch in 0..3 {
         for k in 0..256 {
@@ -219,7 +218,7 @@ fn the_cli_writes_the_cal_the_ti3_and_the_calibration() {
         "{cw:?}"
     );
     // the readings through the LUT carry it as their CAL table, as `dispread -k` writes it
-    let ti3 = specpoly::io::cgats::read_ti3_file(&dir.path().join("warm.ti3")).unwrap();
+    let ti3 = specpoly_formats::cgats::read_ti3_file(&dir.path().join("warm.ti3")).unwrap();
     let back = VideoLut::from_rows(ti3.video_lut.as_ref().unwrap(), "warm.ti3").unwrap();
     for c in 0..3 {
         for k in 0..256 {

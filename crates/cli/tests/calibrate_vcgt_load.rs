@@ -18,8 +18,7 @@
 //!   standard output), Xvfb runs under `timeout` (it cannot outlive the test by more than
 //!   [`XVFB_LIFE`]), and a guard ends its process group on every path out of the test.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -199,7 +198,7 @@ fn the_cal_and_the_profile_vcgt_load_into_the_x_server_ramp() {
     let icc = dir.path().join("cool.icc");
     let made = common::cli::run(&["calibrate", "icc", s(&cal), "-o", s(&icc)]);
     assert_eq!(made.code, 0, "{made:?}");
-    let c = specpoly::calibrate::file::load(&cal).unwrap();
+    let c = specpoly_display::calibration::load(&cal).unwrap();
     let lut = c
         .video_lut()
         .expect("the calibration holds the LUT")

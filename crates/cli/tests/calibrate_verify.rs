@@ -5,11 +5,10 @@
 //! Chromium (a screenshot that is not one colour and shows a patch's colour; no console error,
 //! with a control page proving the console check can fail).
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
 use common::cli::{output as specpoly, s, ACER};
-use specpoly::calibrate::criteria::CRITERIA;
+use specpoly_calibrate::criteria::CRITERIA;
 use specpoly_core::{de2000_terms, Lab};
 use std::io::Write;
 use std::path::{Path, PathBuf};

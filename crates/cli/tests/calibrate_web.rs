@@ -3,12 +3,11 @@
 //! completes with Chromium as the screen. Without Chromium these tests fail (never skip):
 //! install it with `apt-get update && apt-get install -y chromium`.
 
-#[path = "common/calibrate_run.rs"]
-mod common;
+use crate::common::calibrate_run as common;
 
-use specpoly::calibrate::patch_display::web::{WebDisplay, MAX_CONNECTIONS, MAX_HEAD};
-use specpoly::calibrate::patch_display::PatchDisplay;
-use specpoly::io::device_spec::DeviceSpec;
+use specpoly_calibrate::patch_display::web::{WebDisplay, MAX_CONNECTIONS, MAX_HEAD};
+use specpoly_calibrate::patch_display::PatchDisplay;
+use specpoly_formats::device_spec::DeviceSpec;
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};

@@ -2,9 +2,9 @@
 //! default preset reaches mean ≤ 0.1 and max ≤ 0.5 ΔE00 on the validation set (spectra and
 //! lights it was not tuned on), for both observers.
 
-use specpoly::accuracy::{self, Method};
-use specpoly::repr::Repr;
 use specpoly_core::Observer;
+use specpoly_paper::accuracy::{self, Method};
+use specpoly_spectra::repr::Repr;
 use std::process::Command;
 
 #[test]

@@ -1,7 +1,6 @@
 //! `fit`, `plot` and `table1` end to end through the real binary, asserting real numbers.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use cli::specpoly;
 

@@ -4,8 +4,7 @@
 //! on one line — clap's and TOML's included — without Rust `Debug` forms, and `calibrate predict`
 //! answering each line of a pipe as it arrives.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use cli::{text, ACER, ROOT};
 use std::io::{BufRead, BufReader, Write};

@@ -1,8 +1,7 @@
 //! Bad input through the real binary: one clear line on stderr, exit code 2 for usage and 1 for
 //! data errors, no panic, nothing on stdout, and no output file (not even a partial one).
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use std::path::Path;
 

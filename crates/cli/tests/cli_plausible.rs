@@ -4,8 +4,7 @@
 //! result with inf or NaN. Independent check: the hint's fix (`--scale 0.01`, `scale = 0.01`)
 //! gives the same output as the same data written in 0–1.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use std::path::Path;
 

@@ -2,8 +2,7 @@
 //! each bad input ends promptly with one error line and exit code 1 or 2 (never a panic, exit
 //! 101, or a signal), or, where the input is legitimate, succeeds.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use cli::{s, Run};
 use std::path::Path;

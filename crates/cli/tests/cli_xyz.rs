@@ -3,10 +3,8 @@
 //! (end values held: the ColorChecker stops at 730 nm), multiplied, summed in f64 over
 //! 380–780 nm, CIELAB by the CIE 015 formula, CIEDE2000 from the `palette` crate.
 
-#[path = "common/cli.rs"]
-mod cli;
-#[path = "../../core/tests/common/reference_1nm.rs"]
-mod reference_1nm;
+use crate::common::cli;
+use crate::reference_1nm;
 
 use palette::color_difference::Ciede2000;
 use palette::white_point::D65 as PD65;

@@ -4,10 +4,8 @@
 //! the colour asked for, in `palette`'s CIEDE2000 (relative to the model's white), for every
 //! ColorChecker colour the full model can show (its exact inverse reaches it).
 
-#[path = "common/cli.rs"]
-mod cli;
-#[path = "common/displays.rs"]
-mod displays;
+use crate::common::cli;
+use crate::common::displays;
 
 use displays::{de00, fitted};
 

@@ -5,8 +5,8 @@
 //! byte-order mark, CRLF, Latin-1 bytes, trailing empty columns and rows, tabs — and must read
 //! as the same numbers. Errors name `file:line:column`.
 
-use specpoly::io::csv::{parse, Table};
-use specpoly::io::read::{decode, text_or_latin1};
+use specpoly_formats::csv::{parse, Table};
+use specpoly_formats::read::{decode, text_or_latin1};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -101,13 +101,13 @@ fn latin1_cgats_reads_with_line_numbers_in_errors() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("büro.ti3");
     std::fs::write(&path, &latin1).unwrap();
-    let t = specpoly::io::cgats::read_ti3_file(&path).unwrap();
+    let t = specpoly_formats::cgats::read_ti3_file(&path).unwrap();
     assert_eq!(t.keyword("DESCRIPTOR"), Some("Büro-Monitor"));
     assert_eq!(t.measurements.len(), 2);
     // every error names its line: a bad number, a missing field, a bad keyword
     let bad = |from: &str, to: &str| {
         let text = ti3.replace(from, to);
-        specpoly::io::cgats::read_ti3(&text, "b.ti3")
+        specpoly_formats::cgats::read_ti3(&text, "b.ti3")
             .unwrap_err()
             .to_string()
     };

@@ -15,15 +15,14 @@
 //!   - `<!-- docs-test: skip REASON -->`: the block needs what CI has not (a real serial
 //!     instrument, a screen); the reason is required. Keep these few.
 //!   - `<!-- docs-test: fake-led PORT -->`: `PORT` is replaced by a pseudo-terminal on which a
-//!     fake LED controller answers as the firmware does (the host's [`specpoly::led::Model`]).
+//!     fake LED controller answers as the firmware does (the host's [`specpoly_led::Model`]).
 
-#[path = "common/pty.rs"]
-mod pty;
+use crate::common::pty;
 
 use pty::{Answer, FakePort};
 use serialport::TTYPort;
-use specpoly::led::{MixModel, Model};
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
+use specpoly_led::{MixModel, Model};
 use specpoly_protocol::{Command, CurveSummary, Reply, StateReport};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -40,7 +39,7 @@ struct Block {
 }
 
 fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// The command blocks of one markdown file.

@@ -3,16 +3,14 @@
 //! silent device, a device that goes away, no such port — each a one-line error, exit code 1,
 //! no panic. (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
 
-#[path = "common/cli.rs"]
-mod cli;
-#[path = "common/pty.rs"]
-mod pty;
+use crate::common::cli;
+use crate::common::pty;
 
 use cli::output as specpoly;
 use pty::{Answer, FakePort};
 use serialport::TTYPort;
-use specpoly::led::{MixModel, Model};
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
+use specpoly_led::{MixModel, Model};
 use specpoly_protocol::{Command, CurveSummary, Reply, StateReport};
 use std::process::Output;
 use std::sync::atomic::AtomicBool;
@@ -206,7 +204,7 @@ fn a_device_that_disagrees_fails_the_check() {
 }
 
 /// `--channel` uploads the channels' XYZ from their spectra, then `cct`/`xy` are mixed on the
-/// device; `--check` recomputes the mix from the spectra (`specpoly::led::mix_check`).
+/// device; `--check` recomputes the mix from the spectra (`specpoly_led::mix_check`).
 #[test]
 fn channels_are_uploaded_and_mixes_checked() {
     let leds = concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/leds/rgbwa.csv");

@@ -8,21 +8,18 @@
 //! (a row damaged on the way: `err lut-check`) makes `led` fail with one line.
 //! (The real firmware under QEMU: tests/tests/firmware_qemu.rs.)
 
-#[path = "common/cli.rs"]
-mod cli;
-#[path = "common/displays.rs"]
-mod displays;
-#[path = "common/pty.rs"]
-mod pty;
+use crate::common::cli;
+use crate::common::displays;
+use crate::common::pty;
 
 use cli::output as specpoly;
 use displays::{de00, fitted};
 use pty::{Answer, FakePort};
 use serialport::TTYPort;
-use specpoly::led::table::{controller_display, TABLE_DE};
-use specpoly::led::{DriveTable, Model};
 use specpoly_core::drive_table::checksum;
 use specpoly_core::{Display, GamutMap, Observer, Transfer, Xyz};
+use specpoly_led::table::{controller_display, TABLE_DE};
+use specpoly_led::{DriveTable, Model};
 use specpoly_protocol::{Command, CurveSummary, LutCommand, Reply, StateReport};
 use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
@@ -165,7 +162,7 @@ fn led_sends_the_table_and_the_colour_is_the_full_models() {
         "{stdout}"
     );
     let table = held.lock().unwrap().table.clone().expect("a table arrived");
-    assert_eq!(table.grid, specpoly::led::table::DEFAULT_GRID);
+    assert_eq!(table.grid, specpoly_led::table::DEFAULT_GRID);
     let reply = Reply::parse(stdout.lines().next().unwrap()).unwrap();
     let Reply::Colour(c) = reply else {
         panic!("{stdout}")

@@ -1,4 +1,4 @@
-//! The drive-correction table (`specpoly_core::drive_table`, `specpoly::led::DriveTable`)
+//! The drive-correction table (`specpoly_core::drive_table`, `specpoly_led::DriveTable`)
 //! that carries the full display model to the LED controller: its interpolation error against
 //! the exact inverse (`DisplayModel::inverse`) on the shipped real displays (data/ti3) fitted
 //! with the default model. For a dense sample of the controller's matrix-model device values
@@ -9,15 +9,14 @@
 //! `cargo test -p specpoly --test led_table -- --ignored --nocapture` prints the table of
 //! grid sides against error (docs/calibration.md, "The full model on the controller").
 
-#[path = "common/displays.rs"]
-mod displays;
+use crate::common::displays;
 
 use displays::{de00, fitted, shipped};
 use rayon::prelude::*;
-use specpoly::led::table::{controller_display, DEFAULT_GRID, TABLE_DE, TABLE_MEAN_DE};
-use specpoly::led::DriveTable;
 use specpoly_core::drive_table::correction;
 use specpoly_core::{Display, DisplayModel};
+use specpoly_led::table::{controller_display, DEFAULT_GRID, TABLE_DE, TABLE_MEAN_DE};
+use specpoly_led::DriveTable;
 
 /// Sample points per side: `(i + 0.5) / SAMPLE`, between the nodes of every grid tried.
 const SAMPLE: usize = 14;

@@ -3,8 +3,7 @@
 //! tolerances as `core/tests/light_colour_science.rs`), the mix's chromaticity against a 1 nm
 //! f64 sum of the channel files done here, and clean failures on bad input.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 fn specpoly(args: &[&str]) -> (i32, String, String) {
     cli::run_in(cli::ROOT, args).parts()

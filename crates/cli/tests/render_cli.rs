@@ -1,8 +1,7 @@
 //! `specpoly render` through the real binary: outputs, determinism, and scene errors as one
 //! line on stderr with the right exit code and no output file left behind.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use std::path::Path;
 use std::process::Output;

@@ -3,8 +3,7 @@
 //! ICC profile in `iCCP` (byte-identical to `specpoly calibrate icc`), and an unknown extension
 //! as a usage error that leaves no file.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use cli::{output as specpoly, ACER};
 use std::path::{Path, PathBuf};

@@ -334,6 +334,12 @@ pub fn delta_e2000(p: Lab, q: Lab) -> f64 {
     de2000_terms(p, q).delta_e()
 }
 
+/// CIEDE2000 between two XYZ seen relative to `white` (all three in the same units): each to
+/// CIELAB against `white`, then [`delta_e2000`].
+pub fn delta_e2000_xyz(a: [f64; 3], b: [f64; 3], white: [f64; 3]) -> f64 {
+    delta_e2000(Lab::from_xyz(a, white), Lab::from_xyz(b, white))
+}
+
 /// The Bradford cone-response matrix (Lam 1985).
 pub const BRADFORD: Mat3 = Mat3([
     [0.8951, 0.2664, -0.1614],

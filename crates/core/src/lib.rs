@@ -83,7 +83,7 @@ pub mod tabulated;
 
 pub use cheb::Cheb;
 pub use colorimetry::{
-    bradford, chromaticity, de2000_terms, delta_e2000, De2000Terms, Lab, Xyy, Xyz,
+    bradford, chromaticity, de2000_terms, delta_e2000, delta_e2000_xyz, De2000Terms, Lab, Xyy, Xyz,
 };
 pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
 pub use display_model::{DisplayModel, Solution};

@@ -6,8 +6,7 @@
 //! over 380–780 nm; products of reflectances taken at 1 nm. The crate under test fits each
 //! reflectance, multiplies with degree reduction, and integrates against the light's moments.
 
-#[path = "common/reference_1nm.rs"]
-mod reference_1nm;
+use crate::common::reference_1nm;
 
 use reference_1nm::{cmf_1nm, light_1nm, read, to_1nm};
 use specpoly_core::{

@@ -6,8 +6,7 @@
 //! colour-science integrates 5 nm data at 5 nm (CRI after Sprague interpolation to 1 nm) with the
 //! tabulated samples; we integrate the linear interpolant at 1 nm with fitted samples.
 
-#[path = "common/light_data.rs"]
-mod light_data;
+use crate::common::light_data;
 
 use light_data::{csv, lamp_spds, table};
 use specpoly_core::light::{cct, cri::cri, tm30::tm30, Samples, Source};

@@ -3,8 +3,7 @@
 //! calculator's example lamp) and the ANSI/IES TM-30-18 calculator (FL2: Rf, Rg, CCT, Duv).
 //! Data and sources: `data/light_published.csv`; the lamps' SPDs: `data/light_spds_5nm.csv`.
 
-#[path = "common/light_data.rs"]
-mod light_data;
+use crate::common::light_data;
 
 use light_data::{csv, lamp_spds};
 use specpoly_core::light::{cri::cri, tm30::tm30, Samples, Source};

@@ -1,7 +1,7 @@
-//! `specpoly accuracy`: writes the accuracy report ([`crate::accuracy::report`]) to
+//! `specpoly accuracy`: writes the accuracy report ([`specpoly_paper::accuracy::report`]) to
 //! `docs/accuracy.md` (atomically).
 
-use crate::error::{CliError, Result};
+use specpoly_formats::error::{CliError, Result};
 use std::path::PathBuf;
 
 /// Arguments of `specpoly accuracy`.
@@ -32,14 +32,14 @@ pub fn run(a: &AccuracyArgs) -> Result<()> {
             ));
         }
     }
-    let (doc, summary) = crate::accuracy::report_and_summary()?;
-    crate::io::atomic::write(&a.output, doc.as_bytes())?;
+    let (doc, summary) = specpoly_paper::accuracy::report_and_summary()?;
+    specpoly_formats::atomic::write(&a.output, doc.as_bytes())?;
     eprintln!(
         "wrote {}",
-        crate::io::escape::one_line(&a.output.display().to_string())
+        specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
-        return crate::io::stdout::print_json(&summary);
+        return specpoly_formats::stdout::print_json(&summary);
     }
     Ok(())
 }

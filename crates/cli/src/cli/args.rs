@@ -7,13 +7,13 @@
 //! | `--illuminant`, `--observer` (`xyz`, `fit`) | [`Colorimetry`] | [`observer`] |
 //! | `--observer` (`led`) | [`Observer`] | [`observer`] |
 //! | `--illuminant` (`led refl`) | [`Illuminant`] | [`builtin_illuminant`] |
-//! | `--repr`, `--mode` | [`crate::repr::Repr`] | its `FromStr` (the list of representations) |
+//! | `--repr`, `--mode` | [`specpoly_spectra::repr::Repr`] | its `FromStr` (the list of representations) |
 //! | `--gamut` (`render`), `--map` (`led`) | [`Gamut`] | clap `ValueEnum` |
-//! | `--size` | [`crate::size::Size`] | its `FromStr` |
+//! | `--size` | [`specpoly_plot::size::Size`] | its `FromStr` |
 //! | `--trc` (`led`) | [`Curve`] | [`transfer`] |
 
-use crate::error::{CliError, Result};
 use specpoly_core::{GamutMap, Illuminant, Observer, Transfer};
+use specpoly_formats::error::{CliError, Result};
 use specpoly_protocol::number::parse_f32;
 
 /// The light and the observer a colour is computed for.

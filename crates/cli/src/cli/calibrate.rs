@@ -1,13 +1,13 @@
 //! `specpoly calibrate`: fit Cowan's model to measurements, show, predict, verify, export ICC,
 //! and (`run`) measure a display. See docs/calibration.md.
 
-use crate::calibrate::file::{self, Calibration, TransferKind};
-use crate::calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
-use crate::calibrate::{export, icc};
-use crate::error::{CliError, Result};
-use crate::io::cgats;
-use crate::io::stdout::{print, print_json};
+use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
 use specpoly_core::chromaticity;
+use specpoly_display::calibration::{self, Calibration, TransferKind};
+use specpoly_display::{export, icc};
+use specpoly_formats::cgats;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
 
 /// `specpoly calibrate` subcommands.
@@ -154,10 +154,10 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
 }
 
 fn patches_cmd(a: &PatchesArgs) -> Result<()> {
-    let set = crate::calibrate::patches::standard(a.ramp_steps, a.verify)?;
+    let set = specpoly_calibrate::patches::standard(a.ramp_steps, a.verify)?;
     let devices: Vec<[f64; 3]> = set.iter().map(|p| p.device).collect();
-    let text = crate::io::ti1::write_ti1(&devices, "specpoly calibrate patches");
-    crate::io::atomic::write(&a.output, text.as_bytes())?;
+    let text = specpoly_formats::ti1::write_ti1(&devices, "specpoly calibrate patches");
+    specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
     eprintln!("wrote {} ({} patches)", a.output.display(), set.len());
     Ok(())
 }
@@ -205,7 +205,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     }
     if let Some(rows) = &ti3.video_lut {
         // kept, so the ICC profile carries it as its `vcgt`
-        let lut = crate::calibrate::video_lut::VideoLut::from_rows(
+        let lut = specpoly_display::video_lut::VideoLut::from_rows(
             rows,
             &format!("{}: CAL table", a.ti3.display()),
         )?;
@@ -214,7 +214,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     cal.save(&a.output)?;
     eprintln!(
         "wrote {}",
-        crate::io::escape::one_line(&a.output.display().to_string())
+        specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
         return print_json(&fit_json(&cal, &a.output, fit_set.len()));
@@ -253,7 +253,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
 
 /// What the fit decided, one line each: the model and how it was chosen, the patches dropped
 /// as bad readings, the primaries constrained.
-pub fn fit_facts(f: &file::FitReport) -> String {
+pub fn fit_facts(f: &calibration::FitReport) -> String {
     let mut s = String::new();
     if !f.model.is_empty() {
         let cv: Vec<String> = f
@@ -306,7 +306,7 @@ pub fn fit_json(cal: &Calibration, output: &std::path::Path, fitted: usize) -> s
 /// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
 pub fn show_json(cal: &Calibration) -> serde_json::Value {
     let d = cal.data();
-    let prim = |p: &file::Primary| serde_json::json!({"x": p.x, "y": p.y, "Y": p.luminance});
+    let prim = |p: &calibration::Primary| serde_json::json!({"x": p.x, "y": p.y, "Y": p.luminance});
     let xyy = |v: [f64; 3]| {
         let [x, y] = chromaticity(v, d.white);
         serde_json::json!({"X": v[0], "Y": v[1], "Z": v[2], "x": x, "y": y})
@@ -332,7 +332,7 @@ pub fn show_json(cal: &Calibration) -> serde_json::Value {
 }
 
 fn show(a: &ShowArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
+    let cal = calibration::load(&a.calibration)?;
     if a.json {
         return print_json(&show_json(&cal));
     }
@@ -376,7 +376,7 @@ fn show(a: &ShowArgs) -> Result<()> {
 }
 
 fn icc_cmd(a: &IccArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
+    let cal = calibration::load(&a.calibration)?;
     let desc = a.description.clone().unwrap_or_else(|| {
         a.calibration
             .file_stem()
@@ -389,7 +389,7 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
         tables: a.tables || auto.tables,
     };
     let bytes = icc::build(&cal, &desc, &opts)?;
-    crate::io::atomic::write(&a.output, &bytes)?;
+    specpoly_formats::atomic::write(&a.output, &bytes)?;
     let version = match a.version {
         icc::IccVersion::V2 => "v2.4",
         icc::IccVersion::V4 => "v4.4",
@@ -403,14 +403,14 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
     }
     eprintln!(
         "wrote {} ({} bytes, {what})",
-        crate::io::escape::one_line(&a.output.display().to_string()),
+        specpoly_formats::escape::one_line(&a.output.display().to_string()),
         bytes.len()
     );
     Ok(())
 }
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
+    let cal = calibration::load(&a.calibration)?;
     let p = export::transform(&cal, a.source, a.white, a.bits)?;
     let origin = format!(
         "calibration {}, source {}, white {}, {}",
@@ -420,7 +420,7 @@ fn export_cmd(a: &ExportArgs) -> Result<()> {
         crate::cli::args::name(&a.bits)
     );
     let text = export::source_text(&p, a.format, &a.name, &origin)?;
-    crate::io::atomic::write(&a.output, text.as_bytes())?;
+    specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
     eprintln!(
         "wrote {} ({} bytes of tables)",
         a.output.display(),

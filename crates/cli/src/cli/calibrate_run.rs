@@ -1,4 +1,4 @@
-//! `specpoly calibrate run`: measures a display ([`crate::calibrate::run`]) and prints what it
+//! `specpoly calibrate run`: measures a display ([`specpoly_calibrate::run`]) and prints what it
 //! does as it goes.
 //!
 //! ```text
@@ -6,18 +6,18 @@
 //!                        [--patches SET.ti1] [--resume | --force]
 //! ```
 //! writes `CAL.ti3` (every reading, committed atomically as it is taken; never overwritten:
-//! see [`crate::calibrate::session`]) and `CAL.toml` (the fit of the non-verification
+//! see [`specpoly_calibrate::session`]) and `CAL.toml` (the fit of the non-verification
 //! patches).
 
-use crate::calibrate::file::{self, Calibration};
-use crate::calibrate::fit::MatrixFit;
-use crate::calibrate::interrupt;
-use crate::calibrate::run::{
+use specpoly_calibrate::fit::MatrixFit;
+use specpoly_calibrate::interrupt;
+use specpoly_calibrate::run::{
     fit_and_save, measure_session, patch_set, raw_primaries, ti3_path, Devices,
 };
-use crate::calibrate::session::{Existing, Session};
-use crate::error::{CliError, Result};
-use crate::io::cgats::Ti3Info;
+use specpoly_calibrate::session::{Existing, Session};
+use specpoly_display::calibration::{self, Calibration};
+use specpoly_formats::cgats::Ti3Info;
+use specpoly_formats::error::{CliError, Result};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `specpoly calibrate run`.
@@ -69,17 +69,17 @@ pub struct RunArgs {
     /// `white=D65|native|X,Y,gamma=G|srgb|bt1886|lstar,luminance=N|native`. The native
     /// readings go to `CAL.native.ti3`, the LUT to `CAL.cal`, the readings through it to
     /// `CAL.ti3` and their fit (with the LUT) to `CAL.toml`. See docs/calibration.md.
-    #[arg(long, value_name = "TARGET", value_parser = crate::calibrate::target::parse)]
-    pub target: Option<crate::calibrate::target::Target>,
+    #[arg(long, value_name = "TARGET", value_parser = specpoly_display::target::parse)]
+    pub target: Option<specpoly_display::target::Target>,
 }
 
 /// Prints one line of progress: on stdout, or on stderr when stdout carries `--json`.
 pub(crate) fn line(s: &str) -> Result<()> {
     if JSON.load(std::sync::atomic::Ordering::Relaxed) {
-        eprintln!("{}", crate::io::escape::one_line(s));
+        eprintln!("{}", specpoly_formats::escape::one_line(s));
         return Ok(());
     }
-    crate::io::stdout::print(&format!("{s}\n"))
+    specpoly_formats::stdout::print(&format!("{s}\n"))
 }
 
 /// Whether this run prints JSON (set once at the start of [`run`]).
@@ -116,7 +116,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
     let info = Ti3Info {
         descriptor: "specpoly calibrate run".into(),
         instrument: None,
-        created: Some(file::now_utc()),
+        created: Some(calibration::now_utc()),
         absolute: true,
         keywords: Vec::new(),
     };
@@ -191,14 +191,14 @@ pub fn run(a: &RunArgs) -> Result<()> {
         fit_and_save(&a.output, &ti3, session.info(), a.matrix, &set, &taken)?;
     eprintln!(
         "wrote {}",
-        crate::io::escape::one_line(&a.output.display().to_string())
+        specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
         let mut v = crate::cli::calibrate::fit_json(&cal, &a.output, n_fit);
         v["readings"] = serde_json::json!(ti3.display().to_string());
         v["patches_measured"] = serde_json::json!(taken.len());
         v["patches_verify"] = serde_json::json!(n_verify);
-        return crate::io::stdout::print_json(&v);
+        return specpoly_formats::stdout::print_json(&v);
     }
     print_fit(&cal, &a.output)
 }

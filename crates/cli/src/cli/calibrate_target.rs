@@ -1,5 +1,5 @@
 //! `specpoly calibrate run … --target T`: measure the display, calibrate it to the target with
-//! video LUTs ([`crate::calibrate::target`]), then measure it again through the LUT and fit
+//! video LUTs ([`specpoly_display::target`]), then measure it again through the LUT and fit
 //! that (the profile then describes the display with the LUT loaded, as ArgyllCMS's
 //! `dispcal` + `dispread -k` + `colprof` do).
 //!
@@ -8,14 +8,14 @@
 //! `CAL` table, as `dispread -k` writes it) and `CAL.toml` (their fit, with the LUT in its
 //! `[video_lut]`).
 
-use crate::calibrate::fit::{self, FitOptions};
-use crate::calibrate::patches::Patch;
-use crate::calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
-use crate::calibrate::session::{Existing, Session};
-use crate::calibrate::target::{self, Score, Target};
 use crate::cli::calibrate_run::{line, print_fit, RunArgs};
-use crate::error::{CliError, Result};
-use crate::io::cgats::Ti3Info;
+use specpoly_calibrate::fit::{self, FitOptions};
+use specpoly_calibrate::patches::Patch;
+use specpoly_calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
+use specpoly_calibrate::session::{Existing, Session};
+use specpoly_display::target::{self, Score, Target};
+use specpoly_formats::cgats::Ti3Info;
+use specpoly_formats::error::{CliError, Result};
 use std::path::{Path, PathBuf};
 
 /// Where the native readings go: `CAL.toml` → `CAL.native.ti3`.
@@ -145,7 +145,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     }
     record_session(&mut rig, c.set, &mut session).map_err(|e| kept(&session, &ti3, e))?;
     // the LUT as the readings' CAL table (as `dispread -k` writes it)
-    let text = crate::io::read::text(&ti3)?;
+    let text = specpoly_formats::read::text(&ti3)?;
     let with_cal = format!(
         "{text}\n{}",
         outcome.lut.to_cal(
@@ -153,7 +153,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
             &target::cal_keywords(c.target, &outcome)
         )
     );
-    crate::io::atomic::write(&ti3, with_cal.as_bytes())?;
+    specpoly_formats::atomic::write(&ti3, with_cal.as_bytes())?;
     let taken = session.measurements();
     line(&format!(
         "measured {} patches through the LUT → {}",

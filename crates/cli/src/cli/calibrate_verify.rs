@@ -7,22 +7,22 @@
 //! specpoly calibrate predict --calibration CAL.toml [--json] < RGB lines
 //! ```
 //!
-//! `verify` prints DisplayCAL's and ISO 14861's criteria side by side ([`crate::calibrate::criteria`])
+//! `verify` prints DisplayCAL's and ISO 14861's criteria side by side ([`specpoly_calibrate::criteria`])
 //! and exits 1 when one fails at the required level. `predict` answers each input line as soon
 //! as it is read (stdout is flushed per line, so a program can hold a conversation through a
 //! pipe); a bad line stops it with an error naming the line, after the answers to the lines
 //! before it. JSON keys: docs/calibration.md.
 
-use crate::calibrate::criteria::{self, Level, Outcome};
-use crate::calibrate::file::{self, Calibration};
-use crate::calibrate::report_html::{self, ReportInfo};
-use crate::calibrate::verify::{self, Verification};
 use crate::cli::args::{self, Curve};
-use crate::error::{CliError, Result};
-use crate::io::cgats;
-use crate::io::stdout::{print, print_json};
-use crate::stats::{percentile, Stats};
 use serde_json::json;
+use specpoly_calibrate::criteria::{self, Level, Outcome};
+use specpoly_calibrate::report_html::{self, ReportInfo};
+use specpoly_calibrate::verify::{self, Verification};
+use specpoly_display::calibration::{self, Calibration};
+use specpoly_formats::cgats;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::stats::{percentile, Stats};
+use specpoly_formats::stdout::{print, print_json};
 use std::fmt::Write as _;
 use std::io::{BufRead, Read};
 use std::path::PathBuf;
@@ -88,7 +88,7 @@ pub fn parse_rgb(line: &str, n: usize) -> Result<[f64; 3]> {
 
 /// Runs `calibrate predict`: one answer per line, written and flushed as each line arrives.
 pub fn predict(a: &PredictArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
+    let cal = calibration::load(&a.calibration)?;
     let stdin = std::io::stdin();
     let mut input = stdin.lock();
     let mut buf = String::new();
@@ -128,7 +128,7 @@ pub fn predict(a: &PredictArgs) -> Result<()> {
 
 /// Runs `calibrate verify`.
 pub fn verify(a: &VerifyArgs) -> Result<()> {
-    let cal = file::load(&a.calibration)?;
+    let cal = calibration::load(&a.calibration)?;
     let ti3 = cgats::read_ti3_file(&a.ti3)?;
     let m = verify::measurements_for(&cal, &ti3)?;
     let v = Verification::new(&cal, &m, &ti3.lines);
@@ -146,10 +146,10 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
             level: a.require,
         };
         let html = report_html::page(&v, &cal, &info);
-        crate::io::atomic::write(path, html.as_bytes())?;
+        specpoly_formats::atomic::write(path, html.as_bytes())?;
         eprintln!(
             "wrote {}",
-            crate::io::escape::one_line(&path.display().to_string())
+            specpoly_formats::escape::one_line(&path.display().to_string())
         );
     }
     if a.json {

@@ -1,12 +1,12 @@
 //! `specpoly fit`: fits spectra by a polynomial representation and prints what the fit costs
-//! ([`crate::fit_report`]): coefficients, per-span errors and the fit's ΔE00.
+//! ([`specpoly_paper::fit_report`]): coefficients, per-span errors and the fit's ΔE00.
 
 use crate::cli::args::Colorimetry;
-use crate::error::Result;
-use crate::fit_report::fit_one;
-use crate::io::stdout::print_json;
-use crate::repr::Repr;
-use crate::spectrum_names;
+use specpoly_formats::error::Result;
+use specpoly_formats::stdout::print_json;
+use specpoly_paper::fit_report::fit_one;
+use specpoly_spectra::repr::Repr;
+use specpoly_spectra::spectrum_names;
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly fit`.
@@ -37,7 +37,7 @@ pub fn run(a: &FitArgs) -> Result<()> {
         observer,
     } = &a.colorimetry;
     let light = spectrum_names::light(illuminant)?;
-    let named = crate::plausible::reflectances(&a.spectra, a.scale, true)?;
+    let named = specpoly_spectra::plausible::reflectances(&a.spectra, a.scale, true)?;
     let reports = named
         .iter()
         .map(|n| fit_one(n, repr, *observer, &light.tabulated()))
@@ -75,5 +75,5 @@ pub fn run(a: &FitArgs) -> Result<()> {
             );
         }
     }
-    crate::io::stdout::print(&o)
+    specpoly_formats::stdout::print(&o)
 }

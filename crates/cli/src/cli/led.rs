@@ -2,25 +2,26 @@
 //!
 //! Settings given as options are sent first (`cal`, `trc`, `map`, `observer`), then the action;
 //! the controller's reply line is printed. `--check` also computes the answer on the host in f64
-//! ([`crate::led::check`]) and fails if the device disagrees.
+//! ([`specpoly_led::check`]) and fails if the device disagrees.
 //!
 //! The LED's calibration comes from a calibration file written by `specpoly calibrate`
 //! (`--calibration`: its primaries and transfer curves; the controller's model has no black
 //! offset, an LED's black being zero) or from the command line (`--primaries`, `--trc`).
 
 use crate::cli::args::{self, Curve, Gamut};
-use crate::error::{CliError, Result};
-use crate::io::stdout::{print, print_json};
-use crate::led::lines::{self, line, reply_line, Preset};
-use crate::led::mix_check::{MixOracle, Weight};
-use crate::led::table::{Correction, TABLE_DE};
-use crate::led::{Link, Oracle};
-use crate::light::load_channel;
 use specpoly_core::light::channels::{Curve as ChannelCurve, Goal};
 use specpoly_core::light::Source;
 use specpoly_core::{Illuminant, Observer, Transfer};
+use specpoly_display::spec::DisplaySpec;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::stdout::{print, print_json};
+use specpoly_led::lines::{self, line, reply_line, Preset};
+use specpoly_led::mix_check::{MixOracle, Weight};
+use specpoly_led::table::{Correction, TABLE_DE};
+use specpoly_led::{Link, Oracle};
 use specpoly_protocol::number::write_f32;
 use specpoly_protocol::{Channels, Command, MixReport, Reply, MIX_CHANNELS};
+use specpoly_spectra::light::load_channel;
 use std::time::Duration;
 
 /// Arguments of `specpoly led`.
@@ -164,7 +165,7 @@ fn check(
         Reply::Mix(r) => return check_mix(sent, r, mix).map(Some),
         _ => return Ok(None),
     };
-    let dev_err = |e: crate::led::LedError| CliError::data(e.to_string());
+    let dev_err = |e: specpoly_led::LedError| CliError::data(e.to_string());
     let state = match link.send("state").map_err(dev_err)? {
         Reply::State(s) => s,
         other => {
@@ -272,11 +273,16 @@ pub fn run(args: &LedArgs) -> Result<()> {
     // build every line first: usage errors before touching the device
     let mut settings = Vec::new();
     let mut table = None;
-    if let Some(path) = &args.calibration {
-        settings.extend(lines::calibration(path)?);
+    let calibration = args
+        .calibration
+        .as_deref()
+        .map(DisplaySpec::open_measured)
+        .transpose()?;
+    if let Some(spec) = &calibration {
+        settings.extend(lines::calibration(spec)?);
         // the interaction lattice as a drive-correction table, after `cal` and `trc`: the
         // controller binds it to the calibration it then holds
-        table = lines::calibration_table(path)?;
+        table = lines::calibration_table(spec)?;
         if let Some(t) = &table {
             settings.extend(t.table.commands().iter().map(line));
         }
@@ -343,7 +349,7 @@ pub fn run(args: &LedArgs) -> Result<()> {
         LedAction::Raw { line } => line.clone(),
     };
 
-    let dev_err = |e: crate::led::LedError| CliError::data(e.to_string());
+    let dev_err = |e: specpoly_led::LedError| CliError::data(e.to_string());
     let mut link =
         Link::open(&args.port, Duration::from_millis(args.timeout_ms)).map_err(dev_err)?;
     link.hello().map_err(dev_err)?;
@@ -356,14 +362,9 @@ pub fn run(args: &LedArgs) -> Result<()> {
     }
     let mut agreed = None;
     if args.check {
-        let curves = match &args.calibration {
-            Some(path) => Some(
-                crate::calibrate::file::load_display(path)?
-                    .transfer()
-                    .clone(),
-            ),
-            None => None,
-        };
+        let curves = calibration
+            .as_ref()
+            .map(|spec| spec.display().transfer().clone());
         agreed = check(
             &mut link,
             &action,

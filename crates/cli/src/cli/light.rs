@@ -1,10 +1,10 @@
 //! `specpoly light`: colorimetry and colour rendering of a light source's SPD
-//! (computations in [`crate::light`] and `specpoly_core::light`).
+//! (computations in [`specpoly_spectra::light`] and `specpoly_core::light`).
 
-use crate::error::Result;
-use crate::io::stdout::print_json;
-use crate::light::{report, LightReport};
-use crate::spectrum_names;
+use specpoly_formats::error::Result;
+use specpoly_formats::stdout::print_json;
+use specpoly_spectra::light::{report, LightReport};
+use specpoly_spectra::spectrum_names;
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly light`.
@@ -84,5 +84,5 @@ pub fn run(a: &LightArgs) -> Result<()> {
     if a.json {
         return print_json(&r);
     }
-    crate::io::stdout::print(&text(&named.name, &r))
+    specpoly_formats::stdout::print(&text(&named.name, &r))
 }

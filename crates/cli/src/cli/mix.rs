@@ -1,12 +1,12 @@
 //! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
-//! (computations in [`crate::light`] and `specpoly_core::light::mix`).
+//! (computations in [`specpoly_spectra::light`] and `specpoly_core::light::mix`).
 
 use crate::cli::args::{transfer, Curve};
 use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
-use crate::error::{CliError, Result};
-use crate::io::stdout::print_json;
-use crate::light::{self, describe, load_channel, parse_target, Optimize};
 use specpoly_core::light::Target;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::stdout::print_json;
+use specpoly_spectra::light::{self, describe, load_channel, parse_target, Optimize};
 use std::fmt::Write as _;
 
 fn luminance(s: &str) -> std::result::Result<f64, String> {
@@ -107,5 +107,5 @@ pub fn run(a: &MixArgs) -> Result<()> {
         opt(r.rg, 1),
         r.efficacy
     );
-    crate::io::stdout::print(&o)
+    specpoly_formats::stdout::print(&o)
 }

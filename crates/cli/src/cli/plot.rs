@@ -1,14 +1,14 @@
-//! `specpoly plot`: the paper's Figures 4 and 5 for any spectra ([`crate::figures`]): Figure 4
+//! `specpoly plot`: the paper's Figures 4 and 5 for any spectra ([`specpoly_paper::figures`]): Figure 4
 //! by default, Figure 5 with `--product`.
 //!
 //! The representation defaults to `paper` (2 cubic spans split at 550 nm), as in the figures.
 //! Output: SVG or PNG by the file's extension, written atomically.
 
-use crate::error::{CliError, Result};
-use crate::figures;
-use crate::plot::Figure;
-use crate::repr::Repr;
-use crate::size::Size;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_paper::figures;
+use specpoly_plot::size::Size;
+use specpoly_plot::Figure;
+use specpoly_spectra::repr::Repr;
 use std::path::PathBuf;
 
 /// Arguments of `specpoly plot`.
@@ -43,7 +43,7 @@ enum Format {
 pub fn figure(a: &PlotArgs) -> Result<Figure> {
     let repr = a.repr.polynomial_for("plot")?;
     a.size.check(figures::MIN_SIZE, figures::MAX_SIZE)?;
-    let named = crate::plausible::reflectances(&a.spectra, a.scale, false)?;
+    let named = specpoly_spectra::plausible::reflectances(&a.spectra, a.scale, false)?;
     figures::spectra(&named, repr, a.product, a.size)
 }
 
@@ -69,10 +69,10 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         Format::Svg => fig.svg()?.into_bytes(),
         Format::Png => fig.png()?,
     };
-    crate::io::atomic::write(&a.output, &bytes)?;
+    specpoly_formats::atomic::write(&a.output, &bytes)?;
     eprintln!(
         "wrote {}",
-        crate::io::escape::one_line(&a.output.display().to_string())
+        specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     Ok(())
 }

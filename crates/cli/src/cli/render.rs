@@ -8,14 +8,15 @@
 //! statistics of each mode against the reference.
 
 use crate::cli::args::Gamut;
-use crate::error::Result;
-use crate::io::progress;
-use crate::io::stdout::{print, print_json};
-use crate::render::image_file::{self as image_out, ExrSpace};
-use crate::render::tracer::Integrator;
-use crate::render::{self, builtin, Output};
-use crate::repr::Repr;
-use crate::size::Size;
+use specpoly_calibrate::progress;
+use specpoly_display::spec::DisplaySpec;
+use specpoly_formats::error::Result;
+use specpoly_formats::stdout::{print, print_json};
+use specpoly_plot::size::Size;
+use specpoly_render::image_file::{self as image_out, ExrSpace};
+use specpoly_render::tracer::Integrator;
+use specpoly_render::{self as render, builtin, Output};
+use specpoly_spectra::repr::Repr;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -88,8 +89,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let mode = a.mode;
     let format = image_out::format_for(&a.output, a.bits)?;
     let space: ExrSpace = a.exr_space.parse()?;
-    let display = render::output::load(&a.display)?;
-    let tag = image_out::colour_tag(&a.display)?;
+    let spec = DisplaySpec::open(&a.display)?;
+    let tag = image_out::colour_tag(&spec)?;
     let mut scene = render::load(&a.scene)?;
     if let Some(size) = a.size {
         scene.render.width = size.width;
@@ -104,12 +105,12 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     if let Some(n) = a.spp {
         scene.render.spp = n;
     }
-    let out = Output::new(&scene, display, a.gamut.into())
-        .with_model(render::output::interaction_model(&a.display)?);
+    let out =
+        Output::new(&scene, spec.display(), a.gamut.into()).with_model(spec.interaction_model());
     let (w, h) = (scene.render.width, scene.render.height);
 
     if a.equal_time {
-        return super::render_equal_time::run(a, &scene, &out);
+        return crate::cli::render_equal_time::run(a, &scene, &out);
     }
     if a.compare {
         return run_compare(a, &scene, &out);
@@ -121,7 +122,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let img = render::render(&scene, mode, Some(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     pb.finish_and_clear();
-    crate::plausible::image(&a.scene, &img.xyz)?;
+    specpoly_spectra::plausible::image(&a.scene, &img.xyz)?;
     image_out::write(&a.output, &img, &out, format, &tag, space)?;
     let paths = render::paths_per_pixel(&scene);
     if a.json {
@@ -164,9 +165,9 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
     );
     let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1))?;
     pb.finish_and_clear();
-    crate::plausible::image(&a.scene, &c.reference.xyz)?;
+    specpoly_spectra::plausible::image(&a.scene, &c.reference.xyz)?;
     for m in &c.modes {
-        crate::plausible::image(&format!("{} ({})", a.scene, m.repr), &m.image.xyz)?;
+        specpoly_spectra::plausible::image(&format!("{} ({})", a.scene, m.repr), &m.image.xyz)?;
     }
     let paths = render::paths_per_pixel(scene);
     let unit = match scene.render.integrator {
@@ -227,7 +228,7 @@ pub(super) fn report(a: &RenderArgs, out: &Output, r: Report<'_>) -> Result<()> 
     let written = format!(
         "wrote {} ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \
          yellow, white, its colour bar below)",
-        crate::io::escape::one_line(&a.output.display().to_string()),
+        specpoly_formats::escape::one_line(&a.output.display().to_string()),
         names.join(" | "),
         render::HEAT_MAX
     );

@@ -1,17 +1,17 @@
 //! `specpoly render SCENE --compare --equal-time [--reference-spp N]`: the path tracer's
 //! representations at equal time against a high-sample 1 nm reference
-//! ([`crate::render::equal_time`]). Prints each mode's paths per pixel, time and ΔE00
+//! ([`specpoly_render::equal_time`]). Prints each mode's paths per pixel, time and ΔE00
 //! (mean / 95th / max; `--json` for JSON) and writes the images (top row: each mode and the
 //! reference) above their ΔE00 heat maps.
 
-use super::render::{report, RenderArgs, Report};
-use crate::error::{CliError, Result};
-use crate::io::progress;
-use crate::render::equal_time::equal_time;
-use crate::render::scene::Scene;
-use crate::render::tracer::Integrator;
-use crate::render::Output;
-use crate::repr::Repr;
+use crate::cli::render::{report, RenderArgs, Report};
+use specpoly_calibrate::progress;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_render::equal_time::equal_time;
+use specpoly_render::scene::Scene;
+use specpoly_render::tracer::Integrator;
+use specpoly_render::Output;
+use specpoly_spectra::repr::Repr;
 
 /// The modes compared, the budget mode (`poly`) among them.
 pub fn modes() -> [Repr; 5] {

@@ -1,8 +1,8 @@
-//! `specpoly table1`: prints the paper's Table 1 on our data ([`crate::table1`]).
+//! `specpoly table1`: prints the paper's Table 1 on our data ([`specpoly_paper::table1`]).
 
-use crate::error::Result;
-use crate::io::stdout::print_json;
-use crate::table1::compute;
+use specpoly_formats::error::Result;
+use specpoly_formats::stdout::print_json;
+use specpoly_paper::table1::compute;
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly table1`.
@@ -54,5 +54,5 @@ pub fn run(a: &Table1Args) -> Result<()> {
         let span = format!("{} {}-{}", ["one", "two"][i], r.span_nm[0], r.span_nm[1]);
         let _ = writeln!(o, "{span:<12} {}", cells.join(" "));
     }
-    crate::io::stdout::print(&o)
+    specpoly_formats::stdout::print(&o)
 }

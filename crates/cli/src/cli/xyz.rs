@@ -1,16 +1,16 @@
 //! `specpoly xyz`: XYZ, xyY and CIELAB of reflectances (or of their product, an
 //! inter-reflection chain) under an illuminant, in any representation.
 //!
-//! Every representation runs the same generic code ([`crate::colour::Chains`] through
-//! [`crate::repr::dispatch`]); CIELAB is against the light's exact white (`Y = 100`).
+//! Every representation runs the same generic code ([`specpoly_spectra::colour::Chains`] through
+//! [`specpoly_spectra::repr::dispatch`]); CIELAB is against the light's exact white (`Y = 100`).
 
 use crate::cli::args::Colorimetry;
-use crate::colour::{self, Colour};
-use crate::error::{CliError, Result};
-use crate::io::stdout::print_json;
-use crate::repr::Repr;
-use crate::spectrum_names::{self, Named};
 use specpoly_core::Tabulated;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::stdout::print_json;
+use specpoly_spectra::colour::{self, Colour};
+use specpoly_spectra::repr::Repr;
+use specpoly_spectra::spectrum_names::{self, Named};
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly xyz`.
@@ -91,7 +91,7 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
         observer,
     } = &a.colorimetry;
     let light = spectrum_names::light(illuminant)?;
-    let named: Vec<Named> = crate::plausible::reflectances(&a.spectra, a.scale, true)?;
+    let named: Vec<Named> = specpoly_spectra::plausible::reflectances(&a.spectra, a.scale, true)?;
     let tabs: Vec<Tabulated<'_>> = named.iter().map(Named::tabulated).collect();
     let (chains, names): (Vec<Vec<usize>>, Vec<String>) = if a.product {
         let name = named
@@ -109,13 +109,14 @@ pub fn compute(a: &XyzArgs) -> Result<Vec<XyzRow>> {
     let colours = colour::chains(a.repr, *observer, &light.tabulated(), &tabs, &chains)
         .map_err(|e| CliError::data(format!("{}: {e}", a.repr)))?;
     for (n, c) in names.iter().zip(&colours) {
-        crate::plausible::finite(n, &c.xyz)?;
+        specpoly_spectra::plausible::finite(n, &c.xyz)?;
     }
     let display = a
         .display
         .as_deref()
-        .map(crate::render::output::load_model)
-        .transpose()?;
+        .map(specpoly_display::spec::DisplaySpec::open)
+        .transpose()?
+        .map(|spec| spec.model());
     Ok(names
         .into_iter()
         .zip(&colours)
@@ -179,5 +180,5 @@ pub fn run(a: &XyzArgs) -> Result<()> {
             None => o.push('\n'),
         }
     }
-    crate::io::stdout::print(&o)
+    specpoly_formats::stdout::print(&o)
 }

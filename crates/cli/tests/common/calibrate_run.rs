@@ -12,8 +12,7 @@ use std::sync::mpsc;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-#[path = "cli.rs"]
-pub mod cli;
+pub use super::cli;
 
 #[allow(unused_imports)]
 pub use cli::calibrate_run as calibrate_args;
@@ -298,7 +297,7 @@ pub fn chromium_args(profile: &std::path::Path) -> Vec<String> {
 /// Rows of a .ti3 in cd/m² (read by the crate's reader): `[R, G, B (0–100), X, Y, Z]`.
 pub fn ti3_rows(path: &Path) -> Vec<[f64; 6]> {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let t = specpoly::io::cgats::read_ti3(&text, &path.display().to_string()).unwrap();
+    let t = specpoly_formats::cgats::read_ti3(&text, &path.display().to_string()).unwrap();
     let (m, absolute) = t.best_units();
     assert!(absolute || m.len() < 2, "{}: not in cd/m²", path.display());
     m.iter()

@@ -6,10 +6,10 @@
 use palette::color_difference::Ciede2000;
 use palette::white_point::{WhitePoint, D65};
 use palette::FromColor;
-use specpoly::calibrate::file::Calibration;
-use specpoly::calibrate::fit::{fit, FitOptions};
-use specpoly::io::cgats::read_ti3;
-use specpoly::measurement::Measurement;
+use specpoly_calibrate::fit::{fit, FitOptions};
+use specpoly_display::calibration::Calibration;
+use specpoly_formats::cgats::read_ti3;
+use specpoly_formats::measurement::Measurement;
 use std::path::Path;
 
 /// Every shipped display's `.ti3` (data/ti3), by file name, sorted: a display added there is

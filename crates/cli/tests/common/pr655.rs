@@ -4,8 +4,7 @@
 //! (the XYZ of the patch on screen). Faults make it misbehave on given measurements.
 #![allow(dead_code)]
 
-#[path = "pty.rs"]
-mod pty;
+use super::pty;
 
 use pty::FakePort;
 use serialport::TTYPort;

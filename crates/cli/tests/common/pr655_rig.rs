@@ -5,12 +5,12 @@
 #![allow(dead_code)]
 
 use super::pr655::{self, Faults};
-use specpoly::calibrate::instrument::serial::{Pr6xx, SerialOptions};
-use specpoly::calibrate::patch_display::sim::SimDisplay;
-use specpoly::calibrate::patches::{self, Patch};
-use specpoly::calibrate::run::{measure_all, Interrupted};
-use specpoly::calibrate::sim::{SimHandle, SimModel};
-use specpoly::measurement::Measurement;
+use specpoly_calibrate::instrument::serial::{Pr6xx, SerialOptions};
+use specpoly_calibrate::patch_display::sim::SimDisplay;
+use specpoly_calibrate::patches::{self, Patch};
+use specpoly_calibrate::run::{measure_all, Interrupted};
+use specpoly_calibrate::sim::{SimHandle, SimModel};
+use specpoly_formats::measurement::Measurement;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 

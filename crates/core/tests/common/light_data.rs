@@ -37,5 +37,5 @@ pub fn table(text: &str) -> (Vec<f32>, Vec<(String, Vec<f32>)>) {
 
 /// The lamps' SPDs at 5 nm (`data/light_spds_5nm.csv`).
 pub fn lamp_spds() -> (Vec<f32>, Vec<(String, Vec<f32>)>) {
-    table(include_str!("../../data/light_spds_5nm.csv"))
+    table(include_str!("../data/light_spds_5nm.csv"))
 }

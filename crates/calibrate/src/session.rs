@@ -1,0 +1,251 @@
+//! The readings file of `calibrate run` (`CAL.ti3`) kept like a database transaction log:
+//! a measurement, once taken, is never lost.
+//!
+//! - Every reading is written at once: the whole `.ti3` (all readings so far, in patch order)
+//!   is rewritten through the project's atomic writer (temporary file, `fsync`, rename), so a
+//!   run stopped at any instant — Ctrl-C, an instrument error, an unplugged port, `SIGKILL` in
+//!   the middle of a write — leaves either the previous or the new complete file, never a torn
+//!   one.
+//! - The file names its patch set: the keyword `SPECPOLY_PATCH_SET` holds the number of
+//!   patches and a 64-bit FNV-1a hash of their device values (as written, 0–100 with five
+//!   decimals).
+//! - An existing `.ti3` is never overwritten silently. [`Existing::Refuse`] (the default) stops
+//!   with a message; [`Existing::Resume`] reads it back, checks that it was measured with the
+//!   same patch set (refuses otherwise) and measures only the patches it lacks;
+//!   [`Existing::Force`] first renames it to the first free `CAL.ti3.1`, `CAL.ti3.2`, ….
+//!
+//! FNV-1a (Fowler–Noll–Vo, 64-bit offset basis and prime) is written out here: eight lines,
+//! and a checksum crate would pin a hash this file format must keep stable anyway.
+
+use crate::patches::Patch;
+use specpoly_formats::cgats::{self, Ti3Info};
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::measurement::Measurement;
+use std::path::{Path, PathBuf};
+
+/// What to do when the `.ti3` already exists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Existing {
+    /// Stop with a message.
+    Refuse,
+    /// Measure only the patches it lacks (same patch set only).
+    Resume,
+    /// Keep it as a numbered backup and start over.
+    Force,
+}
+
+/// The keyword naming the patch set.
+pub const PATCH_SET_KEYWORD: &str = "SPECPOLY_PATCH_SET";
+
+/// A device value as written in a `.ti3` (percent, five decimals), as an integer.
+fn grid(v: f64) -> i64 {
+    (v * 100.0 * 1e5).round() as i64
+}
+
+/// `N patches, fnv1a64 HEX`: the patch set's fingerprint.
+pub fn fingerprint(devices: &[[f64; 3]]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for d in devices {
+        for v in d {
+            for b in grid(*v).to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+    }
+    format!("{} patches, fnv1a64 {h:016x}", devices.len())
+}
+
+/// The first free backup name `PATH.1`, `PATH.2`, ….
+pub fn backup_name(path: &Path) -> PathBuf {
+    let mut n = 1;
+    loop {
+        let mut s = path.as_os_str().to_os_string();
+        s.push(format!(".{n}"));
+        let p = PathBuf::from(s);
+        if !p.exists() {
+            return p;
+        }
+        n += 1;
+    }
+}
+
+/// A measuring session: the patch set, the readings taken (old and new) and their file.
+#[derive(Debug)]
+pub struct Session {
+    path: PathBuf,
+    devices: Vec<[f64; 3]>,
+    readings: Vec<Option<[f64; 3]>>,
+    info: Ti3Info,
+}
+
+impl Session {
+    /// Opens the session for `patches` writing to `path`; `existing` says what to do with a
+    /// `.ti3` already there. Returns the session and a note for the user (a backup made, the
+    /// readings resumed), if any.
+    pub fn open(
+        path: &Path,
+        patches: &[Patch],
+        existing: Existing,
+        mut info: Ti3Info,
+    ) -> Result<(Self, Option<String>)> {
+        let devices: Vec<[f64; 3]> = patches.iter().map(|p| p.device).collect();
+        let fp = fingerprint(&devices);
+        info.keywords
+            .retain(|(k, _)| k.as_str() != PATCH_SET_KEYWORD);
+        info.keywords
+            .push((PATCH_SET_KEYWORD.to_string(), fp.clone()));
+        let mut me = Self {
+            path: path.to_path_buf(),
+            readings: vec![None; devices.len()],
+            devices,
+            info,
+        };
+        if !path.exists() {
+            let note = (existing == Existing::Resume)
+                .then(|| format!("nothing to resume: {} does not exist yet", path.display()));
+            return Ok((me, note));
+        }
+        let shown = path.display();
+        match existing {
+            Existing::Refuse => Err(CliError::usage(format!(
+                "{shown} already exists: add --resume to measure only the patches it lacks, or --force to start over (the old file is kept as {})",
+                backup_name(path).display()
+            ))),
+            Existing::Force => {
+                let b = backup_name(path);
+                std::fs::rename(path, &b).map_err(|e| CliError::io(path, e))?;
+                Ok((me, Some(format!("kept the old {shown} as {}", b.display()))))
+            }
+            Existing::Resume => {
+                let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+                let source = shown.to_string();
+                let t = cgats::read_ti3(&text, &source).map_err(|e| {
+                    CliError::data(format!(
+                        "cannot resume: {e} (use --force to start over; the file is kept as a backup)"
+                    ))
+                })?;
+                match t.keyword(PATCH_SET_KEYWORD) {
+                    Some(v) if v == fp => {}
+                    Some(v) => {
+                        return Err(CliError::usage(format!(
+                            "cannot resume {shown}: it was measured with another patch set ({v}; this run has {fp}): give the same --ramp-steps, --verify or --patches, or --force to start over"
+                        )))
+                    }
+                    None => {
+                        return Err(CliError::usage(format!(
+                            "cannot resume {shown}: it has no {PATCH_SET_KEYWORD} (not written by `calibrate run`): use --force to start over, or another -o"
+                        )))
+                    }
+                }
+                let (m, absolute) = t.best_units();
+                if !absolute {
+                    return Err(CliError::data(format!(
+                        "cannot resume {shown}: normalised readings without LUMINANCE_XYZ_CDM2"
+                    )));
+                }
+                for (m, line) in m.iter().zip(&t.lines) {
+                    let g = m.device.map(grid);
+                    let slot = (0..me.devices.len()).find(|&i| {
+                        me.readings[i].is_none()
+                            && me.devices[i]
+                                .iter()
+                                .zip(&g)
+                                .all(|(d, g)| (grid(*d) - g).abs() <= 1)
+                    });
+                    match slot {
+                        Some(i) => me.readings[i] = Some(m.xyz),
+                        None => {
+                            return Err(CliError::data(format!(
+                                "cannot resume {shown}:{line}: RGB {:.5} {:.5} {:.5} is not a patch of the set (or is there twice)",
+                                m.device[0] * 100.0,
+                                m.device[1] * 100.0,
+                                m.device[2] * 100.0
+                            )))
+                        }
+                    }
+                }
+                let n = me.taken();
+                Ok((
+                    me,
+                    Some(format!(
+                        "resuming {shown}: {n} of {} patches measured, {} to go",
+                        patches.len(),
+                        patches.len() - n
+                    )),
+                ))
+            }
+        }
+    }
+
+    /// Sets the instrument named in the file.
+    pub fn set_instrument(&mut self, name: String) {
+        self.info.instrument = Some(name);
+    }
+
+    /// The file's metadata.
+    pub fn info(&self) -> &Ti3Info {
+        &self.info
+    }
+
+    /// The indices of the patches not measured yet, in order.
+    pub fn missing(&self) -> Vec<usize> {
+        (0..self.readings.len())
+            .filter(|&i| self.readings[i].is_none())
+            .collect()
+    }
+
+    /// How many patches are measured.
+    pub fn taken(&self) -> usize {
+        self.readings.iter().filter(|r| r.is_some()).count()
+    }
+
+    /// Records the reading of patch `i` and rewrites the file atomically.
+    pub fn record(&mut self, i: usize, xyz: [f64; 3]) -> Result<()> {
+        self.readings[i] = Some(xyz);
+        self.save()
+    }
+
+    /// Records several readings (patch index, XYZ) with one write.
+    pub fn record_all(&mut self, r: &[(usize, [f64; 3])]) -> Result<()> {
+        for (i, x) in r {
+            self.readings[*i] = Some(*x);
+        }
+        self.save()
+    }
+
+    /// The readings taken, in patch order.
+    pub fn measurements(&self) -> Vec<Measurement> {
+        self.devices
+            .iter()
+            .zip(&self.readings)
+            .filter_map(|(d, r)| r.map(|xyz| Measurement { device: *d, xyz }))
+            .collect()
+    }
+
+    /// The reading of every patch, if all are measured.
+    pub fn complete(&self) -> Option<Vec<[f64; 3]>> {
+        self.readings.iter().copied().collect()
+    }
+
+    fn save(&self) -> Result<()> {
+        specpoly_formats::atomic::write(
+            &self.path,
+            cgats::write_ti3(&self.measurements(), &self.info)?.as_bytes(),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fingerprint_follows_the_values() {
+        let a = fingerprint(&[[0.0; 3], [1.0, 0.5, 0.25]]);
+        assert_eq!(a, fingerprint(&[[0.0; 3], [1.0, 0.5, 0.25]]));
+        assert_ne!(a, fingerprint(&[[0.0; 3], [1.0, 0.5, 0.26]]));
+        assert_ne!(a, fingerprint(&[[1.0, 0.5, 0.25], [0.0; 3]]));
+        assert!(a.starts_with("2 patches, fnv1a64 "), "{a}");
+    }
+}

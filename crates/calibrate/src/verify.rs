@@ -1,0 +1,101 @@
+//! Verification: how far a calibration's predictions are from measured patches, in CIEDE2000.
+//!
+//! Both the prediction and the measurement are converted to CIELAB relative to the
+//! calibration's measured white (so the display white is `L* = 100, a* = b* = 0`, the usual
+//! white-relative convention of display verification), and compared with ΔE00 (Sharma, Wu &
+//! Dalal 2005). [`Verification`] holds every patch's result and the pass/fail outcome of
+//! DisplayCAL's and ISO 14861's criteria ([`crate::criteria`]); `calibrate verify` prints it as
+//! text or JSON and draws it as an HTML page ([`crate::report_html`]).
+
+use crate::criteria::{self, Outcome, PatchResult};
+use specpoly_core::delta_e2000_xyz;
+use specpoly_display::calibration::Calibration;
+use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::measurement::Measurement;
+use specpoly_formats::stats::Stats;
+
+/// DisplayCAL's nominal tolerance: (mean, max).
+pub const NOMINAL: (f64, f64) = (1.5, 4.0);
+/// DisplayCAL's recommended tolerance: (mean, max).
+pub const RECOMMENDED: (f64, f64) = (1.0, 3.0);
+
+/// ΔE00 of the calibration's prediction against each measurement (same units as the
+/// calibration).
+pub fn delta_e(cal: &Calibration, meas: &[Measurement]) -> Vec<f64> {
+    let white = cal.data().white;
+    meas.iter()
+        .map(|m| delta_e2000_xyz(cal.predict(m.device), m.xyz, white))
+        .collect()
+}
+
+/// The .ti3's measurements in the calibration's units: absolute if both can be; otherwise
+/// relative ones scaled by the calibration's white (see docs/calibration.md).
+pub fn measurements_for(
+    cal: &Calibration,
+    ti3: &specpoly_formats::cgats::Ti3,
+) -> Result<Vec<Measurement>> {
+    let (m, abs) = ti3.best_units();
+    let k = match (cal.absolute(), abs) {
+        (true, true) | (false, false) => 1.0,
+        // relative (white Y = 100) → the calibration's cd/m²
+        (true, false) => cal.data().white[1] / 100.0,
+        // absolute → relative: the file's own white patch to Y = 100
+        (false, true) => {
+            let w = specpoly_formats::cgats::white_patch(&m).ok_or_else(|| {
+                CliError::data(
+                    "the .ti3 is absolute, the calibration relative, and the .ti3 has no white patch to normalise by",
+                )
+            })?;
+            100.0 / w[1]
+        }
+    };
+    Ok(m.into_iter()
+        .map(|p| Measurement {
+            device: p.device,
+            xyz: p.xyz.map(|v| v * k),
+        })
+        .collect())
+}
+
+/// A calibration checked against measured patches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verification {
+    /// Every patch, in file order.
+    pub patches: Vec<PatchResult>,
+    /// ΔE00 count, mean, 95th percentile and maximum.
+    pub stats: Stats,
+    /// Each criterion of [`criteria::CRITERIA`], judged.
+    pub outcomes: Vec<Outcome>,
+    /// The white the CIELAB values are relative to (the calibration's).
+    pub white: [f64; 3],
+}
+
+impl Verification {
+    /// Compares the calibration's prediction of each measurement's device values with the
+    /// measurement; `lines` are the measurements' lines in their file (1-based, same order).
+    pub fn new(cal: &Calibration, meas: &[Measurement], lines: &[usize]) -> Verification {
+        let white = cal.data().white;
+        let patches: Vec<PatchResult> = meas
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let line = lines.get(i).copied().unwrap_or(i + 1);
+                PatchResult::new(line, m.device, cal.predict(m.device), m.xyz, white)
+            })
+            .collect();
+        let de: Vec<f64> = patches.iter().map(|p| p.delta_e00).collect();
+        Verification {
+            stats: Stats::of(&de),
+            outcomes: criteria::evaluate(&patches, white),
+            patches,
+            white,
+        }
+    }
+
+    /// The patch with the largest ΔE00 (a NaN counts as largest).
+    pub fn worst(&self) -> Option<&PatchResult> {
+        self.patches
+            .iter()
+            .max_by(|a, b| a.delta_e00.total_cmp(&b.delta_e00))
+    }
+}

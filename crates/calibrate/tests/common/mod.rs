@@ -1,0 +1,3 @@
+//! Helpers the test modules share.
+
+pub mod displays;

@@ -1,0 +1,10 @@
+//! The integration tests of `calibrate`: one test binary, a module per area.
+
+mod common;
+mod display_inverse;
+mod displays;
+mod icc;
+mod icc_lut;
+mod locus;
+mod model;
+mod ti3;

@@ -1,0 +1,4 @@
+//! Helpers the test modules share.
+
+pub mod light_data;
+pub mod reference_1nm;

@@ -1,0 +1,15 @@
+//! The integration tests of `core`: one test binary, a module per area.
+
+mod accuracy_colorchecker;
+mod bradford_lindbloom;
+mod ciede2000_sharma;
+mod common;
+mod light_colour_science;
+mod light_mix_leds;
+mod light_published;
+mod moments_1nm;
+mod multiply_reduce;
+mod paper_eq6;
+mod paper_path;
+mod pixel_cube;
+mod srgb_iec61966;

@@ -1,0 +1,127 @@
+//! `calibrate export`: a calibration baked into a framebuffer pixel transform
+//! (`specpoly_core::pixel::PanelTransform`: decode table, 3×3 in fixed point, panel
+//! inverse-curve tables, 7.3 KiB) and written as C or Rust source for firmware
+//! (docs/calibration.md, "Framebuffer export").
+
+use crate::calibration::Calibration;
+use specpoly_core::pixel::{export, Options, PanelTransform, Source, White};
+use specpoly_core::GamutMap;
+use specpoly_formats::error::{CliError, Result};
+
+/// The source colour space of the firmware's UI.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SourceArg {
+    /// sRGB (IEC 61966-2-1).
+    #[default]
+    Srgb,
+    /// Display P3.
+    P3,
+    /// Linear-light sRGB.
+    Linear,
+}
+
+impl From<SourceArg> for Source {
+    fn from(s: SourceArg) -> Source {
+        match s {
+            SourceArg::Srgb => Source::Srgb,
+            SourceArg::P3 => Source::DisplayP3,
+            SourceArg::Linear => Source::LinearSrgb,
+        }
+    }
+}
+
+/// What to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// A C99 header: tables and `NAME_levels`, `NAME_codes`, `NAME_rgb565`.
+    CTable,
+    /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform`.
+    Rust,
+}
+
+/// The panel's bits per channel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Bits {
+    /// 5-6-5.
+    #[default]
+    Rgb565,
+    /// 6-6-6.
+    Rgb666,
+    /// 8-8-8.
+    Rgb888,
+}
+
+impl Bits {
+    fn array(self) -> [u8; 3] {
+        match self {
+            Bits::Rgb565 => Options::RGB565,
+            Bits::Rgb666 => Options::RGB666,
+            Bits::Rgb888 => Options::RGB888,
+        }
+    }
+}
+
+/// How the source white is reproduced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum WhiteArg {
+    /// Adapted (Bradford) to the panel's white: source white → full drive.
+    #[default]
+    Adapt,
+    /// D65 kept (clips at the source white on a panel whose white is not D65).
+    Absolute,
+}
+
+impl From<WhiteArg> for White {
+    fn from(w: WhiteArg) -> White {
+        match w {
+            WhiteArg::Adapt => White::Adapt,
+            WhiteArg::Absolute => White::Absolute,
+        }
+    }
+}
+
+/// A C and Rust identifier: ASCII letter or `_`, then letters, digits, `_`; at most 64.
+pub fn identifier(s: &str) -> std::result::Result<String, String> {
+    let ok = !s.is_empty()
+        && s.len() <= 64
+        && s.chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if ok {
+        Ok(s.to_owned())
+    } else {
+        Err(format!(
+            "\"{s}\" is not an identifier (a letter or _, then letters, digits, _; ≤ 64)"
+        ))
+    }
+}
+
+/// The transform for a calibration (clip gamut map: what the C export implements).
+pub fn transform(
+    cal: &Calibration,
+    source: SourceArg,
+    white: WhiteArg,
+    bits: Bits,
+) -> Result<PanelTransform> {
+    let opts = Options {
+        source: source.into(),
+        white: white.into(),
+        map: GamutMap::Clip,
+        bits: bits.array(),
+    };
+    PanelTransform::new(&cal.display(), opts)
+        .map_err(|e| CliError::data(format!("cannot build the pixel transform: {e}")))
+}
+
+/// The source text of `p` in `format`, named `name`; `origin` is said in its leading comment.
+pub fn source_text(p: &PanelTransform, format: Format, name: &str, origin: &str) -> Result<String> {
+    let mut out = String::new();
+    let written = match format {
+        Format::CTable => export::write_c(p, name, origin, &mut out),
+        Format::Rust => export::write_rust(p, &name.to_ascii_uppercase(), origin, &mut out),
+    };
+    written
+        .map_err(|_| CliError::data("cannot write the tables (the C export needs the clip map)"))?;
+    Ok(out)
+}

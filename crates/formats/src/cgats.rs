@@ -1,0 +1,788 @@
+//! CGATS text files (ANSI CGATS.17) as ArgyllCMS writes them: `.ti3` display measurements.
+//!
+//! A file is one or more tables. Each table starts with an identifier line (`CTI3`, `CAL`, …),
+//! then keyword lines (`KEYWORD "value"`), optional `BEGIN_<NAME>` … `END_<NAME>` blocks
+//! (ArgyllCMS keeps program arguments there), the field list (`NUMBER_OF_FIELDS n`,
+//! `BEGIN_DATA_FORMAT` … `END_DATA_FORMAT`) and the rows (`NUMBER_OF_SETS n`, `BEGIN_DATA` …
+//! `END_DATA`). `#` starts a comment.
+//!
+//! A `.ti3` of a display has the fields `RGB_R RGB_G RGB_B` (device values 0–100) and
+//! `XYZ_X XYZ_Y XYZ_Z`. ArgyllCMS's `dispread` normalises XYZ so the white patch has `Y = 100`
+//! (`NORMALIZED_TO_Y_100 "YES"`) and writes the white's absolute XYZ in cd/m² as
+//! `LUMINANCE_XYZ_CDM2`; a second table `CAL` holds the video-LUT calibration (256 entries per
+//! channel) that was loaded while measuring.
+//!
+//! This is a small reader and writer of our own: the one CGATS crate on crates.io is
+//! GPL-3.0, which this project's licence cannot take.
+
+use crate::error::{CliError, Result};
+use crate::measurement::Measurement;
+
+/// One CGATS table.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// The identifier on the table's first line (`CTI3`, `CAL`, …).
+    pub kind: String,
+    /// Keywords in file order, values unquoted; `BEGIN_X`…`END_X` blocks appear as `X` with the
+    /// block's lines joined by newlines.
+    pub keywords: Vec<(String, String)>,
+    /// The field names.
+    pub fields: Vec<String>,
+    /// The rows, each with one value per field, and the 1-based line each came from.
+    pub rows: Vec<(usize, Vec<String>)>,
+    /// The 1-based line of the identifier, of each keyword (parallel to `keywords`), of
+    /// `BEGIN_DATA_FORMAT` and of `END_DATA`, for messages about what is missing or wrong there.
+    pub lines: TableLines,
+}
+
+/// Where the parts of a [`Table`] are in its file (1-based lines; 0 = not seen).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TableLines {
+    /// The identifier line.
+    pub identifier: usize,
+    /// One per keyword.
+    pub keywords: Vec<usize>,
+    /// `BEGIN_DATA_FORMAT`.
+    pub format: usize,
+    /// `END_DATA`.
+    pub end_data: usize,
+}
+
+/// An error at the declaring line unless a declared count `(count, line)` matches `got`.
+fn check_count(
+    source: &str,
+    declared: Option<(usize, usize)>,
+    got: usize,
+    message: impl Fn(usize, usize) -> String,
+) -> Result<()> {
+    match declared {
+        Some((k, at)) if k != got => Err(bad(source, at, message(k, got))),
+        _ => Ok(()),
+    }
+}
+
+/// The value of keyword `name` in `(keyword, value)` pairs.
+fn keyword<'a>(keywords: &'a [(String, String)], name: &str) -> Option<&'a str> {
+    keywords
+        .iter()
+        .find(|(k, _)| k == name)
+        .map(|(_, v)| v.as_str())
+}
+
+impl Table {
+    /// The value of a keyword.
+    pub fn keyword(&self, name: &str) -> Option<&str> {
+        keyword(&self.keywords, name)
+    }
+
+    /// The column of a field.
+    pub fn field(&self, name: &str) -> Option<usize> {
+        self.fields.iter().position(|f| f == name)
+    }
+
+    /// The line of keyword `name` (else the identifier's line).
+    pub fn keyword_line(&self, name: &str) -> usize {
+        self.keywords
+            .iter()
+            .position(|(k, _)| k == name)
+            .and_then(|i| self.lines.keywords.get(i).copied())
+            .unwrap_or(self.lines.identifier)
+    }
+}
+
+/// Splits a line into whitespace-separated tokens, keeping `"quoted strings"` whole (unquoted).
+fn tokens(line: &str, source: &str, n: usize) -> Result<Vec<String>> {
+    let mut out = Vec::new();
+    let mut chars = line.chars().peekable();
+    loop {
+        while chars.peek().is_some_and(|c| c.is_whitespace()) {
+            chars.next();
+        }
+        let Some(&c) = chars.peek() else { break };
+        if c == '#' {
+            break;
+        }
+        let mut t = String::new();
+        if c == '"' {
+            chars.next();
+            let mut closed = false;
+            for c in chars.by_ref() {
+                if c == '"' {
+                    closed = true;
+                    break;
+                }
+                t.push(c);
+            }
+            if !closed {
+                return Err(bad(source, n, "unterminated quoted string"));
+            }
+        } else {
+            while let Some(&c) = chars.peek() {
+                if c.is_whitespace() {
+                    break;
+                }
+                t.push(c);
+                chars.next();
+            }
+        }
+        out.push(t);
+    }
+    Ok(out)
+}
+
+fn bad(source: &str, line: usize, msg: impl std::fmt::Display) -> CliError {
+    CliError::data(format!("{source}:{line}: {msg}"))
+}
+
+fn count(v: &str, source: &str, n: usize, what: &str) -> Result<usize> {
+    v.parse::<usize>()
+        .map_err(|_| bad(source, n, format!("{what} `{v}` is not a whole number")))
+}
+
+/// Parses every table of a CGATS file. `source` names the file in error messages, which are
+/// one line: `source:LINE: what is wrong`.
+pub fn parse(text: &str, source: &str) -> Result<Vec<Table>> {
+    #[derive(PartialEq)]
+    enum State {
+        Identifier,
+        Header,
+        Block(String),
+        Format,
+        Data,
+    }
+    let mut tables = Vec::new();
+    let mut t = Table::default();
+    let mut state = State::Identifier;
+    let mut block = String::new();
+    let mut n_fields: Option<(usize, usize)> = None;
+    let mut n_sets: Option<(usize, usize)> = None;
+    let mut last = 0;
+    for (i, raw) in text.lines().enumerate() {
+        let n = i + 1;
+        last = n;
+        if let State::Block(name) = &state {
+            if raw.trim() == format!("END_{name}") {
+                t.keywords.push((name.clone(), std::mem::take(&mut block)));
+                t.lines.keywords.push(n);
+                state = State::Header;
+            } else {
+                if !block.is_empty() {
+                    block.push('\n');
+                }
+                block.push_str(raw.trim_end());
+            }
+            continue;
+        }
+        let tok = tokens(raw, source, n)?;
+        if tok.is_empty() {
+            continue;
+        }
+        match state {
+            State::Identifier => {
+                if tok.len() != 1 || tok[0].starts_with("BEGIN_") || tok[0].starts_with("END_") {
+                    return Err(bad(
+                        source,
+                        n,
+                        format!(
+                            "expected a table identifier such as CTI3, found `{}`",
+                            raw.trim()
+                        ),
+                    ));
+                }
+                t.kind = tok[0].clone();
+                t.lines.identifier = n;
+                state = State::Header;
+            }
+            State::Header => match tok[0].as_str() {
+                "NUMBER_OF_FIELDS" => {
+                    let v = tok
+                        .get(1)
+                        .ok_or_else(|| bad(source, n, "NUMBER_OF_FIELDS without a value"))?;
+                    n_fields = Some((count(v, source, n, "NUMBER_OF_FIELDS")?, n));
+                }
+                "NUMBER_OF_SETS" => {
+                    let v = tok
+                        .get(1)
+                        .ok_or_else(|| bad(source, n, "NUMBER_OF_SETS without a value"))?;
+                    n_sets = Some((count(v, source, n, "NUMBER_OF_SETS")?, n));
+                }
+                "BEGIN_DATA_FORMAT" => {
+                    if !t.fields.is_empty() {
+                        return Err(bad(source, n, "a second BEGIN_DATA_FORMAT in one table"));
+                    }
+                    t.lines.format = n;
+                    state = State::Format;
+                }
+                "BEGIN_DATA" => {
+                    if t.fields.is_empty() {
+                        return Err(bad(source, n, "BEGIN_DATA before BEGIN_DATA_FORMAT"));
+                    }
+                    check_count(source, n_fields, t.fields.len(), |k, got| {
+                        format!("NUMBER_OF_FIELDS is {k} but the data format names {got} fields")
+                    })?;
+                    state = State::Data;
+                }
+                "END_DATA" | "END_DATA_FORMAT" => {
+                    return Err(bad(source, n, format!("{} without its BEGIN", tok[0])));
+                }
+                k if k.starts_with("BEGIN_") && tok.len() == 1 => {
+                    state = State::Block(k["BEGIN_".len()..].to_string());
+                }
+                _ => {
+                    let value = tok[1..].join(" ");
+                    t.keywords.push((tok[0].clone(), value));
+                    t.lines.keywords.push(n);
+                }
+            },
+            State::Format => {
+                if tok[0] == "END_DATA_FORMAT" {
+                    if t.fields.is_empty() {
+                        return Err(bad(source, n, "empty data format"));
+                    }
+                    state = State::Header;
+                } else {
+                    t.fields.extend(tok);
+                }
+            }
+            State::Data => {
+                if tok[0] == "END_DATA" && tok.len() == 1 {
+                    check_count(source, n_sets, t.rows.len(), |k, got| {
+                        format!("NUMBER_OF_SETS is {k} but BEGIN_DATA…END_DATA holds {got} rows")
+                    })?;
+                    t.lines.end_data = n;
+                    tables.push(std::mem::take(&mut t));
+                    n_fields = None;
+                    n_sets = None;
+                    state = State::Identifier;
+                } else {
+                    if tok.len() != t.fields.len() {
+                        return Err(bad(
+                            source,
+                            n,
+                            format!(
+                                "expected {} values ({}), found {}",
+                                t.fields.len(),
+                                t.fields.join(" "),
+                                tok.len()
+                            ),
+                        ));
+                    }
+                    t.rows.push((n, tok));
+                }
+            }
+            State::Block(_) => unreachable!("handled above"),
+        }
+    }
+    match state {
+        State::Identifier if !tables.is_empty() => Ok(tables),
+        State::Identifier => Err(bad(source, last.max(1), "empty file: no CGATS table")),
+        State::Header => Err(bad(
+            source,
+            last.max(1),
+            "no BEGIN_DATA: the table has no data",
+        )),
+        State::Block(name) => Err(bad(
+            source,
+            last,
+            format!("BEGIN_{name} without END_{name}"),
+        )),
+        State::Format => Err(bad(
+            source,
+            last,
+            "BEGIN_DATA_FORMAT without END_DATA_FORMAT",
+        )),
+        State::Data => Err(bad(source, last, "BEGIN_DATA without END_DATA")),
+    }
+}
+
+/// A display's measurements from a `.ti3`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ti3 {
+    /// Device values (0–1) and XYZ as written in the file (see [`Ti3::normalized`]).
+    pub measurements: Vec<Measurement>,
+    /// The 1-based line of each measurement (for messages).
+    pub lines: Vec<usize>,
+    /// The measurement table's keywords.
+    pub keywords: Vec<(String, String)>,
+    /// `NORMALIZED_TO_Y_100 "YES"`: XYZ are relative, the white patch has `Y = 100`.
+    pub normalized: bool,
+    /// `LUMINANCE_XYZ_CDM2`: the white's absolute XYZ in cd/m², if given.
+    pub white_cdm2: Option<[f64; 3]>,
+    /// The video-LUT calibration loaded while measuring (ArgyllCMS's `CAL` table): rows of
+    /// `[input, R, G, B]`, all 0–1.
+    pub video_lut: Option<Vec<[f64; 4]>>,
+}
+
+impl Ti3 {
+    /// A keyword of the measurement table.
+    pub fn keyword(&self, name: &str) -> Option<&str> {
+        keyword(&self.keywords, name)
+    }
+
+    /// The factor that turns the file's XYZ into cd/m²: `Y_white / 100` for a normalised file
+    /// with `LUMINANCE_XYZ_CDM2`, 1 for absolute data, `None` if a normalised file lacks the
+    /// absolute white.
+    pub fn absolute_scale(&self) -> Option<f64> {
+        if self.normalized {
+            self.white_cdm2.map(|w| w[1] / 100.0)
+        } else {
+            Some(1.0)
+        }
+    }
+
+    /// The measurements in cd/m² when [`Self::absolute_scale`] is known, otherwise as in the
+    /// file; and whether they are absolute.
+    pub fn best_units(&self) -> (Vec<Measurement>, bool) {
+        match self.absolute_scale() {
+            Some(k) => (
+                self.measurements
+                    .iter()
+                    .map(|m| Measurement {
+                        device: m.device,
+                        xyz: m.xyz.map(|v| v * k),
+                    })
+                    .collect(),
+                true,
+            ),
+            None => (self.measurements.clone(), false),
+        }
+    }
+
+    /// Whether the video LUT differs from identity by more than 1/1000 anywhere.
+    pub fn video_lut_active(&self) -> bool {
+        self.video_lut.as_ref().is_some_and(|rows| {
+            rows.iter()
+                .any(|r| (1..4).any(|c| (r[c] - r[0]).abs() > 1e-3))
+        })
+    }
+}
+
+fn number(v: &str, source: &str, line: usize, field: &str) -> Result<f64> {
+    match v.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(bad(source, line, format!("{field} `{v}` is not a number"))),
+    }
+}
+
+/// Reads a display `.ti3`: the first table must have `RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z`.
+/// Errors are one line with the file's line number.
+pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
+    let tables = parse(text, source)?;
+    let t = &tables[0];
+    if t.kind == "CTI1" {
+        return Err(CliError::data(format!(
+            "{source}:{}: a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes",
+            t.lines.identifier
+        )));
+    }
+    const NEED: [&str; 6] = ["RGB_R", "RGB_G", "RGB_B", "XYZ_X", "XYZ_Y", "XYZ_Z"];
+    let mut col = [0usize; 6];
+    for (c, name) in col.iter_mut().zip(NEED) {
+        *c = t.field(name).ok_or_else(|| {
+            bad(
+                source,
+                t.lines.format,
+                format!(
+                    "the first table has no field {name} (a display .ti3 needs {})",
+                    NEED.join(" ")
+                ),
+            )
+        })?;
+    }
+    if t.rows.is_empty() {
+        return Err(bad(source, t.lines.end_data, "no measurements"));
+    }
+    let mut measurements = Vec::with_capacity(t.rows.len());
+    let mut lines = Vec::with_capacity(t.rows.len());
+    for (line, row) in &t.rows {
+        let mut v = [0.0; 6];
+        for k in 0..6 {
+            v[k] = number(&row[col[k]], source, *line, NEED[k])?;
+        }
+        for k in 0..3 {
+            if !(-1e-6..=100.0 + 1e-6).contains(&v[k]) {
+                return Err(bad(
+                    source,
+                    *line,
+                    format!("{} {} is outside 0–100", NEED[k], row[col[k]]),
+                ));
+            }
+        }
+        measurements.push(Measurement {
+            device: [v[0], v[1], v[2]].map(|x| (x / 100.0).clamp(0.0, 1.0)),
+            xyz: [v[3], v[4], v[5]],
+        });
+        lines.push(*line);
+    }
+    let normalized = t
+        .keyword("NORMALIZED_TO_Y_100")
+        .is_some_and(|v| v.eq_ignore_ascii_case("YES"));
+    let white_cdm2 = match t.keyword("LUMINANCE_XYZ_CDM2") {
+        None => None,
+        Some(v) => {
+            let parts: Vec<f64> = v
+                .split_whitespace()
+                .filter_map(|s| s.parse::<f64>().ok())
+                .filter(|x| x.is_finite())
+                .collect();
+            if parts.len() != 3 || parts[1] <= 0.0 {
+                return Err(bad(
+                    source,
+                    t.keyword_line("LUMINANCE_XYZ_CDM2"),
+                    format!("LUMINANCE_XYZ_CDM2 `{v}` is not three numbers with Y > 0"),
+                ));
+            }
+            Some([parts[0], parts[1], parts[2]])
+        }
+    };
+    let mut video_lut = None;
+    if let Some(cal) = tables.iter().skip(1).find(|t| t.kind == "CAL") {
+        let names = ["RGB_I", "RGB_R", "RGB_G", "RGB_B"];
+        let cols: Option<Vec<usize>> = names.iter().map(|n| cal.field(n)).collect();
+        if let Some(cols) = cols {
+            let mut rows = Vec::with_capacity(cal.rows.len());
+            for (line, row) in &cal.rows {
+                let mut r = [0.0; 4];
+                for k in 0..4 {
+                    r[k] = number(&row[cols[k]], source, *line, names[k])?;
+                }
+                rows.push(r);
+            }
+            video_lut = Some(rows);
+        }
+    }
+    Ok(Ti3 {
+        measurements,
+        lines,
+        keywords: t.keywords.clone(),
+        normalized,
+        white_cdm2,
+        video_lut,
+    })
+}
+
+/// What [`write_ti3`] writes besides the measurements.
+#[derive(Clone, Debug, Default)]
+pub struct Ti3Info {
+    /// `DESCRIPTOR`.
+    pub descriptor: String,
+    /// `TARGET_INSTRUMENT`, if known.
+    pub instrument: Option<String>,
+    /// `CREATED` (any text; [`specpoly_display::calibration::now_utc`] gives an ISO 8601 time).
+    pub created: Option<String>,
+    /// Whether the measurements are in cd/m². If so and a white patch (device 1,1,1) is among
+    /// them, the file is written as ArgyllCMS does: normalised to the white's `Y = 100`, the
+    /// white's absolute XYZ in `LUMINANCE_XYZ_CDM2`. Otherwise XYZ is written as given.
+    pub absolute: bool,
+    /// More keywords written after the standard ones (name, value), e.g. the patch set a
+    /// `calibrate run` measures (`SPECPOLY_PATCH_SET`).
+    pub keywords: Vec<(String, String)>,
+}
+
+/// The white patch: the brightest measurement at device `(1, 1, 1)`, averaged over repeats.
+pub fn white_patch(meas: &[Measurement]) -> Option<[f64; 3]> {
+    let whites: Vec<&Measurement> = meas
+        .iter()
+        .filter(|m| m.device.iter().all(|v| *v >= 1.0 - 1e-9))
+        .collect();
+    if whites.is_empty() {
+        return None;
+    }
+    let mut s = [0.0; 3];
+    for m in &whites {
+        for k in 0..3 {
+            s[k] += m.xyz[k] / whites.len() as f64;
+        }
+    }
+    Some(s)
+}
+
+/// Writes measurements as a CGATS `.ti3` that ArgyllCMS (`colprof`) and DisplayCAL read.
+/// Refuses (naming the reading) any value that is not finite, as written: [`read_ti3`] refuses
+/// `inf` and `NaN`, so every file this writes reads back.
+pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
+    use std::fmt::Write;
+    for (i, m) in meas.iter().enumerate() {
+        if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} (device {}, XYZ {}) has the non-finite \
+                 value {v}, which no .ti3 reader accepts",
+                i + 1,
+                crate::stdout::values(&m.device),
+                crate::stdout::values(&m.xyz)
+            )));
+        }
+        if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} has the device value {v} outside 0–1 \
+                 (device {})",
+                i + 1,
+                crate::stdout::values(&m.device)
+            )));
+        }
+    }
+    let mut s = String::new();
+    let descriptor = if info.descriptor.is_empty() {
+        "Argyll Calibration Target chart information 3"
+    } else {
+        info.descriptor.as_str()
+    };
+    let q = |v: &str| v.replace('"', "'");
+    let _ = writeln!(s, "CTI3\n");
+    let _ = writeln!(s, "DESCRIPTOR \"{}\"", q(descriptor));
+    let _ = writeln!(s, "ORIGINATOR \"specpoly\"");
+    if let Some(c) = &info.created {
+        let _ = writeln!(s, "CREATED \"{}\"", q(c));
+    }
+    let _ = writeln!(s, "DEVICE_CLASS \"DISPLAY\"");
+    let _ = writeln!(s, "COLOR_REP \"RGB_XYZ\"");
+    if let Some(i) = &info.instrument {
+        let _ = writeln!(s, "TARGET_INSTRUMENT \"{}\"", q(i));
+    }
+    let white = if info.absolute {
+        white_patch(meas)
+    } else {
+        None
+    };
+    let scale = match white {
+        Some(w) if w.iter().any(|v| !v.is_finite()) => {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: the white patch averages to the non-finite XYZ {}",
+                crate::stdout::values(&w)
+            )));
+        }
+        Some(w) if w[1] > 0.0 => {
+            let _ = writeln!(
+                s,
+                "LUMINANCE_XYZ_CDM2 \"{:.6} {:.6} {:.6}\"",
+                w[0], w[1], w[2]
+            );
+            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"YES\"");
+            100.0 / w[1]
+        }
+        _ => {
+            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"NO\"");
+            1.0
+        }
+    };
+    for (k, v) in &info.keywords {
+        let _ = writeln!(s, "{k} \"{}\"", q(v));
+    }
+    let _ = writeln!(s, "\nNUMBER_OF_FIELDS 7");
+    let _ = writeln!(s, "BEGIN_DATA_FORMAT");
+    let _ = writeln!(s, "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z");
+    let _ = writeln!(s, "END_DATA_FORMAT\n");
+    let _ = writeln!(s, "NUMBER_OF_SETS {}", meas.len());
+    let _ = writeln!(s, "BEGIN_DATA");
+    for (i, m) in meas.iter().enumerate() {
+        let row = [
+            m.device[0] * 100.0,
+            m.device[1] * 100.0,
+            m.device[2] * 100.0,
+            m.xyz[0] * scale,
+            m.xyz[1] * scale,
+            m.xyz[2] * scale,
+        ];
+        // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
+        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+            return Err(CliError::data(format!(
+                "cannot write a .ti3: reading {} overflows to {v} when scaled (device {}, \
+                 XYZ {})",
+                i + 1,
+                crate::stdout::values(&m.device),
+                crate::stdout::values(&m.xyz)
+            )));
+        }
+        let _ = writeln!(
+            s,
+            "{} {:.5} {:.5} {:.5} {:.7} {:.7} {:.7}",
+            i + 1,
+            row[0],
+            row[1],
+            row[2],
+            row[3],
+            row[4],
+            row[5]
+        );
+    }
+    let _ = writeln!(s, "END_DATA");
+    Ok(s)
+}
+
+/// Reads a .ti3 file.
+pub fn read_ti3_file(path: &std::path::Path) -> Result<Ti3> {
+    let text = crate::read::text_or_latin1(path)?;
+    read_ti3(&text, &path.display().to_string())
+}
+
+/// Writes the readings so far as a CGATS .ti3 (A's writer: ArgyllCMS's layout, normalised to
+/// the white's `Y = 100` with its absolute XYZ in `LUMINANCE_XYZ_CDM2` once the white patch is
+/// measured), atomically.
+pub fn save_ti3(path: &std::path::Path, m: &[Measurement], info: &Ti3Info) -> Result<()> {
+    crate::atomic::write(path, write_ti3(m, info)?.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_shipped_ti3() {
+        let t = read_ti3(
+            include_str!("../../../data/ti3/acer-xb271hu-unit1_dispread_2068.ti3"),
+            "acer.ti3",
+        )
+        .unwrap();
+        assert_eq!(t.measurements.len(), 2068);
+        assert!(t.normalized);
+        assert!((t.white_cdm2.unwrap()[1] - 118.724927).abs() < 1e-9);
+        assert_eq!(t.video_lut.as_ref().unwrap().len(), 256);
+        assert!(t.video_lut_active());
+        assert_eq!(t.measurements[0].device, [1.0; 3]);
+        assert_eq!(t.lines[0], 38);
+    }
+
+    #[test]
+    fn roundtrip() {
+        let m = vec![
+            Measurement {
+                device: [1.0, 1.0, 1.0],
+                xyz: [95.0, 100.0, 108.0],
+            },
+            Measurement {
+                device: [0.5, 0.25, 0.0],
+                xyz: [20.0, 15.0, 3.0],
+            },
+        ];
+        let info = Ti3Info {
+            absolute: true,
+            ..Default::default()
+        };
+        let text = write_ti3(&m, &info).unwrap();
+        let t = read_ti3(&text, "x").unwrap();
+        let (back, abs) = t.best_units();
+        assert!(abs);
+        for (a, b) in m.iter().zip(&back) {
+            for k in 0..3 {
+                assert!((a.device[k] - b.device[k]).abs() < 1e-7);
+                assert!((a.xyz[k] - b.xyz[k]).abs() < 1e-5);
+            }
+        }
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let good = "CTI3\n\nNUMBER_OF_FIELDS 7\nBEGIN_DATA_FORMAT\nSAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\nNUMBER_OF_SETS 1\nBEGIN_DATA\n1 100 100 100 95 100 108\nEND_DATA\n";
+        assert!(read_ti3(good, "f").is_ok());
+        let e = read_ti3(&good.replace("1 100 100 100 95", "1 100 100 x 95"), "f").unwrap_err();
+        assert_eq!(e.to_string(), "f:9: RGB_B `x` is not a number");
+        let e = read_ti3(&good.replace("SETS 1", "SETS 2"), "f").unwrap_err();
+        assert!(e.to_string().starts_with("f:7: NUMBER_OF_SETS is 2"), "{e}");
+        let e = read_ti3(&good.replace("FIELDS 7", "FIELDS 6"), "f").unwrap_err();
+        assert!(e.to_string().starts_with("f:3: NUMBER_OF_FIELDS"), "{e}");
+        let e = read_ti3(&good.replace(" XYZ_Z", " XYZ_W"), "f").unwrap_err();
+        assert!(e.to_string().contains("XYZ_Z"), "{e}");
+        let e = read_ti3(&good.replace("BEGIN_DATA\n", ""), "f").unwrap_err();
+        assert!(e.to_string().starts_with("f:"), "{e}");
+        let e = read_ti3(good.split("BEGIN_DATA\n").next().unwrap(), "f").unwrap_err();
+        assert!(e.to_string().contains("no BEGIN_DATA"), "{e}");
+        let e = read_ti3(&good.replace("95 100 108", "95 100"), "f").unwrap_err();
+        assert!(e.to_string().starts_with("f:9: expected 7 values"), "{e}");
+    }
+
+    #[test]
+    fn non_finite_readings_are_refused_and_no_file_is_written() {
+        let dir = std::env::temp_dir().join(format!("specpoly-ti3-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("inf.ti3");
+        let _ = std::fs::remove_file(&path);
+        for (absolute, bad) in [
+            (false, [f64::INFINITY, 1.0, 1.0]),
+            (true, [1.0, f64::NAN, 1.0]),
+        ] {
+            let m = vec![
+                Measurement {
+                    device: [1.0; 3],
+                    xyz: [95.0, 100.0, 108.0],
+                },
+                Measurement {
+                    device: [0.5, 0.0, 0.0],
+                    xyz: bad,
+                },
+            ];
+            let info = Ti3Info {
+                absolute,
+                ..Default::default()
+            };
+            let e = write_ti3(&m, &info).unwrap_err().to_string();
+            assert!(e.contains("reading 2"), "{e}");
+            let e = save_ti3(&path, &m, &info).unwrap_err();
+            assert!(e.to_string().contains("cannot write a .ti3"), "{e}");
+            assert!(!path.exists(), "no file is written");
+        }
+        let m = vec![Measurement {
+            device: [1.5, 0.0, 0.0],
+            xyz: [1.0; 3],
+        }];
+        let e = write_ti3(&m, &Ti3Info::default()).unwrap_err().to_string();
+        assert!(e.contains("outside 0–1"), "{e}");
+        // a reading overflowing on the way to the white's Y = 100
+        let m = vec![
+            Measurement {
+                device: [1.0; 3],
+                xyz: [1e-300, 1e-300, 1e-300],
+            },
+            Measurement {
+                device: [0.5, 0.0, 0.0],
+                xyz: [1e300, 1.0, 1.0],
+            },
+        ];
+        let info = Ti3Info {
+            absolute: true,
+            ..Default::default()
+        };
+        assert!(write_ti3(&m, &info)
+            .unwrap_err()
+            .to_string()
+            .contains("overflows"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn every_written_value_reads_back() {
+        // extremes that are finite as written: huge, tiny, negative, zero
+        let vals = [
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-12,
+            0.5,
+            1.0,
+            123456.789,
+            -1e15,
+            1e300,
+            f64::MAX / 100.0,
+        ];
+        for absolute in [false, true] {
+            let mut m = vec![Measurement {
+                device: [1.0; 3],
+                xyz: [95.0, 100.0, 108.0],
+            }];
+            for (i, a) in vals.iter().enumerate() {
+                let b = vals[(i + 3) % vals.len()];
+                let d = vals[(i + 5) % vals.len()];
+                m.push(Measurement {
+                    device: [a.clamp(0.0, 1.0), 0.25, 1.0],
+                    xyz: [*a, b, d],
+                });
+            }
+            let info = Ti3Info {
+                absolute,
+                ..Default::default()
+            };
+            let text = write_ti3(&m, &info).unwrap();
+            let t = read_ti3(&text, "x").unwrap_or_else(|e| panic!("{e}\n{text}"));
+            assert_eq!(t.measurements.len(), m.len());
+        }
+    }
+}

@@ -1,0 +1,224 @@
+//! Image files: the format follows the extension of the output path.
+//!
+//! - `.png`, 8 bits per channel (default) or 16 (`bits = 16`): display-encoded values (the
+//!   display's transfer curve, gamut-mapped), with the colour metadata of the display: an `sRGB`
+//!   chunk for the sRGB display, or the display's ICC profile in an `iCCP` chunk when rendering
+//!   for a calibrated display (a calibration file; the profile is the one
+//!   `specpoly calibrate icc` writes). A plain display TOML has no profile and gets no chunk.
+//! - `.exr` (OpenEXR, 32-bit float, `exr` crate): **linear** values, unclipped, either in the
+//!   display's RGB (its primaries; the scene white, after white balance, at `(1, 1, 1)`) or in
+//!   CIE XYZ (`X`, `Y`, `Z` channels, the scene white at `Y = 1`).
+//!
+//! Every file is written whole or not at all (the project's atomic writer).
+
+use super::{Image, Output};
+use rayon::prelude::*;
+use specpoly_core::{quantize, quantize8, Xyz};
+use specpoly_display::spec::DisplaySpec;
+use specpoly_formats::error::{CliError, Result};
+use std::borrow::Cow;
+use std::path::Path;
+
+/// An output file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// PNG, 8 bits per channel.
+    Png8,
+    /// PNG, 16 bits per channel.
+    Png16,
+    /// OpenEXR, linear 32-bit float.
+    Exr,
+}
+
+/// What linear values an EXR holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExrSpace {
+    /// The display's linear RGB.
+    #[default]
+    Rgb,
+    /// CIE XYZ.
+    Xyz,
+}
+
+impl std::str::FromStr for ExrSpace {
+    type Err = CliError;
+    fn from_str(s: &str) -> Result<Self> {
+        match s.to_ascii_lowercase().as_str() {
+            "rgb" => Ok(ExrSpace::Rgb),
+            "xyz" => Ok(ExrSpace::Xyz),
+            _ => Err(CliError::usage(format!(
+                "--exr-space `{s}`: use rgb or xyz"
+            ))),
+        }
+    }
+}
+
+/// Colour metadata for a PNG.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum ColourTag {
+    /// No colour chunk.
+    #[default]
+    None,
+    /// An `sRGB` chunk (perceptual intent).
+    Srgb,
+    /// An `iCCP` chunk holding this ICC profile.
+    Icc(Vec<u8>),
+}
+
+/// The format for `path` from its extension; `bits` (8 or 16) applies to PNG.
+pub fn format_for(path: &Path, bits: u8) -> Result<Format> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match (ext.as_str(), bits) {
+        ("png", 8) => Ok(Format::Png8),
+        ("png", 16) => Ok(Format::Png16),
+        ("png", b) => Err(CliError::usage(format!("--bits {b}: PNG takes 8 or 16"))),
+        ("exr", _) => Ok(Format::Exr),
+        ("", _) => Err(CliError::usage(format!(
+            "{}: no file extension: use .png or .exr",
+            path.display()
+        ))),
+        (e, _) => Err(CliError::usage(format!(
+            "{}: unknown image format `.{e}`: use .png or .exr",
+            path.display()
+        ))),
+    }
+}
+
+impl Output {
+    /// XYZ after exposure and white balance (relative, white `Y = 100`).
+    #[inline]
+    fn adapted(&self, xyz: Xyz) -> Xyz {
+        Xyz::from_array(self.adapt.apply(xyz.scale(self.exposure).to_array()))
+    }
+
+    /// One pixel's linear display RGB, unclipped, the display white at `(1, 1, 1)`.
+    #[inline]
+    pub fn linear(&self, xyz: Xyz) -> [f32; 3] {
+        let d = &self.display;
+        let k = (d.white().y - d.black().y) / 100.0;
+        d.xyz_to_linear(self.adapted(xyz).scale(k) + d.black())
+    }
+}
+
+/// Writes `img` to `path` in `format`.
+pub fn write(
+    path: &Path,
+    img: &Image,
+    out: &Output,
+    format: Format,
+    tag: &ColourTag,
+    space: ExrSpace,
+) -> Result<()> {
+    match format {
+        Format::Png8 => {
+            let px: Vec<u8> = img
+                .xyz
+                .par_iter()
+                .flat_map_iter(|x| out.device(*x).map(quantize8))
+                .collect();
+            write_png(path, img.width, img.height, &px, png::BitDepth::Eight, tag)
+        }
+        Format::Png16 => {
+            let px: Vec<u8> = img
+                .xyz
+                .par_iter()
+                .flat_map_iter(|x| {
+                    let d = out.device(*x).map(|v| quantize(v, u16::MAX));
+                    [d[0].to_be_bytes(), d[1].to_be_bytes(), d[2].to_be_bytes()]
+                        .into_iter()
+                        .flatten()
+                })
+                .collect();
+            write_png(
+                path,
+                img.width,
+                img.height,
+                &px,
+                png::BitDepth::Sixteen,
+                tag,
+            )
+        }
+        Format::Exr => write_exr(path, img, out, space),
+    }
+}
+
+/// Writes RGB samples (8-bit, or 16-bit big-endian) as a PNG with its colour chunk. No time
+/// stamp: the same pixels give the same bytes.
+pub fn write_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    px: &[u8],
+    depth: png::BitDepth,
+    tag: &ColourTag,
+) -> Result<()> {
+    specpoly_formats::atomic::write_with(path, |w| {
+        let mut info = png::Info::with_size(width, height);
+        info.color_type = png::ColorType::Rgb;
+        info.bit_depth = depth;
+        if let ColourTag::Icc(p) = tag {
+            info.icc_profile = Some(Cow::Borrowed(p));
+        }
+        let mut enc = png::Encoder::with_info(w, info).map_err(std::io::Error::other)?;
+        if *tag == ColourTag::Srgb {
+            enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        }
+        let mut wr = enc.write_header().map_err(std::io::Error::other)?;
+        wr.write_image_data(px).map_err(std::io::Error::other)?;
+        wr.finish().map_err(std::io::Error::other)
+    })
+}
+
+fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<()> {
+    use exr::prelude::*;
+    let w = img.width as usize;
+    let px: Vec<[f32; 3]> = match space {
+        ExrSpace::Rgb => img.xyz.par_iter().map(|x| out.linear(*x)).collect(),
+        ExrSpace::Xyz => img
+            .xyz
+            .par_iter()
+            .map(|x| x.scale(out.exposure / 100.0).to_array())
+            .collect(),
+    };
+    let names = match space {
+        ExrSpace::Rgb => ["R", "G", "B"],
+        ExrSpace::Xyz => ["X", "Y", "Z"],
+    };
+    let channels = SpecificChannels::build()
+        .with_channel(names[0])
+        .with_channel(names[1])
+        .with_channel(names[2])
+        .with_pixel_fn(|p: Vec2<usize>| {
+            let v = px[p.y() * w + p.x()];
+            (v[0], v[1], v[2])
+        });
+    let image = Image::from_channels((img.width as usize, img.height as usize), channels);
+    specpoly_formats::atomic::write_with(path, |f| {
+        image
+            .write()
+            .to_buffered(f)
+            .map_err(|e| std::io::Error::other(e.to_string()))
+    })
+}
+
+/// The colour tag for a display: `sRGB` gets the `sRGB` chunk, a calibration file its ICC
+/// profile, an ICC profile itself, a plain display TOML nothing.
+pub fn colour_tag(spec: &DisplaySpec) -> Result<ColourTag> {
+    Ok(match spec {
+        DisplaySpec::Srgb => ColourTag::Srgb,
+        DisplaySpec::Icc { bytes, .. } => ColourTag::Icc(bytes.clone()),
+        DisplaySpec::Primaries(_) => ColourTag::None,
+        DisplaySpec::Calibration { path, calibration } => {
+            // the description `specpoly calibrate icc` gives: the calibration file's stem
+            let desc = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().to_string())
+                .unwrap_or_else(|| "specpoly display".into());
+            let opts = specpoly_display::icc::IccOptions::for_calibration(calibration);
+            ColourTag::Icc(specpoly_display::icc::build(calibration, &desc, &opts)?)
+        }
+    })
+}

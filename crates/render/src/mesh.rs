@@ -1,0 +1,341 @@
+//! Triangle meshes: OBJ files (read with `tobj`), quads written in the scene file, and one
+//! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8;
+//! `bench/bvh-compare` measures it against the `bvh` crate, docs/performance.md).
+//!
+//! Triangles are one-sided for nothing: a hit reports the geometric normal `(v1 − v0) × (v2 − v0)`
+//! normalised, and the tracers flip it toward the viewer as for every other shape. Shading uses
+//! the geometric (flat) normal.
+
+use crate::geometry::{Ray, EPS, V3};
+use glam::Vec3A;
+use obvhs::cwbvh::CwBvh;
+use obvhs::ray::{Ray as BvhRay, RayHit};
+use obvhs::triangle::Triangle;
+use specpoly_formats::error::{CliError, Result};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::time::Duration;
+
+/// At most this many triangles per scene (bounds memory on absurd input).
+pub const MAX_TRIANGLES: usize = 20_000_000;
+
+fn a3(v: V3) -> Vec3A {
+    Vec3A::new(v.x, v.y, v.z)
+}
+
+fn v3(v: Vec3A) -> V3 {
+    V3::new(v.x, v.y, v.z)
+}
+
+/// What a triangle belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Owner {
+    /// A surface of scene material `usize`.
+    Material(usize),
+    /// Emissive mesh `usize` (an index into the scene's area lights).
+    Light(usize),
+}
+
+/// Every triangle of a scene with its material, and the BVH over them.
+#[derive(Clone, Debug, Default)]
+pub struct Triangles {
+    /// Triangles in BVH order.
+    tris: Vec<Triangle>,
+    /// Unit geometric normals, in BVH order.
+    normals: Vec<V3>,
+    /// Owner of each triangle, in BVH order.
+    owners: Vec<Owner>,
+    /// `None` when there are no triangles.
+    bvh: Option<CwBvh>,
+}
+
+/// Triangles before the BVH is built.
+#[derive(Clone, Debug, Default)]
+pub struct TriangleSoup {
+    /// Vertices.
+    pub tris: Vec<[V3; 3]>,
+    /// Owner of each.
+    pub owners: Vec<Owner>,
+}
+
+impl TriangleSoup {
+    /// Adds one triangle of material `material` (degenerate ones, of zero area, are dropped:
+    /// they cannot be hit).
+    pub fn push(&mut self, t: [V3; 3], material: usize) {
+        self.push_owned(t, Owner::Material(material));
+    }
+
+    /// Adds one triangle belonging to `owner` (degenerate ones are dropped).
+    pub fn push_owned(&mut self, t: [V3; 3], owner: Owner) {
+        if (t[1] - t[0]).cross(t[2] - t[0]).length() > 0.0 {
+            self.tris.push(t);
+            self.owners.push(owner);
+        }
+    }
+
+    /// A planar quad `a b c d` (in order around its edge) as the triangles `abc` and `acd`.
+    pub fn push_quad(&mut self, q: [V3; 4], material: usize) {
+        self.push([q[0], q[1], q[2]], material);
+        self.push([q[0], q[2], q[3]], material);
+    }
+
+    /// Builds the BVH.
+    pub fn build(self) -> Triangles {
+        if self.tris.is_empty() {
+            return Triangles::default();
+        }
+        let input: Vec<Triangle> = self
+            .tris
+            .iter()
+            .map(|t| Triangle {
+                v0: a3(t[0]),
+                v1: a3(t[1]),
+                v2: a3(t[2]),
+            })
+            .collect();
+        let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
+            &input,
+            obvhs::BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        // reorder into BVH order so a leaf's triangles are contiguous
+        let order: Vec<usize> = bvh.primitive_indices.iter().map(|&i| i as usize).collect();
+        let tris: Vec<Triangle> = order.iter().map(|&i| input[i]).collect();
+        let normals = tris
+            .iter()
+            .map(|t| v3((t.v1 - t.v0).cross(t.v2 - t.v0).normalize_or_zero()))
+            .collect();
+        let owners = order.iter().map(|&i| self.owners[i]).collect();
+        Triangles {
+            tris,
+            normals,
+            owners,
+            bvh: Some(bvh),
+        }
+    }
+}
+
+impl Triangles {
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    /// The nearest hit with `EPS < t < t_max`: `(t, unit normal, owner)`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, V3, Owner)> {
+        let bvh = self.bvh.as_ref()?;
+        let r = BvhRay::new(a3(ray.origin), a3(ray.dir), EPS, t_max);
+        let mut hit = RayHit::none();
+        if bvh.ray_traverse(r, &mut hit, |r, id| self.tris[id].intersect(r)) {
+            let i = hit.primitive_id as usize;
+            Some((hit.t, self.normals[i], self.owners[i]))
+        } else {
+            None
+        }
+    }
+
+    /// Calls `f(owner)` for every crossing of the segment `EPS < t < t_max`, in no
+    /// particular order; stops early when `f` returns `false`.
+    #[inline]
+    pub fn crossings(&self, ray: &Ray, t_max: f32, mut f: impl FnMut(Owner) -> bool) {
+        let Some(bvh) = self.bvh.as_ref() else {
+            return;
+        };
+        let r = BvhRay::new(a3(ray.origin), a3(ray.dir), EPS, t_max);
+        let mut go = true;
+        // any-hit traversal visits every candidate; a shadow ray stops at the first opaque one
+        bvh.ray_traverse_miss(r, |r, id| {
+            if go && self.tris[id].intersect(r) < t_max {
+                go = f(self.owners[id]);
+            }
+            // a `t` below `tmax` ends the traversal
+            if go {
+                f32::INFINITY
+            } else {
+                r.tmin
+            }
+        });
+    }
+}
+
+/// Where an OBJ file's triangles go: its transform and its materials.
+pub struct ObjPlacement<'a> {
+    /// Uniform scale, applied first.
+    pub scale: f32,
+    /// Translation, applied after the scale.
+    pub translate: V3,
+    /// The material of faces without one (or whose OBJ material has no mapping).
+    pub default: usize,
+    /// OBJ material name → scene material index.
+    pub map: &'a BTreeMap<String, usize>,
+}
+
+/// Reads a mesh file into `soup`: PLY for a `.ply` name ([`crate::mesh_ply`]), else OBJ.
+pub fn load(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
+    {
+        crate::mesh_ply::load_ply(path, place, soup)
+    } else {
+        load_obj(path, place, soup)
+    }
+}
+
+/// Reads an OBJ file (faces triangulated as fans) into `soup`; returns how many triangles it
+/// added. Faces use the OBJ material of the same name in `place.map` (`usemtl NAME` with the
+/// `.mtl` file beside), else `place.default`.
+pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    let (models, mtl) = tobj::load_obj(path, &opts)
+        .map_err(|e| CliError::data(format!("{}: not a readable OBJ file: {e}", path.display())))?;
+    // a missing .mtl is not an error: its faces take the default material
+    let mtl_names: Vec<String> = mtl
+        .map(|m| m.into_iter().map(|m| m.name).collect())
+        .unwrap_or_default();
+    let before = soup.tris.len();
+    for m in &models {
+        let mesh = &m.mesh;
+        let material = mesh
+            .material_id
+            .and_then(|i| mtl_names.get(i))
+            .and_then(|n| place.map.get(n))
+            .copied()
+            .unwrap_or(place.default);
+        let p = &mesh.positions;
+        if p.len() % 3 != 0 {
+            return Err(CliError::data(format!(
+                "{}: model `{}`: positions are not triples",
+                path.display(),
+                m.name
+            )));
+        }
+        let vertex = |i: u32| -> Result<V3> {
+            let i = i as usize * 3;
+            let v = p.get(i..i + 3).ok_or_else(|| {
+                CliError::data(format!(
+                    "{}: model `{}`: a face refers to a missing vertex",
+                    path.display(),
+                    m.name
+                ))
+            })?;
+            let v = V3::new(v[0], v[1], v[2]);
+            if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
+                return Err(CliError::data(format!(
+                    "{}: model `{}`: a vertex is not finite",
+                    path.display(),
+                    m.name
+                )));
+            }
+            Ok(v * place.scale + place.translate)
+        };
+        for f in mesh.indices.chunks_exact(3) {
+            let t = [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?];
+            soup.push(t, material);
+            if soup.tris.len() > MAX_TRIANGLES {
+                return Err(CliError::data(format!(
+                    "{}: more than {MAX_TRIANGLES} triangles in the scene",
+                    path.display()
+                )));
+            }
+        }
+    }
+    Ok(soup.tris.len() - before)
+}
+
+/// A procedural test mesh: a unit sphere subdivided as a latitude–longitude grid of `n × 2n`
+/// quads (`4n²` triangles less the poles' degenerate ones), radius `r`, centre `c`.
+pub fn uv_sphere(n: usize, c: V3, r: f32, material: usize, soup: &mut TriangleSoup) {
+    let p = |i: usize, j: usize| {
+        let th = std::f32::consts::PI * i as f32 / n as f32;
+        let ph = std::f32::consts::PI * j as f32 / n as f32;
+        c + V3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()) * r
+    };
+    for i in 0..n {
+        for j in 0..2 * n {
+            soup.push_quad(
+                [p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)],
+                material,
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::geometry::ray;
+    use super::*;
+
+    /// The BVH finds the same nearest hit as the analytic sphere the mesh approximates,
+    /// within the tessellation's sagitta.
+    #[test]
+    fn sphere_mesh_hits_like_the_sphere() {
+        let mut s = TriangleSoup::default();
+        uv_sphere(64, V3::new(0.0, 0.0, 5.0), 1.0, 3, &mut s);
+        let t = s.build();
+        assert!(t.len() > 16_000);
+        let sagitta = 1.0 - (std::f32::consts::PI / 64.0).cos();
+        for k in 0..50 {
+            let a = k as f32 * 0.0035 - 0.09;
+            let r = ray([0.0; 3], [a, 0.5 * a, 1.0]);
+            let exact = super::super::geometry::Shape::Sphere {
+                center: V3::new(0.0, 0.0, 5.0),
+                radius: 1.0,
+            }
+            .intersect(&r, 1e9)
+            .unwrap();
+            let (tt, n, m) = t.intersect(&r, 1e9).unwrap();
+            assert_eq!(m, Owner::Material(3));
+            assert!((tt - exact.t).abs() <= 2.0 * sagitta, "{tt} vs {}", exact.t);
+            assert!(n.dot(exact.normal).abs() > 0.99);
+        }
+        assert!(t.intersect(&ray([0.0; 3], [0.0, 1.0, 0.0]), 1e9).is_none());
+        // a segment through the sphere crosses it twice; one ending inside, once
+        let mut n = 0;
+        // (off the tessellation's vertices and edges)
+        t.crossings(&ray([0.0; 3], [0.011, 0.017, 1.0]), 1e9, |_| {
+            n += 1;
+            true
+        });
+        assert_eq!(n, 2);
+        let mut n = 0;
+        t.crossings(&ray([0.0; 3], [0.011, 0.017, 1.0]), 5.0, |_| {
+            n += 1;
+            true
+        });
+        assert_eq!(n, 1);
+    }
+
+    #[test]
+    fn quads_split_into_two_triangles() {
+        let mut s = TriangleSoup::default();
+        let q = [
+            V3::new(-1.0, -1.0, 2.0),
+            V3::new(1.0, -1.0, 2.0),
+            V3::new(1.0, 1.0, 2.0),
+            V3::new(-1.0, 1.0, 2.0),
+        ];
+        s.push_quad(q, 0);
+        let t = s.build();
+        assert_eq!(t.len(), 2);
+        for (x, y) in [(0.5, 0.2), (-0.5, -0.2), (0.9, -0.8), (-0.8, 0.9)] {
+            let (tt, _, _) = t
+                .intersect(&ray([x, y, 0.0], [0.0, 0.0, 1.0]), 1e9)
+                .unwrap();
+            assert!((tt - 2.0).abs() < 1e-5);
+        }
+        assert!(t
+            .intersect(&ray([1.5, 0.0, 0.0], [0.0, 0.0, 1.0]), 1e9)
+            .is_none());
+    }
+}

@@ -1,0 +1,16 @@
+//! # specpoly-spectra
+//!
+//! The core's spectra on the host: built-in reference data ([`data`]), spectra named on a
+//! command line or in a file ([`spectrum_names`]), refusing data that cannot be a reflectance
+//! ([`plausible`]), the representations a user picks and the dispatch from that runtime choice
+//! to monomorphised code ([`repr`], [`hero`]), the colours of chains of reflectances
+//! ([`colour`]) and the light-metric and LED-mixing reports ([`light`]).
+#![forbid(unsafe_code)]
+
+pub mod colour;
+pub mod data;
+pub mod hero;
+pub mod light;
+pub mod plausible;
+pub mod repr;
+pub mod spectrum_names;

@@ -1,0 +1,299 @@
+//! Light metrics and multi-channel LED mixing on the host: named spectra in, reports out.
+//! The computations are `specpoly_core::light`; this module resolves names, parses targets and
+//! shapes the printed records (`specpoly light`, `specpoly mix`).
+
+use crate::spectrum_names::{self, Named};
+use serde::Serialize;
+use specpoly_core::light::{
+    cct::Cct,
+    cri::cri,
+    mix::{solve_mix, Mix, Objective, Target},
+    tm30::tm30,
+    LightError, Samples, Source,
+};
+use specpoly_core::Transfer;
+use specpoly_formats::error::{CliError, Result};
+
+/// Rounds for printing: far below any visible difference, without f64 noise in the output.
+fn r6(v: f64) -> f64 {
+    (v * 1e6).round() / 1e6
+}
+
+fn source(n: &Named) -> Result<Source> {
+    Source::new(&n.tabulated()).map_err(|e| CliError::data(format!("{}: {e}", n.name)))
+}
+
+/// What `specpoly light` prints (JSON keys as in the issue).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightReport {
+    /// `Km·Σ S x̄ Δλ` (CIE 1931; lumens for Y when the SPD is in W/nm).
+    #[serde(rename = "X")]
+    pub big_x: f64,
+    /// `Km·Σ S ȳ Δλ`.
+    #[serde(rename = "Y")]
+    pub big_y: f64,
+    /// `Km·Σ S z̄ Δλ`.
+    #[serde(rename = "Z")]
+    pub big_z: f64,
+    /// CIE 1931 x.
+    pub x: f64,
+    /// CIE 1931 y.
+    pub y: f64,
+    /// CIE 1976 u′.
+    pub u_prime: f64,
+    /// CIE 1976 v′.
+    pub v_prime: f64,
+    /// CCT, K (`None` farther than |Duv| 0.05 from the Planckian locus).
+    pub cct: Option<f64>,
+    /// Duv.
+    pub duv: Option<f64>,
+    /// CIE 13.3 Ra.
+    pub ra: Option<f64>,
+    /// CIE 13.3 R9.
+    pub r9: Option<f64>,
+    /// CIE 224:2017 Rf.
+    pub rf: Option<f64>,
+    /// TM-30 Rg.
+    pub rg: Option<f64>,
+}
+
+/// The metrics of one light.
+pub fn report(light: &Named) -> Result<LightReport> {
+    let s = source(light)?;
+    Ok(report_of(&s, &Samples::cie13_3(), &Samples::cie224()))
+}
+
+fn report_of(s: &Source, tcs: &Samples<14>, ces: &Samples<99>) -> LightReport {
+    let [big_x, big_y, big_z] = s.xyz();
+    let [x, y] = s.xy();
+    let [u, v] = s.uv_prime();
+    let c = cri(s, tcs).ok();
+    let t = tm30(s, ces).ok();
+    LightReport {
+        big_x: r6(big_x),
+        big_y: r6(big_y),
+        big_z: r6(big_z),
+        x: r6(x),
+        y: r6(y),
+        u_prime: r6(u),
+        v_prime: r6(v),
+        cct: t.map(|t| (t.cct.cct * 100.0).round() / 100.0),
+        duv: t.map(|t| r6(t.cct.duv)),
+        ra: c.map(|c| r6(c.ra)),
+        r9: c.map(|c| r6(c.r[8])),
+        rf: t.map(|t| r6(t.rf)),
+        rg: t.map(|t| r6(t.rg)),
+    }
+}
+
+/// Parses a mix target: `xy:X,Y` or `cct:K` / `cct:K,duv:D` (also `duv=D`).
+pub fn parse_target(s: &str) -> std::result::Result<Target, String> {
+    let bad = || {
+        format!("`{s}`: a target is xy:X,Y or cct:K[,duv:D] (e.g. xy:0.3127,0.329, cct:3000,duv:0)")
+    };
+    let (kind, rest) = s.split_once(':').ok_or_else(bad)?;
+    let num = |v: &str| -> std::result::Result<f64, String> {
+        v.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(bad)
+    };
+    let target = match kind.trim().to_ascii_lowercase().as_str() {
+        "xy" => {
+            let (x, y) = rest.split_once(',').ok_or_else(bad)?;
+            Target::Xy([num(x)?, num(y)?])
+        }
+        "cct" => {
+            let (k, duv) = match rest.split_once(',') {
+                None => (rest, 0.0),
+                Some((k, d)) => {
+                    let d = d
+                        .trim()
+                        .strip_prefix("duv:")
+                        .or_else(|| d.trim().strip_prefix("duv="))
+                        .ok_or_else(bad)?;
+                    (k, num(d)?)
+                }
+            };
+            Target::Cct(Cct { cct: num(k)?, duv })
+        }
+        _ => return Err(bad()),
+    };
+    target
+        .xy()
+        .map_err(|e| format!("`{s}`: {e} ({})", domain(&target)))?;
+    Ok(target)
+}
+
+fn domain(t: &Target) -> &'static str {
+    match t {
+        Target::Xy(_) => "x > 0, y > 0, x + y < 1",
+        Target::Cct(_) => "1000-100000 K, |duv| <= 0.05",
+    }
+}
+
+/// What the freedom of more than three channels is spent on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Optimize {
+    /// Greatest CIE 224:2017 fidelity Rf.
+    Rf,
+    /// Greatest CIE 13.3 Ra.
+    Ra,
+    /// Greatest luminous efficacy of radiation.
+    Efficacy,
+    /// Least total drive.
+    Power,
+}
+
+/// One channel: a name and its SPD at full drive.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Channel {
+    /// The user's name for it.
+    pub name: String,
+    /// The SPD.
+    pub spd: Named,
+}
+
+/// Parses `NAME=FILE.csv[#COLUMN]` and loads the spectrum.
+pub fn load_channel(s: &str) -> Result<Channel> {
+    let (name, spec) = s
+        .split_once('=')
+        .ok_or_else(|| CliError::usage(format!("`{s}`: a channel is NAME=FILE.csv[#COLUMN]")))?;
+    if name.trim().is_empty() {
+        return Err(CliError::usage(format!("`{s}`: the channel has no name")));
+    }
+    Ok(Channel {
+        name: name.trim().to_string(),
+        spd: spectrum_names::light(spec)?,
+    })
+}
+
+/// What `specpoly mix` prints (JSON keys as in the issue, plus the channel names).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MixReport {
+    /// Channel names, in order.
+    pub channels: Vec<String>,
+    /// Device values (PWM duties) 0–1 in channel order, through the transfer curve and
+    /// quantised when `--bits` is given.
+    pub duties: Vec<f64>,
+    /// CIE 1931 x of the mix.
+    pub x: f64,
+    /// CIE 1931 y.
+    pub y: f64,
+    /// CIE 1976 u′.
+    pub u_prime: f64,
+    /// CIE 1976 v′.
+    pub v_prime: f64,
+    /// CCT, K.
+    pub cct: Option<f64>,
+    /// Duv.
+    pub duv: Option<f64>,
+    /// CIE 13.3 Ra.
+    pub ra: Option<f64>,
+    /// CIE 224:2017 Rf.
+    pub rf: Option<f64>,
+    /// TM-30 Rg.
+    pub rg: Option<f64>,
+    /// Luminous efficacy of radiation, lm/W.
+    pub efficacy: f64,
+}
+
+/// Solves a mix and reports what it achieves.
+pub fn mix(
+    channels: &[Channel],
+    target: Target,
+    luminance: f64,
+    optimize: Optimize,
+    transfer: &Transfer,
+    bits: Option<u32>,
+) -> Result<MixReport> {
+    let sources = channels
+        .iter()
+        .map(|c| source(&c.spd))
+        .collect::<Result<Vec<_>>>()?;
+    let tcs = Samples::cie13_3();
+    let ces = Samples::cie224();
+    let objective = match optimize {
+        Optimize::Rf => Objective::Rf(&ces),
+        Optimize::Ra => Objective::Ra(&tcs),
+        Optimize::Efficacy => Objective::Efficacy,
+        Optimize::Power => Objective::Power,
+    };
+    let err = |e: LightError| match e {
+        LightError::Channels(_) | LightError::BadTarget => CliError::usage(format!("{e}")),
+        LightError::OutOfGamut => CliError::data(format!(
+            "target {} is outside the gamut of the channels {}",
+            describe(&target),
+            channels
+                .iter()
+                .map(|c| c.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        _ => CliError::data(format!("{e}")),
+    };
+    let m: Mix = solve_mix(&sources, target, luminance, objective).map_err(err)?;
+    let driven = m.drive(&sources, transfer, bits).map_err(err)?;
+    let r = report_of(&driven.mix.light, &tcs, &ces);
+    Ok(MixReport {
+        channels: channels.iter().map(|c| c.name.clone()).collect(),
+        duties: driven.drive().iter().map(|d| r6(*d)).collect(),
+        x: r.x,
+        y: r.y,
+        u_prime: r.u_prime,
+        v_prime: r.v_prime,
+        cct: r.cct,
+        duv: r.duv,
+        ra: r.ra,
+        rf: r.rf,
+        rg: r.rg,
+        efficacy: (driven.mix.light.efficacy() * 1000.0).round() / 1000.0,
+    })
+}
+
+/// `xy 0.3127,0.3290` or `3000 K, Duv 0`.
+pub fn describe(t: &Target) -> String {
+    match t {
+        Target::Xy([x, y]) => format!("xy {x},{y}"),
+        Target::Cct(c) => format!("{} K, Duv {}", c.cct, c.duv),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn targets_parse() {
+        assert_eq!(
+            parse_target("xy:0.3127,0.329").unwrap(),
+            Target::Xy([0.3127, 0.329])
+        );
+        assert_eq!(
+            parse_target("cct:3000,duv:0.002").unwrap(),
+            Target::Cct(Cct {
+                cct: 3000.0,
+                duv: 0.002
+            })
+        );
+        assert_eq!(
+            parse_target("cct:3000").unwrap(),
+            Target::Cct(Cct {
+                cct: 3000.0,
+                duv: 0.0
+            })
+        );
+        for bad in [
+            "xy:0.3",
+            "rgb:1,2",
+            "cct:abc",
+            "cct:500",
+            "cct:3000,duv:0.2",
+            "xy:0.7,0.5",
+            "xy:nan,0.3",
+        ] {
+            assert!(parse_target(bad).is_err(), "{bad}");
+        }
+    }
+}
