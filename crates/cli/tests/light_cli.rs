@@ -22,7 +22,7 @@ fn mix(channels: &[&str], target: &str, more: &[&str]) -> (i32, String, String) 
 
 fn colour_science(name: &str) -> Vec<f64> {
     let p = format!(
-        "{}/../../core/tests/data/light_colour_science.csv",
+        "{}/../core/tests/data/light_colour_science.csv",
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(p).unwrap();
