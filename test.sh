@@ -43,6 +43,8 @@ cargo fmt --all --check
 
 say "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
+# the controller logic as the 32 KiB build compiles it (no settings, mixing, lut)
+cargo clippy -p specpoly-device --no-default-features --all-targets -- -D warnings
 (cd firmware && cargo clippy --release -- -D warnings)
 # the STM32F4 board build (stm32f4xx-hal); firmware_qemu builds it and runs it on netduinoplus2
 (cd firmware && cargo clippy --release --no-default-features --features stm32f4,full --bin stm32f4 \
@@ -51,8 +53,9 @@ cargo clippy --workspace --all-targets -- -D warnings
 (cd firmware && cargo clippy --profile small --no-default-features --features mps2 --bins \
   --target-dir target/small -- -D warnings)
 
-say "specpoly-core and specpoly-graphics for a microcontroller (thumbv7em-none-eabihf)"
-cargo build -p specpoly-core -p specpoly-graphics --target thumbv7em-none-eabihf
+say "specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)"
+cargo build -p specpoly-core -p specpoly-graphics -p specpoly-device --target thumbv7em-none-eabihf
+cargo build -p specpoly-device --no-default-features --target thumbv7em-none-eabihf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 cargo test --workspace --no-fail-fast

@@ -2,56 +2,19 @@
 //!
 //! 1. memory.x (`memory.x.in` for QEMU mps2-an386, `memory-stm32f4.x.in` with feature
 //!    `stm32f4`) goes where cortex-m-rt's link.x finds it (OUT_DIR on the linker search path);
-//! 2. the moments of every built-in light under both observers, for both presets, are computed
-//!    here with `specpoly-core` (the same `Moments::new` the host uses) and compiled in as
-//!    `lights.rs`: 7 lights × (27 + 99) floats ≈ 3.5 KiB of flash per observer, instead of
-//!    the 12 KiB of observer and light tables plus the f64 code that integrates them on target
-//!    (the 32 KiB flash budget). CIE 1964 only with the `observer-1964` feature;
-//! 3. on mps2, an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector
+//! 2. on mps2, an empty `device.x` for cortex-m-rt's `device` feature (our own 1-entry vector
 //!    table); the STM32's comes from its PAC.
-//! 4. the framebuffer demo's pixel transform (`src/bin/framebuffer.rs`): a small SPI LCD's
+//! 3. the framebuffer demo's pixel transform (`src/bin/framebuffer.rs`): a small SPI LCD's
 //!    calibration baked by the core into `framebuffer_panel.rs` (`PANEL`, 7.3 KiB of tables in
 //!    flash, and `PANEL_DESC`, the panel as the QEMU test rebuilds it in f64); the same panel in
 //!    RGB888 (`PANEL888`) with its 8-bit code tables (`PANEL888_CODES`, 3 450 B) for the
-//!    RGB888 kernel (`src/board/rgb888.rs`).
+//!    RGB888 kernel (`src/boards/mps2/rgb888.rs`).
 //!
-//! Each light is written as `Moments::from_parts(m, white)`, the values of `Moments::new`
-//! printed with `{:?}` (shortest round-trip form), so they are the core's to the bit.
+//! The built-in lights' moments are computed by `specpoly-device`'s own build script.
 
 use specpoly_core::pixel::{export, Options, PanelTransform, Source};
-use specpoly_core::{Display, Illuminant, Layout, Moments, Observer, Paper, Transfer, Uniform};
+use specpoly_core::{Display, Transfer};
 use std::{env, fmt::Write as _, fs, path::PathBuf};
-
-fn table<const S: usize, L: Layout<S>>(
-    out: &mut String,
-    name: &str,
-    ty: &str,
-    observers: &[Observer],
-) {
-    let n = observers.len() * Illuminant::ALL.len();
-    let _ = writeln!(
-        out,
-        "/// The {name} preset's moments: CIE 1931 (then 1964), lights in `Illuminant::ALL` order.\n\
-         pub static {name}: [{ty}; {n}] = ["
-    );
-    for &observer in observers {
-        for illuminant in Illuminant::ALL {
-            let m = Moments::<S, 4, L>::new(observer, &illuminant.tabulated());
-            let w = m.white();
-            let _ = writeln!(
-                out,
-                "    // {} {}\n    Moments::from_parts({:?}, Xyz::new({:?}, {:?}, {:?})),",
-                observer.name(),
-                illuminant.name(),
-                m.moments(),
-                w.x,
-                w.y,
-                w.z
-            );
-        }
-    }
-    out.push_str("];\n");
-}
 
 /// The framebuffer demo's panel: an ST7789-class SPI LCD (narrower than sRGB, bluish white,
 /// a gamma per channel), driven in RGB565 from an sRGB UI.
@@ -102,7 +65,7 @@ fn framebuffer_panel(out: &std::path::Path) {
     )
     .expect("write the transform");
     // the same panel driven in RGB888 (an 18/24-bit SPI panel, an LTDC framebuffer): its
-    // transform and the 8-bit code tables of `board::rgb888` (`(level + 128) >> 8`, rounded)
+    // transform and the 8-bit code tables of `boards::mps2::rgb888` (`(level + 128) >> 8`, rounded)
     let p888 = PanelTransform::new(
         &display,
         Options {
@@ -120,8 +83,8 @@ fn framebuffer_panel(out: &std::path::Path) {
     .expect("write the RGB888 transform");
     let _ = writeln!(
         src,
-        "/// `PANEL888`'s levels rounded to 8-bit codes, for `board::rgb888`.\n\
-         pub static PANEL888_CODES: specpoly_firmware::board::rgb888::Codes = ["
+        "/// `PANEL888`'s levels rounded to 8-bit codes, for `boards::mps2::rgb888`.\n\
+         pub static PANEL888_CODES: specpoly_firmware::boards::mps2::rgb888::Codes = ["
     );
     for curve in &p888.tables().curve {
         src.push_str("    [");
@@ -151,23 +114,17 @@ fn main() {
     println!("cargo:rerun-if-changed=memory-stm32f4.x.in");
     println!("cargo:rerun-if-changed=build.rs");
 
-    // mps2: an empty device.x, the one interrupt vector is in src/board/vectors.rs; the
+    // mps2: an empty device.x, the one interrupt vector is in src/boards/mps2/vectors.rs; the
     // STM32's device.x comes with its PAC (`stm32f4`, feature `rt`)
     if !stm32f4 {
-        fs::write(out.join("device.x"), "/* see src/board/vectors.rs */\n").expect("device.x");
+        fs::write(
+            out.join("device.x"),
+            "/* see src/boards/mps2/vectors.rs */\n",
+        )
+        .expect("device.x");
     } else {
         let _ = fs::remove_file(out.join("device.x"));
     }
-
-    let observers: &[Observer] = if env::var_os("CARGO_FEATURE_OBSERVER_1964").is_some() {
-        &[Observer::Cie1931, Observer::Cie1964]
-    } else {
-        &[Observer::Cie1931]
-    };
-    let mut src = String::from("// generated by build.rs with specpoly-core — do not edit\n");
-    table::<2, Paper>(&mut src, "PAPER", "Moments<2, 4, Paper>", observers);
-    table::<8, Uniform>(&mut src, "DEFAULT", "Moments<8, 4>", observers);
-    fs::write(out.join("lights.rs"), src).expect("write lights.rs");
 
     framebuffer_panel(&out);
 }

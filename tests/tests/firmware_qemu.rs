@@ -1,6 +1,6 @@
 //! The LED controller firmware under QEMU (`mps2-an386`, Cortex-M4F):
 //!
-//! - its host-side unit tests (controller, LED driver with embedded-hal-mock, light tables);
+//! - the controller's unit tests (`specpoly-device`) in the 32 KiB build's configuration;
 //! - the on-target self-test (semihosting exit code), with the flash and RAM budgets;
 //! - end to end: the host's `specpoly led` code ↔ QEMU's UART on a pseudo-terminal ↔ firmware,
 //!   whose every colour reply must agree with the host's independent f64 computation within
@@ -34,13 +34,13 @@ const TARGET: &str = "thumbv7em-none-eabihf";
 /// `save`/`load`) and mixing 3–6 LED channels on the device (+10 188 B; issue 15: solver,
 /// locus table, four commands), +1.1 KiB for the mixer's settings record, with the protocol at
 /// `"s"` (+0.7 KiB, the `refl` line −12 %): 56 700 B, and the drive-correction table (`lut`,
-/// +3 844 B): 60 620 B measured, 61 400 B for the STM32F4 image
+/// +3 844 B): 61 288 B measured, 62 520 B for the STM32F4 image (six channels)
 /// (docs/performance.md, "Issue 13", "Flash, by build and by part"). The limit is 64 KiB, the
 /// first four 16 KiB sectors of an STM32F4; real parts have 256–512 KiB.
 const FLASH_BUDGET: u64 = 64 * 1024;
 /// The 32 KiB build (`--no-default-features --features mps2 --profile small`): the colour
 /// pipeline, `refl` (decimal and hex), `cal`, `trc` (curves and tables), `map`, `observer`,
-/// `state`; no settings store, no mixing, no drive table. 31 740 B measured: 1 028 B free for a 32 KiB part
+/// `state`; no settings store, no mixing, no drive table. 32 448 B measured: 320 B free for a 32 KiB part
 /// (docs/performance.md, "Issue 13").
 const SMALL_FLASH_BUDGET: u64 = 32 * 1024;
 const RAM_BUDGET: u64 = 4 * 1024;
@@ -273,27 +273,38 @@ fn budget(elf: &Path) -> (u64, u64) {
     (flash, ram)
 }
 
+/// The controller's unit tests (`specpoly-device`: controller, LED driver with
+/// embedded-hal-mock, light tables equal to the core's moments to the bit, the settings record,
+/// the store on `sequential-storage`'s mock flash with a power cut at every byte) as the 32 KiB
+/// build compiles the crate: without `settings`, `mixing` and `lut` (`cargo test --workspace`
+/// runs them with the default features, all three). Its own target dir: the workspace's is
+/// busy with this test's own build.
 #[test]
-fn firmware_unit_tests_pass_on_the_host() {
-    require_tools();
-    let host = Process::new("rustc")
-        .arg("-vV")
-        .output()
-        .expect("rustc runs");
-    let host = String::from_utf8_lossy(&host.stdout)
-        .lines()
-        .find_map(|l| l.strip_prefix("host: ").map(str::to_owned))
-        .expect("rustc -vV names the host");
-    let out = cargo()
-        .args(["test", "--lib", "--target", &host])
+fn device_unit_tests_pass_in_the_32_kib_configuration() {
+    let mut c = Process::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
+    c.current_dir(repo());
+    for v in ["CARGO_TARGET_DIR", "CARGO_BUILD_TARGET"] {
+        c.env_remove(v);
+    }
+    let out = c
+        .args(["test", "-p", "specpoly-device", "--no-default-features"])
+        .arg("--target-dir")
+        .arg(repo().join("target/device-small"))
         .output()
         .expect("cargo runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
-        "firmware unit tests failed:\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
+        "device unit tests failed:\n{stdout}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // the tests ran (a filter or a missing harness would pass with none)
+    let passed: usize = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("test result: ok. "))
+        .filter_map(|l| l.split(' ').next()?.parse::<usize>().ok())
+        .sum();
+    assert!(passed >= 10, "{passed} device tests ran:\n{stdout}");
 }
 
 #[test]
@@ -1250,12 +1261,18 @@ fn settings_survive_a_reset_and_damaged_flash_is_ignored() {
 }
 
 /// The STM32F4 board build (feature `stm32f4`, stm32f4xx-hal) on QEMU's `netduinoplus2`
-/// (STM32F405): QEMU 7.2 models its USART2 and TIM3 (not RCC, GPIO or the flash interface).
-/// The protocol runs end to end over USART2, and the duties of a colour reply are read back
-/// from TIM3's compare registers CCR1–CCR3 through QEMU's monitor (`xp`), with the
+/// (STM32F405): QEMU 7.2 models its USART2 and TIM2–5 (not RCC, GPIO or the flash interface).
+/// The protocol runs end to end over USART2, and the six PWM channels are read back from the
+/// timers' compare registers (TIM3 CCR1–4, TIM4 CCR1–2) through QEMU's monitor (`xp`), with the
 /// full scale from ARR: the HAL's PWM channels behind `SetDutyCycle`, checked at the register
-/// level. `save` answers `err storage` there (no flash controller); the flash path is tested
-/// on mps2-an386 and with the mock flash.
+/// level. A colour lights CCR1–3 with the reply's duties; a six-channel mix (channels uploaded
+/// with `channel`, a `cct` target) puts the duties of the host's own run of the same controller
+/// (`specpoly-device`) in all six registers, and those duties are checked independently: within
+/// the full scale, and the light they make through the channels' spectra (f64) on the target
+/// chromaticity within the solver's tolerance plus the quantisation's, computed here. A fade
+/// (TIM5 as the clock) changes the registers over time through the host model's steps and ends
+/// on the target. `save` answers `err storage` there (no flash controller); the flash path is
+/// tested on mps2-an386 and with the mock flash.
 #[test]
 fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     let dir = {
@@ -1365,7 +1382,68 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     let save = ask(&mut serial, "save\n", "err");
     // TIM3 at 0x4000_0400: ARR at +0x2C, CCR1–CCR3 at +0x34…+0x3C (RM0368 §13.4)
     let arr = ask(&mut monitor, "xp /1wx 0x4000042c\n", "000000004000042c:");
-    let ccr = ask(&mut monitor, "xp /3wx 0x40000434\n", "0000000040000434:");
+    let arr4 = ask(&mut monitor, "xp /1wx 0x4000082c\n", "000000004000082c:");
+    let colour_ccr = registers(&mut |l, u| ask(&mut monitor, l, u));
+
+    // six channels (rgbwa + warm white) mixed to a CCT target, then a fade to another: the
+    // device's replies, the host's run of the same controller, and the registers
+    let sets = mix_sets();
+    let (_, mix_oracle) = sets
+        .iter()
+        .find(|(name, _)| *name == "rgbwa + warm white, efficacy")
+        .expect("the six-channel set");
+    let mut host = specpoly_device::Controller::new(max_of(&hello));
+    let mut exchange = |line: &str| -> Reply {
+        let text = ask(&mut serial, &format!("{line}\n"), "");
+        let text = text
+            .lines()
+            .map(|l| l.trim_start_matches('\0').trim())
+            .find(|l| l.starts_with("ok") || l.starts_with("err"))
+            .unwrap_or_else(|| panic!("{line}: no reply in {text:?}"))
+            .to_owned();
+        let dev = Reply::parse(&text).unwrap_or_else(|e| panic!("{line}: {text}: {e}"));
+        assert_eq!(
+            dev,
+            host.handle(Command::parse(line)),
+            "{line}: the board and the host's controller"
+        );
+        dev
+    };
+    for cmd in mix_oracle.commands() {
+        exchange(&specpoly::led::lines::line(&cmd));
+    }
+    exchange("fade 0");
+    let from = Goal::Cct {
+        cct: 2700.0,
+        duv: 0.0,
+        lum: 0.3,
+    };
+    let mixed = match exchange(&specpoly::led::lines::line(&Command::Mix(from))) {
+        Reply::Mix(r) => r,
+        other => panic!("{other:?}"),
+    };
+    let mix_ccr = registers(&mut |l, u| ask(&mut monitor, l, u));
+    // a long fade (QEMU's timers count faster than the board's), sampled while it runs
+    let to = Goal::Cct {
+        cct: 6500.0,
+        duv: 0.0,
+        lum: 0.9,
+    };
+    exchange(&format!("fade {FADE_MS}"));
+    let end = match exchange(&specpoly::led::lines::line(&Command::Mix(to))) {
+        Reply::Mix(r) => r,
+        other => panic!("{other:?}"),
+    };
+    let mut samples = Vec::new();
+    let start = Instant::now();
+    loop {
+        let r = registers(&mut |l, u| ask(&mut monitor, l, u));
+        let done = r == end.duty().iter().map(|d| u32::from(*d)).collect::<Vec<_>>();
+        samples.push(r);
+        if done || start.elapsed() > Duration::from_secs(120) {
+            break;
+        }
+    }
     let _ = child.kill();
     let _ = child.wait();
 
@@ -1393,11 +1471,16 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         vec![max as u32 - 1],
         "ARR = max − 1"
     );
-    let ccr = words(&ccr, "0000000040000434:");
     assert_eq!(
-        ccr,
-        dev.duty.map(u32::from).to_vec(),
-        "CCR1–3 hold the duties"
+        words(&arr4, "000000004000082c:"),
+        vec![max as u32 - 1],
+        "TIM4's ARR = max − 1 (one full scale)"
+    );
+    let mut rgb = dev.duty.map(u32::from).to_vec();
+    rgb.extend([0; 3]);
+    assert_eq!(
+        colour_ccr, rgb,
+        "TIM3 CCR1–3 hold the colour's duties, the other channels are off"
     );
     // the reply agrees with the host's independent f64 computation for the board's state
     let Ok(Reply::State(st)) = Reply::parse(state.trim()) else {
@@ -1407,6 +1490,115 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     if let Err(e) = oracle.verify(&Command::Xyz(Xyz::new(20.0, 20.0, 20.0)), &dev) {
         panic!("board reply {dev:?}: {e}");
     }
+
+    // the mix: the registers hold the reply's duties (equal to the host's controller's, above)
+    let mixed_duty: Vec<u32> = mixed.duty().iter().map(|d| u32::from(*d)).collect();
+    assert_eq!(mixed.n, 6);
+    assert_eq!(mix_ccr, mixed_duty, "TIM3 CCR1–4, TIM4 CCR1–2 hold the mix");
+    check_mix_registers(mix_oracle, &from, &mix_ccr, max);
+    // the fade: every sample is the start, a step of the host model's fade, or a step being
+    // written (the channels are written in order: a prefix of the next step over the last one),
+    // the samples change over time, and the last is the target
+    let mut steps = vec![mixed_duty];
+    while let Some((_, _, d)) = host.fade_step() {
+        steps.push(d.iter().map(|v| u32::from(*v)).collect());
+    }
+    assert_eq!(steps.len() as u32, FADE_MS / 10 + 1, "one step per 10 ms");
+    let end_duty: Vec<u32> = end.duty().iter().map(|d| u32::from(*d)).collect();
+    assert_eq!(
+        steps.last(),
+        Some(&end_duty),
+        "the host's fade ends on the target"
+    );
+    for s in &samples {
+        let known = steps
+            .windows(2)
+            .any(|w| (0..=6).any(|p| s[..p] == w[1][..p] && s[p..] == w[0][p..]));
+        assert!(known, "sample {s:?} is no step of the fade");
+    }
+    let distinct: std::collections::BTreeSet<&Vec<u32>> = samples.iter().collect();
+    println!(
+        "fade over {} steps: {} register samples, {} distinct",
+        steps.len() - 1,
+        samples.len(),
+        distinct.len()
+    );
+    assert!(
+        distinct.len() >= 3,
+        "the registers change over the fade: {samples:?}"
+    );
+    assert_eq!(
+        samples.last(),
+        Some(&end_duty),
+        "the fade ends on the target"
+    );
+    check_mix_registers(mix_oracle, &to, &end_duty, max);
+}
+
+/// The fade the netduinoplus2 test samples, ms: 500 steps.
+const FADE_MS: u32 = 5_000;
+
+/// TIM3 CCR1–4 and TIM4 CCR1–2 (TIM3 at `0x4000_0400`, TIM4 at `0x4000_0800`, CCR1 at +0x34:
+/// RM0368 §13.4), read with the machine stopped, through `ask(line, until)` on QEMU's monitor.
+fn registers(ask: &mut dyn FnMut(&str, &str) -> String) -> Vec<u32> {
+    let out = ask(
+        "stop\nxp /4wx 0x40000434\nxp /2wx 0x40000834\ncont\n",
+        "0000000040000834:",
+    );
+    let mut r = monitor_words(&out, "0000000040000434:");
+    r.extend(monitor_words(&out, "0000000040000834:"));
+    r
+}
+
+/// The words QEMU's `xp` printed on the line starting with `addr`.
+fn monitor_words(out: &str, addr: &str) -> Vec<u32> {
+    let line = out
+        .lines()
+        .map(|l| l.trim_start_matches("(qemu) "))
+        .find(|l| l.starts_with(addr))
+        .unwrap_or_else(|| panic!("no {addr} in {out:?}"));
+    line.split_whitespace()
+        .skip(1)
+        .map(|w| u32::from_str_radix(w.trim_start_matches("0x"), 16).unwrap())
+        .collect()
+}
+
+/// The full scale in a `hello` reply.
+fn max_of(hello: &str) -> u16 {
+    let line = hello
+        .lines()
+        .map(|l| l.trim_start_matches('\0').trim())
+        .find(|l| l.starts_with("ok hello"))
+        .unwrap_or_else(|| panic!("hello: {hello:?}"));
+    match Reply::parse(line) {
+        Ok(Reply::Hello { max, .. }) => max,
+        other => panic!("hello: {other:?}"),
+    }
+}
+
+/// Mixed duties read from the registers, checked independently of the controller: each within
+/// the full scale, and the light they make through the channels' spectra (f64) on `goal`'s
+/// chromaticity within the solver's bound (Δu′v′ 0.0005 before quantisation) plus what the
+/// quantisation can move it: half a duty step on each channel, measured here.
+fn check_mix_registers(oracle: &MixOracle, goal: &Goal, duty: &[u32], max: u16) {
+    assert!(
+        duty.iter().all(|d| *d <= u32::from(max)),
+        "{duty:?} over {max}"
+    );
+    let d: Vec<u16> = duty.iter().map(|v| *v as u16).collect();
+    let (uv, _) = oracle.emitted(&d, max).expect("the light of the duties");
+    let target = MixOracle::target_uv_prime(goal).expect("a target in its domain");
+    let mut quantisation = 0.0;
+    for i in 0..d.len() {
+        let mut e = d.clone();
+        e[i] = if e[i] < max { e[i] + 1 } else { e[i] - 1 };
+        let (uv1, _) = oracle.emitted(&e, max).unwrap();
+        quantisation += 0.5 * (uv1[0] - uv[0]).hypot(uv1[1] - uv[1]);
+    }
+    let off = (uv[0] - target[0]).hypot(uv[1] - target[1]);
+    let bound = 0.0005 + quantisation;
+    println!("mix {goal:?}: Δu′v′ {off:.2e} (bound {bound:.2e})");
+    assert!(off <= bound, "{goal:?}: Δu′v′ {off:.3e} over {bound:.3e}");
 }
 
 /// The host's model of the controller ([`specpoly_led::Model::answer`], what the host's fake

@@ -1,7 +1,7 @@
 //! The calibrated framebuffer demo, under QEMU with semihosting: a 240×240 RGB565 framebuffer in
 //! RAM, filled from an sRGB UI through `specpoly_graphics::Calibrated` (the `embedded-graphics`
 //! adapter) with the demo panel's transform baked into flash by `build.rs`; and the same panel in
-//! RGB888 through the RGB888 kernel (`board::rgb888`, XRGB8888 words and packed bytes). Exits 0
+//! RGB888 through the RGB888 kernel (`boards::mps2::rgb888`, XRGB8888 words and packed bytes). Exits 0
 //! when its checks pass. Prints, for `tests/tests/firmware_framebuffer.rs` and docs/performance.md:
 //!
 //! - `panel …`: the demo panel (primaries, white, gammas), for the host's f64 reference;
@@ -10,11 +10,12 @@
 //! - `block R G B C0 … C63`: flat 8×8 blocks (fill_solid), their 64 codes in hex;
 //! - `checksum HEX`: FNV-1a of the whole gradient frame;
 //! - `px888 X Y R G B XRGB` and `checksum888 HEX`: the same for the RGB888 kernel
-//!   (`board::rgb888`, the panel in RGB888, no dither; XRGB8888 words, FNV-1a of their LE bytes);
+//!   (`boards::mps2::rgb888`, the panel in RGB888, no dither; XRGB8888 words, FNV-1a of their LE bytes);
 //! - `insns WHAT PER_PIXEL_×100`: instructions per pixel (under `-icount shift=0`);
 //! - `check NAME ok|FAIL`, `framebuffer: pass|fail`.
 #![no_std]
 #![no_main]
+#![deny(unsafe_code)]
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprint, hprintln};
@@ -23,9 +24,9 @@ use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size
 use embedded_graphics_core::pixelcolor::{IntoStorage, Rgb565, Rgb888};
 use embedded_graphics_core::primitives::{PointsIter, Rectangle};
 use embedded_graphics_core::Pixel;
-use specpoly_firmware::board::icount::Counter;
-use specpoly_firmware::board::rgb565::Rgb565Kernel;
-use specpoly_firmware::board::rgb888::Rgb888Kernel;
+use specpoly_firmware::boards::mps2::icount::Counter;
+use specpoly_firmware::boards::mps2::rgb565::Rgb565Kernel;
+use specpoly_firmware::boards::mps2::rgb888::Rgb888Kernel;
 use specpoly_graphics::Calibrated;
 
 include!(concat!(env!("OUT_DIR"), "/framebuffer_panel.rs"));
@@ -129,7 +130,7 @@ fn kernel_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
     }
 }
 
-/// The same in the assembly kernel (`board::rgb565`), the whole frame in one call.
+/// The same in the assembly kernel (`boards::mps2::rgb565`), the whole frame in one call.
 #[inline(never)]
 fn kernel(k: &Rgb565Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u16; PIXELS]) {
     k.rows(src, dst, W, 0);
@@ -144,7 +145,7 @@ fn kernel888_portable(src: &[[u8; 3]; PIXELS], dst: &mut [u32; PIXELS]) {
     }
 }
 
-/// The RGB888 assembly kernel (`board::rgb888`), XRGB8888 words, the whole frame in one call.
+/// The RGB888 assembly kernel (`boards::mps2::rgb888`), XRGB8888 words, the whole frame in one call.
 #[inline(never)]
 fn kernel888(k: &Rgb888Kernel, src: &[[u8; 3]; PIXELS], dst: &mut [u32; PIXELS]) {
     k.xrgb(src, dst);

@@ -1,7 +1,8 @@
 //! Panics on purpose, under QEMU: the tests check that a panic reaches the host as a defmt
-//! `error` frame with its location and exits QEMU with a failure code (`board::panic`).
+//! `error` frame with its location and exits QEMU with a failure code (`boards::mps2`).
 #![no_std]
 #![no_main]
+#![deny(unsafe_code)]
 
 use cortex_m_rt::entry;
 // links the board support: the defmt logger and the panic handler

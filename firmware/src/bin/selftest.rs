@@ -11,6 +11,7 @@
 //! - `selftest: pass|fail`.
 #![no_std]
 #![no_main]
+#![deny(unsafe_code)]
 
 use core::fmt::Write as _;
 use cortex_m_rt::entry;
@@ -21,8 +22,8 @@ use specpoly_core::light::channels::{Channel, Curve, Goal};
 use specpoly_core::{
     DefaultSpectrum, Illuminant, Layout, Moments, Observer, PaperSpectrum, Spectrum, Xyy,
 };
-use specpoly_firmware::board::{icount::Counter, stack};
-use specpoly_firmware::Controller;
+use specpoly_device::Controller;
+use specpoly_firmware::boards::mps2::{icount::Counter, stack};
 #[cfg(feature = "mixing")]
 use specpoly_protocol::DeviceMixer;
 use specpoly_protocol::{

@@ -1,4 +1,4 @@
-//! Fade pacing: the main loop asks [`Pacer::due`] with the board's millisecond count and, when
+//! Fade pacing: the application loop asks [`Pacer::due`] with the board's millisecond count and, when
 //! a step is due, takes one fade step ([`crate::Controller::fade_step`]: the next point solved
 //! by the mixer and its duties shown). One step every [`STEP_MS`] ms, i.e.
 //! [`STEPS_PER_SECOND`] solved steps per second; a solve takes ≈ 2.4 ms of a 25 MHz

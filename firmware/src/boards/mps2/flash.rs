@@ -3,9 +3,9 @@
 //! which `memory.x` keeps out of the image, act as a NOR flash: erase sets 4 KiB pages to
 //! `0xFF`, a write can only clear bits (`old & new`), as on a real NOR part. QEMU leaves this
 //! RAM alone on `system_reset`, so saved settings survive a reset (not a restart of QEMU).
-//! On a real board the same store runs on the MCU's flash sectors (`board::stm32f4`).
+//! On a real board the same store runs on the MCU's flash sectors (`boards::stm32f4`).
 //!
-//! The drive-correction table (feature `lut`, [`crate::lut`]) has a region of its own below
+//! The drive-correction table (feature `lut`, `specpoly_device::lut`) has a region of its own below
 //! it: [`LUT_PAGES`] pages at [`LUT_BASE`], the same kind of stand-in ([`LutFlash`]).
 
 use core::ptr::{read_volatile, write_volatile};

@@ -27,7 +27,7 @@ pub const SECTORS: usize = 2;
 /// Sectors 6–7 as a NOR flash; offsets relative to sector 6.
 pub type SettingsFlash = SectorFlash<FIRST_SECTOR, SECTORS>;
 
-/// The drive-correction table's sector (feature `lut`, [`crate::lut`]): sector 5, 128 KiB at
+/// The drive-correction table's sector (feature `lut`, `specpoly_device::lut`): sector 5, 128 KiB at
 /// `0x0802_0000`, below the settings and outside the image (`memory-stm32f4.x.in` ends FLASH
 /// at sector 5).
 pub type LutFlash = SectorFlash<5, 1>;

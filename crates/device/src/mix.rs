@@ -3,7 +3,7 @@
 //!
 //! The commands themselves (`channel`, `xy`, `cct`, `fade`) are answered by the protocol's
 //! shared [`specpoly_protocol::mix::answer`] on the controller's
-//! [`specpoly_core::light::channels::Mixer`]; fades are stepped by the main loop
+//! [`specpoly_core::light::channels::Mixer`]; fades are stepped by the application loop
 //! ([`crate::fade`]).
 //!
 //! Why a record of its own rather than a new version of the calibration record: the store's
@@ -129,7 +129,7 @@ pub fn read(bytes: &[u8], mixer: &mut DeviceMixer) -> Result<(), RecordError> {
     Ok(())
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "mixing"))]
 mod tests {
     use super::*;
     use specpoly_protocol::{mix::answer, Command};

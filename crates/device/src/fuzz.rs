@@ -1,8 +1,8 @@
 //! The command handler's fuzz target: bytes as they arrive on the UART, through the same
-//! [`LineReader`] and [`controller::parse`](crate::controller::parse) as `main`, answered by one
+//! [`LineReader`] and [`controller::parse`](crate::controller::parse) as the firmware, answered by one
 //! [`Controller`]. It panics only if the controller does, or if an `ok` reply carries a number
 //! that its own reader ([`Reply::parse`]) refuses or that is not finite (the `nan`/`inf`
-//! replies of issue 10). `fuzz/fuzz_targets/firmware_command.rs` runs it under libFuzzer; the
+//! replies). `fuzz/fuzz_targets/firmware_command.rs` runs it under libFuzzer; the
 //! test below replays the saved corpus (`fuzz/corpus/firmware_command/`) on stable.
 //! (`save`/`load` need the flash store and are answered by [`Controller::handle`]'s fallback.)
 
@@ -66,7 +66,7 @@ mod tests {
     #[test]
     fn the_fuzz_corpus_replays_without_a_failure() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../fuzz/corpus/firmware_command");
+            .join("../../fuzz/corpus/firmware_command");
         let mut inputs: Vec<Vec<u8>> = std::fs::read_dir(&dir)
             .map(|d| {
                 d.filter_map(|e| std::fs::read(e.ok()?.path()).ok())
