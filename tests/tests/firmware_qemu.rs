@@ -1410,7 +1410,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         dev
     };
     for cmd in mix_oracle.commands() {
-        exchange(&specpoly::led::lines::line(&cmd));
+        exchange(&specpoly_led::lines::line(&cmd));
     }
     exchange("fade 0");
     let from = Goal::Cct {
@@ -1418,7 +1418,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         duv: 0.0,
         lum: 0.3,
     };
-    let mixed = match exchange(&specpoly::led::lines::line(&Command::Mix(from))) {
+    let mixed = match exchange(&specpoly_led::lines::line(&Command::Mix(from))) {
         Reply::Mix(r) => r,
         other => panic!("{other:?}"),
     };
@@ -1430,7 +1430,7 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         lum: 0.9,
     };
     exchange(&format!("fade {FADE_MS}"));
-    let end = match exchange(&specpoly::led::lines::line(&Command::Mix(to))) {
+    let end = match exchange(&specpoly_led::lines::line(&Command::Mix(to))) {
         Reply::Mix(r) => r,
         other => panic!("{other:?}"),
     };
