@@ -229,10 +229,10 @@ impl Session {
     }
 
     fn save(&self) -> Result<()> {
-        specpoly_formats::atomic::write(
+        Ok(specpoly_formats::atomic::write(
             &self.path,
             cgats::write_ti3(&self.measurements(), &self.info)?.as_bytes(),
-        )
+        )?)
     }
 }
 

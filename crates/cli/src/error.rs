@@ -1,5 +1,20 @@
 //! The CLI's errors: the library crates' errors, and clap's folded to one line
-//! ([`clap_error_line`]); `main` prints one line and exits with the error's code.
+//! ([`clap_error_line`]); `main` prints one line and exits with the error's code. Every failure
+//! is one line on stderr and an exit code, the same in every command:
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | done (`calibrate verify`: every criterion met) |
+//! | 1 | bad data, a failed device or computation, a file that exists but cannot be read or written, a failed tolerance (`calibrate verify`, `led --check`) |
+//! | 2 | the command line is wrong: unknown option or value, unknown built-in name, or an input file that does not exist, named on the command line or in a file it names (clap's own errors included) |
+//!
+//! A missing input file counts as a usage error because something names a file that is not
+//! there, exactly like an unknown built-in name (`xyz nosuch.csv` and `xyz nosuch` fail alike).
+//! Errors are one line: TOML's (`specpoly_formats::toml_error`) are folded to one.
+//!
+//! The library crates return their own error enums; [`CliError`] is where their variants
+//! become these codes (for now [`CliError`] and those mappings live beside the library crates'
+//! errors, as `From` impls, until [`CliError`] itself moves here).
 
 pub use specpoly_formats::error::{CliError, Result};
 

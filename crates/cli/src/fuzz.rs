@@ -13,8 +13,6 @@
 //! (docs/reliability.md, "Fuzzing"). The firmware's command handler has its own target in
 //! `firmware/src/fuzz.rs` (it is not a dependency of the host).
 
-use specpoly_formats::error::CliError;
-
 /// A fuzz target: arbitrary bytes in, a panic only on a bug.
 pub type Target = fn(&[u8]);
 
@@ -31,7 +29,7 @@ pub const TARGETS: [(&str, Target); 8] = [
     ("argyll_ti3", argyll_ti3),
 ];
 
-fn one_line(e: &CliError) {
+fn one_line(e: &dyn std::fmt::Display) {
     let s = e.to_string();
     assert!(!s.contains('\n'), "a multi-line error: {s:?}");
 }

@@ -508,7 +508,10 @@ impl Calibration {
 
     /// Writes the file atomically.
     pub fn save(&self, path: &Path) -> Result<()> {
-        specpoly_formats::atomic::write(path, self.to_toml()?.as_bytes())
+        Ok(specpoly_formats::atomic::write(
+            path,
+            self.to_toml()?.as_bytes(),
+        )?)
     }
 }
 

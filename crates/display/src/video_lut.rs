@@ -249,7 +249,10 @@ impl VideoLut {
         originator: &str,
         keywords: &[(String, String)],
     ) -> Result<()> {
-        specpoly_formats::atomic::write(path, self.to_cal(originator, keywords).as_bytes())
+        Ok(specpoly_formats::atomic::write(
+            path,
+            self.to_cal(originator, keywords).as_bytes(),
+        )?)
     }
 }
 

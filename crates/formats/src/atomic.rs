@@ -13,7 +13,7 @@
 //! file is the `tempfile` crate's `NamedTempFile` (hand-writing `O_EXCL` + random names + cleanup
 //! would repeat a well-kept crate).
 
-use crate::error::{CliError, Result};
+use crate::{Error, Result};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -40,23 +40,22 @@ pub fn write_with(
     f: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> Result<()> {
     if path == Path::new("-") {
-        return stream(stdout_file().map_err(|e| CliError::io("stdout", e))?, f)
-            .map_err(|e| CliError::io("stdout", e));
+        return stream(stdout_file().map_err(|e| Error::io("stdout", e))?, f)
+            .map_err(|e| Error::io("stdout", e));
     }
     let target = resolve_links(path)?;
     match std::fs::metadata(&target) {
-        Ok(m) if m.is_dir() => Err(CliError::data(format!(
-            "{}: is a folder, not a file",
-            path.display()
-        ))),
+        Ok(m) if m.is_dir() => Err(Error::OutputIsFolder {
+            path: path.display().to_string(),
+        }),
         Ok(m) if !m.is_file() => {
             let file = std::fs::OpenOptions::new()
                 .write(true)
                 .open(&target)
-                .map_err(|e| CliError::io(path, e))?;
-            stream(file, f).map_err(|e| CliError::io(path, e))
+                .map_err(|e| Error::io(path, e))?;
+            stream(file, f).map_err(|e| Error::io(path, e))
         }
-        _ => replace(&target, f).map_err(|e| CliError::io(path, e)),
+        _ => replace(&target, f).map_err(|e| Error::io(path, e)),
     }
 }
 
@@ -83,7 +82,7 @@ fn resolve_links(path: &Path) -> Result<PathBuf> {
     for _ in 0..MAX_LINKS {
         match std::fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
-                let to = std::fs::read_link(&p).map_err(|e| CliError::io(path, e))?;
+                let to = std::fs::read_link(&p).map_err(|e| Error::io(path, e))?;
                 p = match p.parent() {
                     Some(dir) if to.is_relative() => dir.join(to),
                     _ => to,
@@ -92,10 +91,10 @@ fn resolve_links(path: &Path) -> Result<PathBuf> {
             _ => return Ok(p),
         }
     }
-    Err(CliError::data(format!(
-        "{}: more than {MAX_LINKS} symbolic links",
-        path.display()
-    )))
+    Err(Error::TooManyLinks {
+        path: path.display().to_string(),
+        max: MAX_LINKS,
+    })
 }
 
 /// Writes a regular file whole or not at all: exclusive temporary file, sync, rename.

@@ -15,8 +15,8 @@
 //! This is a small reader and writer of our own: the one CGATS crate on crates.io is
 //! GPL-3.0, which this project's licence cannot take.
 
-use crate::error::{CliError, Result};
 use crate::measurement::Measurement;
+use crate::{Error, Result};
 
 /// One CGATS table.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -130,8 +130,13 @@ fn tokens(line: &str, source: &str, n: usize) -> Result<Vec<String>> {
     Ok(out)
 }
 
-fn bad(source: &str, line: usize, msg: impl std::fmt::Display) -> CliError {
-    CliError::data(format!("{source}:{line}: {msg}"))
+/// [`Error::Cgats`] at `source:line`.
+fn bad(source: &str, line: usize, why: impl Into<String>) -> Error {
+    Error::Cgats {
+        file: source.to_string(),
+        line: Some(line),
+        why: why.into(),
+    }
 }
 
 fn count(v: &str, source: &str, n: usize, what: &str) -> Result<usize> {
@@ -360,7 +365,13 @@ impl Ti3 {
 fn number(v: &str, source: &str, line: usize, field: &str) -> Result<f64> {
     match v.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(bad(source, line, format!("{field} `{v}` is not a number"))),
+        _ => Err(Error::CgatsNumber {
+            file: source.to_string(),
+            line,
+            field: field.to_string(),
+            value: v.to_string(),
+            range: None,
+        }),
     }
 }
 
@@ -370,10 +381,11 @@ pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
     let tables = parse(text, source)?;
     let t = &tables[0];
     if t.kind == "CTI1" {
-        return Err(CliError::data(format!(
-            "{source}:{}: a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes",
-            t.lines.identifier
-        )));
+        return Err(bad(
+            source,
+            t.lines.identifier,
+            format!("a CTI1 patch set (targets, not measurements; from targen or `calibrate patches`): measure it with `calibrate run --patches {source}` and use the .ti3 that writes"),
+        ));
     }
     const NEED: [&str; 6] = ["RGB_R", "RGB_G", "RGB_B", "XYZ_X", "XYZ_Y", "XYZ_Z"];
     let mut col = [0usize; 6];
@@ -504,21 +516,25 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     use std::fmt::Write;
     for (i, m) in meas.iter().enumerate() {
         if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
-            return Err(CliError::data(format!(
-                "cannot write a .ti3: reading {} (device {}, XYZ {}) has the non-finite \
+            return Err(Error::Ti3Write {
+                why: format!(
+                    "reading {} (device {}, XYZ {}) has the non-finite \
                  value {v}, which no .ti3 reader accepts",
-                i + 1,
-                crate::stdout::values(&m.device),
-                crate::stdout::values(&m.xyz)
-            )));
+                    i + 1,
+                    crate::stdout::values(&m.device),
+                    crate::stdout::values(&m.xyz)
+                ),
+            });
         }
         if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
-            return Err(CliError::data(format!(
-                "cannot write a .ti3: reading {} has the device value {v} outside 0–1 \
+            return Err(Error::Ti3Write {
+                why: format!(
+                    "reading {} has the device value {v} outside 0–1 \
                  (device {})",
-                i + 1,
-                crate::stdout::values(&m.device)
-            )));
+                    i + 1,
+                    crate::stdout::values(&m.device)
+                ),
+            });
         }
     }
     let mut s = String::new();
@@ -546,10 +562,12 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     };
     let scale = match white {
         Some(w) if w.iter().any(|v| !v.is_finite()) => {
-            return Err(CliError::data(format!(
-                "cannot write a .ti3: the white patch averages to the non-finite XYZ {}",
-                crate::stdout::values(&w)
-            )));
+            return Err(Error::Ti3Write {
+                why: format!(
+                    "the white patch averages to the non-finite XYZ {}",
+                    crate::stdout::values(&w)
+                ),
+            });
         }
         Some(w) if w[1] > 0.0 => {
             let _ = writeln!(
@@ -585,13 +603,15 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
         ];
         // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
         if let Some(v) = row.iter().find(|v| !v.is_finite()) {
-            return Err(CliError::data(format!(
-                "cannot write a .ti3: reading {} overflows to {v} when scaled (device {}, \
+            return Err(Error::Ti3Write {
+                why: format!(
+                    "reading {} overflows to {v} when scaled (device {}, \
                  XYZ {})",
-                i + 1,
-                crate::stdout::values(&m.device),
-                crate::stdout::values(&m.xyz)
-            )));
+                    i + 1,
+                    crate::stdout::values(&m.device),
+                    crate::stdout::values(&m.xyz)
+                ),
+            });
         }
         let _ = writeln!(
             s,

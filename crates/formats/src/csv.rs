@@ -16,7 +16,7 @@
 //! - blank lines, lines of empty cells (`;;;`), empty trailing columns and lines starting with
 //!   `#` are skipped.
 
-use crate::error::{CliError, Result};
+use crate::{Error, Result};
 
 /// A parsed spectral table.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,6 +62,16 @@ fn shown(s: &str) -> String {
     }
 }
 
+/// [`Error::Csv`] at `source`, optionally at a line and a column.
+fn bad(source: &str, line: Option<u64>, column: Option<usize>, why: String) -> Error {
+    Error::Csv {
+        file: source.to_string(),
+        line,
+        column,
+        why,
+    }
+}
+
 fn is_skipped(line: &str) -> bool {
     let t = line.trim();
     t.is_empty() || t.starts_with('#')
@@ -79,7 +89,7 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
         .comment(Some(b'#'))
         .from_reader(text.as_bytes());
     let mut records = reader.records();
-    let at = |line: u64, col: usize| format!("{source}:{line}:{col}");
+    let at = |line: u64, col: usize, why: String| bad(source, Some(line), Some(col), why);
     // The line where a record starts, counted forward from the last one asked (records come
     // in order). The `csv` crate's own position of a record after a CRLF is the `\n` of that
     // CRLF, one line early, so line ends at the offset are skipped first.
@@ -103,7 +113,7 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
                     Ok(r) => r,
                     Err(e) => {
                         let line = e.position().map_or(0, |p| line_of(p.byte()));
-                        return Err(CliError::data(format!("{source}:{line}: {e}")));
+                        return Err(bad(source, Some(line), None, e.to_string()));
                     }
                 };
                 let line = r.position().map_or(0, |p| line_of(p.byte()));
@@ -118,40 +128,43 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
             Ok(None)
         };
     let (hline, mut names) =
-        next(&mut records)?.ok_or_else(|| CliError::data(format!("{source}: empty file")))?;
+        next(&mut records)?.ok_or_else(|| bad(source, None, None, "empty file".into()))?;
     // Spreadsheets export empty columns to the right of the data.
     while names.len() > 1 && names.last().is_some_and(String::is_empty) {
         names.pop();
     }
     if number(&names[0], sep).is_some() {
-        return Err(CliError::data(format!(
-            "{}: no header row (expected `wavelength_nm,NAME,...`)",
-            at(hline, 1)
-        )));
+        return Err(at(
+            hline,
+            1,
+            "no header row (expected `wavelength_nm,NAME,...`)".into(),
+        ));
     }
     if names.len() < 2 {
-        return Err(CliError::data(format!(
-            "{}: no spectrum columns after `{}` (separator `{}`; `,`, `;` and tab are read)",
-            at(hline, 1),
-            shown(&names[0]),
-            (sep as char).escape_default()
-        )));
+        return Err(at(
+            hline,
+            1,
+            format!(
+                "no spectrum columns after `{}` (separator `{}`; `,`, `;` and tab are read)",
+                shown(&names[0]),
+                (sep as char).escape_default()
+            ),
+        ));
     }
     for (i, n) in names.iter().enumerate().skip(1) {
         if n.is_empty() {
-            return Err(CliError::data(format!(
-                "{}: column {} has an empty name",
-                at(hline, i + 1),
-                i + 1
-            )));
+            return Err(at(
+                hline,
+                i + 1,
+                format!("column {} has an empty name", i + 1),
+            ));
         }
         if let Some(j) = names[1..i].iter().position(|m| m == n) {
-            return Err(CliError::data(format!(
-                "{}: column name `{}` repeats column {}",
-                at(hline, i + 1),
-                shown(n),
-                j + 2
-            )));
+            return Err(at(
+                hline,
+                i + 1,
+                format!("column name `{}` repeats column {}", shown(n), j + 2),
+            ));
         }
     }
     let mut wavelengths: Vec<f32> = Vec::new();
@@ -161,30 +174,27 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
             cells.truncate(names.len());
         }
         if cells.len() != names.len() {
-            return Err(CliError::data(format!(
-                "{}: {} cells, the header has {}",
-                at(ln, cells.len().min(names.len()) + 1),
-                cells.len(),
-                names.len()
-            )));
+            return Err(at(
+                ln,
+                cells.len().min(names.len()) + 1,
+                format!("{} cells, the header has {}", cells.len(), names.len()),
+            ));
         }
         for (c, cell) in cells.iter().enumerate() {
             let col = shown(&names[c]);
-            let here = at(ln, c + 1);
+            let here = |why: String| at(ln, c + 1, why);
             if cell.is_empty() {
-                return Err(CliError::data(format!(
-                    "{here}: empty cell in column `{col}`"
-                )));
+                return Err(here(format!("empty cell in column `{col}`")));
             }
             let v = number(cell, sep).ok_or_else(|| {
-                CliError::data(format!(
-                    "{here}: `{}` in column `{col}` is not a number",
+                here(format!(
+                    "`{}` in column `{col}` is not a number",
                     shown(cell)
                 ))
             })?;
             if !v.is_finite() {
-                return Err(CliError::data(format!(
-                    "{here}: `{}` in column `{col}` is not finite (or beyond ±3.4e38)",
+                return Err(here(format!(
+                    "`{}` in column `{col}` is not finite (or beyond ±3.4e38)",
                     shown(cell)
                 )));
             }
@@ -196,9 +206,7 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
                         } else {
                             "decreasing"
                         };
-                        return Err(CliError::data(format!(
-                            "{here}: {what} wavelength {v} nm (after {prev} nm)"
-                        )));
+                        return Err(here(format!("{what} wavelength {v} nm (after {prev} nm)")));
                     }
                 }
                 wavelengths.push(v);
@@ -208,13 +216,16 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
         }
     }
     if wavelengths.is_empty() {
-        return Err(CliError::data(format!("{source}: header but no data rows")));
+        return Err(bad(source, None, None, "header but no data rows".into()));
     }
     let (first, last) = (wavelengths[0], wavelengths[wavelengths.len() - 1]);
     if last < specpoly_core::LAMBDA_MIN || first > specpoly_core::LAMBDA_MAX {
-        return Err(CliError::data(format!(
-            "{source}: data cover {first}-{last} nm, entirely outside 380-780 nm"
-        )));
+        return Err(bad(
+            source,
+            None,
+            None,
+            format!("data cover {first}-{last} nm, entirely outside 380-780 nm"),
+        ));
     }
     Ok(Table {
         wavelengths,

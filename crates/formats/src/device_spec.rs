@@ -8,7 +8,7 @@
 //! [`DeviceSpec::seconds`], [`DeviceSpec::number`] and reports the others with
 //! [`DeviceSpec::unknown`], so every device words its errors the same way.
 
-use crate::error::{CliError, Result};
+use crate::{Error, Result};
 use std::time::Duration;
 
 /// A parsed `KIND[:ARG][,KEY[=VALUE]]...`.
@@ -51,21 +51,35 @@ impl<'a> DeviceSpec<'a> {
     pub fn required_arg(&self, what: &str, example: &str) -> Result<&'a str> {
         match self.arg {
             Some(a) if !a.is_empty() => Ok(a),
-            _ => Err(CliError::usage(format!(
-                "`{}` needs {what}: `{example}`",
-                self.text
-            ))),
+            _ => Err(Error::DeviceArgument {
+                spec: self.text.to_string(),
+                what: what.to_string(),
+                example: example.to_string(),
+            }),
         }
     }
 
-    /// A usage error about option `key=value`.
-    pub fn bad(&self, key: &str, value: &str, why: &str) -> CliError {
-        CliError::usage(format!("`{}`: `{key}={value}`: {why}", self.text))
+    /// An error about option `key=value` ([`Error::DeviceOption`]), as any error type it
+    /// converts into (so a device's parser returns it as its own error).
+    pub fn bad<E: From<Error>>(&self, key: &str, value: &str, why: &str) -> E {
+        Error::DeviceOption {
+            spec: self.text.to_string(),
+            key: key.to_string(),
+            value: value.to_string(),
+            why: why.to_string(),
+        }
+        .into()
     }
 
-    /// A usage error for an unknown option; `known` lists the valid keys.
-    pub fn unknown(&self, key: &str, known: &str) -> CliError {
-        CliError::usage(format!("`{}`: unknown option `{key}` ({known})", self.text))
+    /// An error for an unknown option ([`Error::UnknownDeviceOption`]); `known` lists the valid
+    /// keys. As any error type it converts into, like [`DeviceSpec::bad`].
+    pub fn unknown<E: From<Error>>(&self, key: &str, known: &str) -> E {
+        Error::UnknownDeviceOption {
+            spec: self.text.to_string(),
+            key: key.to_string(),
+            known: known.to_string(),
+        }
+        .into()
     }
 
     /// A finite number.

@@ -1,18 +1,204 @@
-//! The CLI's one error type. Every failure is one line on stderr and an exit code, the same in
-//! every command:
+//! The errors of specpoly's files ([`Error`]), and the interim stringly [`CliError`] the other
+//! host crates still return.
 //!
-//! | code | meaning |
-//! |---|---|
-//! | 0 | done (`calibrate verify`: every criterion met) |
-//! | 1 | bad data, a failed device or computation, a file that exists but cannot be read or written, a failed tolerance (`calibrate verify`, `led --check`) |
-//! | 2 | the command line is wrong: unknown option or value, unknown built-in name, or an input file that does not exist, named on the command line or in a file it names (clap's own errors included) |
+//! [`Error`] says what went wrong with which file, and where: a missing input file
+//! ([`Error::Missing`]), an I/O error with its path ([`Error::Io`]), a file that is not one this
+//! tool reads (a device, a folder, too large, not UTF-8), a spectral CSV, CGATS or `.ti1` error
+//! with its file, line and column or field, a TOML error with its position
+//! ([`crate::toml_error`]), a device string `KIND:ARG,key=value` that is wrong
+//! ([`crate::device_spec`]), a `.ti3` that cannot be written. Every message is one line, and
+//! names the file first (`FILE:LINE[:COLUMN]: what is wrong`) where there is one. Which of these
+//! is the user's mistake (exit 2) and which bad data (exit 1) is decided by the CLI, not here.
 //!
-//! A missing input file counts as a usage error because something names a file that is not
-//! there, exactly like an unknown built-in name (`xyz nosuch.csv` and `xyz nosuch` fail alike). Errors are one line: TOML's ([`crate::toml_error`]) are folded to one.
+//! [`CliError`] stays here until every crate has its own error type (its `From<Error>` below
+//! keeps `?` on this crate's functions working in functions that return it); it then moves into
+//! the CLI.
 
+use std::fmt;
 use std::path::Path;
 
-/// A CLI failure.
+/// An error reading, parsing or writing one of specpoly's files.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// An input file, named on the command line or in a file it names, that does not exist.
+    #[error("{path}: no such file")]
+    Missing {
+        /// The file.
+        path: String,
+    },
+    /// A file (or `stdout`) could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file, or `stdout`.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// An input path that names a device, FIFO or folder instead of a regular file.
+    #[error("{path}: not a regular file (give a file, not a device, pipe or folder)")]
+    NotRegular {
+        /// The path.
+        path: String,
+    },
+    /// An input file larger than [`crate::read::MAX_INPUT_BYTES`].
+    #[error("{path}: larger than {limit_mib} MiB; not an input file this tool reads")]
+    TooLarge {
+        /// The file.
+        path: String,
+        /// The limit (MiB).
+        limit_mib: u64,
+    },
+    /// A text file that is not UTF-8.
+    #[error("{path}: not UTF-8 text (invalid byte at offset {offset})")]
+    NotUtf8 {
+        /// The file.
+        path: String,
+        /// The offset of the first invalid byte.
+        offset: usize,
+    },
+    /// An output path that is a folder.
+    #[error("{path}: is a folder, not a file")]
+    OutputIsFolder {
+        /// The path.
+        path: String,
+    },
+    /// An output path through more symbolic links than are followed.
+    #[error("{path}: more than {max} symbolic links")]
+    TooManyLinks {
+        /// The path.
+        path: String,
+        /// The most links followed.
+        max: usize,
+    },
+    /// A malformed spectral CSV ([`crate::csv`]): `FILE[:LINE[:COLUMN]]: why`.
+    #[error("{}: {why}", Position(.file, *.line, *.column))]
+    Csv {
+        /// The file (as the caller named it).
+        file: String,
+        /// The 1-based line, if the error has one.
+        line: Option<u64>,
+        /// The 1-based cell of the row (as a spreadsheet counts), if the error has one.
+        column: Option<usize>,
+        /// What is wrong.
+        why: String,
+    },
+    /// A malformed CGATS file ([`crate::cgats`]) or a `.ti3` or `.ti1` table that is not
+    /// what it must be: `FILE[:LINE]: why`.
+    #[error("{}: {why}", Position(.file, .line.map(|l| l as u64), None))]
+    Cgats {
+        /// The file (as the caller named it).
+        file: String,
+        /// The 1-based line, if the error has one.
+        line: Option<usize>,
+        /// What is wrong.
+        why: String,
+    },
+    /// A CGATS value that is not a number (or not one in its range): `FILE:LINE: FIELD
+    /// `VALUE` is not a number[ in RANGE]`.
+    #[error("{file}:{line}: {field} `{value}` is not a number{}", .range.map(|r| format!(" in {r}")).unwrap_or_default())]
+    CgatsNumber {
+        /// The file.
+        file: String,
+        /// The 1-based line.
+        line: usize,
+        /// The field (`RGB_R`, `XYZ_Y`, …).
+        field: String,
+        /// The value as written.
+        value: String,
+        /// The range it must be in, if the message names one (`0–100`).
+        range: Option<&'static str>,
+    },
+    /// A TOML error ([`crate::toml_error`]): `FILE[:LINE:COLUMN]: message`, one line.
+    #[error("{}: {message}", Position(.file, .line.map(|l| l as u64), *.column))]
+    Toml {
+        /// The file.
+        file: String,
+        /// The 1-based line, if the error has a position.
+        line: Option<usize>,
+        /// The 1-based column (characters), if the error has a position.
+        column: Option<usize>,
+        /// The message, its lines joined by `, `.
+        message: String,
+    },
+    /// Measurements that cannot be written as a `.ti3`.
+    #[error("cannot write a .ti3: {why}")]
+    Ti3Write {
+        /// Why (names the reading).
+        why: String,
+    },
+    /// A device string without the argument its kind needs ([`crate::device_spec`]).
+    #[error("`{spec}` needs {what}: `{example}`")]
+    DeviceArgument {
+        /// The whole device string.
+        spec: String,
+        /// What the argument is (`a port`).
+        what: String,
+        /// An example (`led:/dev/ttyACM0`).
+        example: String,
+    },
+    /// A device option with a bad value.
+    #[error("`{spec}`: `{key}={value}`: {why}")]
+    DeviceOption {
+        /// The whole device string.
+        spec: String,
+        /// The option.
+        key: String,
+        /// Its value.
+        value: String,
+        /// What it should be.
+        why: String,
+    },
+    /// A device option the device does not know.
+    #[error("`{spec}`: unknown option `{key}` ({known})")]
+    UnknownDeviceOption {
+        /// The whole device string.
+        spec: String,
+        /// The option.
+        key: String,
+        /// The options the device knows.
+        known: String,
+    },
+    /// A value that cannot be written as JSON.
+    #[error("JSON: {0}")]
+    Json(#[source] serde_json::Error),
+}
+
+impl Error {
+    /// An I/O error on `path`. An input file that does not exist is [`Error::Missing`]
+    /// instead ([`crate::read`] does this).
+    pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.as_ref().display().to_string(),
+            source,
+        }
+    }
+
+    /// An input file that does not exist.
+    pub fn missing(path: impl AsRef<Path>) -> Self {
+        Error::Missing {
+            path: path.as_ref().display().to_string(),
+        }
+    }
+}
+
+/// `FILE`, `FILE:LINE` or `FILE:LINE:COLUMN`, as messages start.
+struct Position<'a>(&'a str, Option<u64>, Option<usize>);
+
+impl fmt::Display for Position<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0)?;
+        if let Some(line) = self.1 {
+            write!(f, ":{line}")?;
+            if let Some(column) = self.2 {
+                write!(f, ":{column}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A CLI failure (interim: the host crates' shared error until each has its own type; it then
+/// moves into the CLI, which alone decides messages and exit codes).
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// Bad arguments or an unknown name (exit code 2).
@@ -41,7 +227,7 @@ impl CliError {
     }
 
     /// An I/O error on `path` (exit 1). An input file that does not exist is
-    /// [`CliError::missing`] instead ([`crate::read`] does this).
+    /// [`CliError::missing`] instead.
     pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
         CliError::Io {
             path: path.as_ref().display().to_string(),
@@ -65,5 +251,58 @@ impl CliError {
     }
 }
 
-/// The CLI's result type.
+/// Interim (moves into the CLI with [`CliError`]): which file errors are the user's mistake.
+/// A missing input file and a wrong device string are usage errors (exit 2: something names a
+/// file that is not there, or a device option that does not exist, like an unknown built-in
+/// name); I/O errors keep their path and source (exit 1); everything else is bad data (exit 1).
+/// The message is kept.
+impl From<Error> for CliError {
+    fn from(e: Error) -> Self {
+        match e {
+            Error::Io { path, source } => CliError::Io { path, source },
+            Error::Missing { .. }
+            | Error::DeviceArgument { .. }
+            | Error::DeviceOption { .. }
+            | Error::UnknownDeviceOption { .. } => CliError::Usage(e.to_string()),
+            Error::NotRegular { .. }
+            | Error::TooLarge { .. }
+            | Error::NotUtf8 { .. }
+            | Error::OutputIsFolder { .. }
+            | Error::TooManyLinks { .. }
+            | Error::Csv { .. }
+            | Error::Cgats { .. }
+            | Error::CgatsNumber { .. }
+            | Error::Toml { .. }
+            | Error::Ti3Write { .. }
+            | Error::Json(_) => CliError::Data(e.to_string()),
+        }
+    }
+}
+
+/// The interim result type of the host crates that return [`CliError`] (this crate's own
+/// functions return [`crate::Result`]).
 pub type Result<T, E = CliError> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn positions_and_interim_exit_codes() {
+        let csv = |line, column| Error::Csv {
+            file: "t.csv".into(),
+            line,
+            column,
+            why: "bad".into(),
+        };
+        assert_eq!(csv(None, None).to_string(), "t.csv: bad");
+        assert_eq!(csv(Some(3), None).to_string(), "t.csv:3: bad");
+        assert_eq!(csv(Some(3), Some(2)).to_string(), "t.csv:3:2: bad");
+        let missing = Error::missing("nosuch.csv");
+        assert_eq!(missing.to_string(), "nosuch.csv: no such file");
+        assert_eq!(CliError::from(missing).exit_code(), 2);
+        assert_eq!(CliError::from(csv(None, None)).exit_code(), 1);
+        let io = Error::io("f", std::io::Error::other("denied"));
+        assert!(matches!(CliError::from(io), CliError::Io { ref path, .. } if path == "f"));
+    }
+}

@@ -7,6 +7,11 @@
 //! ([`device_spec`]), TOML errors on one line ([`toml_error`]), whole outputs to stdout
 //! ([`stdout`]) and one measured patch ([`measurement`]).
 //!
+//! Its functions return [`Error`] ([`error`]): what went wrong with which file, and where
+//! (`FILE:LINE[:COLUMN]: …`), as data; which errors are usage errors and which exit codes they
+//! give is the CLI's decision. [`error::CliError`], the interim error the other host crates
+//! still share, lives in [`error`] until it moves into the CLI.
+//!
 //! Hand-written where a crate exists: the `KIND:ARG,key=value` device strings (clap parses one
 //! value, not sub-options, and no small crate reads this grammar) and the CGATS reader (the
 //! ArgyllCMS dialect with its keywords; no maintained crate reads it).
@@ -24,3 +29,8 @@ pub mod stats;
 pub mod stdout;
 pub mod ti1;
 pub mod toml_error;
+
+pub use error::Error;
+
+/// The result type of this crate's functions.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

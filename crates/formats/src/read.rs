@@ -3,7 +3,7 @@
 //! at most [`MAX_INPUT_BYTES`] (the largest spectral table, scene or measurement file we expect
 //! is a few megabytes; the limit bounds memory, it is not a format rule).
 
-use crate::error::{CliError, Result};
+use crate::{Error, Result};
 use std::io::Read;
 use std::path::Path;
 
@@ -11,42 +11,37 @@ use std::path::Path;
 pub const MAX_INPUT_BYTES: u64 = 64 << 20;
 
 /// The bytes of the regular file `path`, at most [`MAX_INPUT_BYTES`].
-/// A file that does not exist is a usage error (exit 2, [`CliError::missing`]), as in every
-/// command.
+/// A file that does not exist is [`Error::Missing`] (the CLI counts it a usage error, as in
+/// every command).
 pub fn bytes(path: &Path) -> Result<Vec<u8>> {
     let meta = std::fs::metadata(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => CliError::missing(path),
-        _ => CliError::io(path, e),
+        std::io::ErrorKind::NotFound => Error::missing(path),
+        _ => Error::io(path, e),
     })?;
     if !meta.is_file() {
-        return Err(CliError::data(format!(
-            "{}: not a regular file (give a file, not a device, pipe or folder)",
-            path.display()
-        )));
+        return Err(Error::NotRegular {
+            path: path.display().to_string(),
+        });
     }
-    let file = std::fs::File::open(path).map_err(|e| CliError::io(path, e))?;
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut buf = Vec::new();
     file.take(MAX_INPUT_BYTES + 1)
         .read_to_end(&mut buf)
-        .map_err(|e| CliError::io(path, e))?;
+        .map_err(|e| Error::io(path, e))?;
     if buf.len() as u64 > MAX_INPUT_BYTES {
-        return Err(CliError::data(format!(
-            "{}: larger than {} MiB; not an input file this tool reads",
-            path.display(),
-            MAX_INPUT_BYTES >> 20
-        )));
+        return Err(Error::TooLarge {
+            path: path.display().to_string(),
+            limit_mib: MAX_INPUT_BYTES >> 20,
+        });
     }
     Ok(buf)
 }
 
 /// The UTF-8 text of the regular file `path`, at most [`MAX_INPUT_BYTES`].
 pub fn text(path: &Path) -> Result<String> {
-    String::from_utf8(bytes(path)?).map_err(|e| {
-        CliError::data(format!(
-            "{}: not UTF-8 text (invalid byte at offset {})",
-            path.display(),
-            e.utf8_error().valid_up_to()
-        ))
+    String::from_utf8(bytes(path)?).map_err(|e| Error::NotUtf8 {
+        path: path.display().to_string(),
+        offset: e.utf8_error().valid_up_to(),
     })
 }
 

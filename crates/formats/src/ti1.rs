@@ -7,29 +7,39 @@
 //! binary in host/tests/calibrate_argyll.rs).
 
 use crate::cgats;
-use crate::error::{CliError, Result};
+use crate::{Error, Result};
 
 /// The device values (each in `[0, 1]`) of a `.ti1`, in file order. Errors are one line.
 pub fn read_ti1(text: &str, source: &str) -> Result<Vec<[f64; 3]>> {
     let tables = cgats::parse(text, source)?;
     let t = &tables[0];
     if t.kind != "CTI1" {
-        return Err(CliError::data(format!(
-            "{source}: a `{}` table, not a CTI1 patch set (ArgyllCMS targen's .ti1)",
-            t.kind
-        )));
+        return Err(Error::Cgats {
+            file: source.to_string(),
+            line: None,
+            why: format!(
+                "a `{}` table, not a CTI1 patch set (ArgyllCMS targen's .ti1)",
+                t.kind
+            ),
+        });
     }
     const NEED: [&str; 3] = ["RGB_R", "RGB_G", "RGB_B"];
     let mut col = [0usize; 3];
     for (c, name) in col.iter_mut().zip(NEED) {
-        *c = t.field(name).ok_or_else(|| {
-            CliError::data(format!(
-                "{source}: no field {name}: a display patch set needs RGB_R RGB_G RGB_B (targen -d3)"
-            ))
+        *c = t.field(name).ok_or_else(|| Error::Cgats {
+            file: source.to_string(),
+            line: None,
+            why: format!(
+                "no field {name}: a display patch set needs RGB_R RGB_G RGB_B (targen -d3)"
+            ),
         })?;
     }
     if t.rows.is_empty() {
-        return Err(CliError::data(format!("{source}: no patches")));
+        return Err(Error::Cgats {
+            file: source.to_string(),
+            line: None,
+            why: "no patches".into(),
+        });
     }
     let mut out = Vec::with_capacity(t.rows.len());
     for (line, row) in &t.rows {
@@ -41,10 +51,13 @@ pub fn read_ti1(text: &str, source: &str) -> Result<Vec<[f64; 3]>> {
                     (x / 100.0).clamp(0.0, 1.0)
                 }
                 _ => {
-                    return Err(CliError::data(format!(
-                        "{source}:{line}: {} `{v}` is not a number in 0–100",
-                        NEED[k]
-                    )))
+                    return Err(Error::CgatsNumber {
+                        file: source.to_string(),
+                        line: *line,
+                        field: NEED[k].into(),
+                        value: v.clone(),
+                        range: Some("0–100"),
+                    })
                 }
             };
         }

@@ -1,12 +1,21 @@
 //! TOML errors on one line: `FILE:LINE:COLUMN: message`, as compilers write them. The `toml`
 //! crate's own `Display` spreads an error over several lines (a source excerpt with a caret);
 //! every TOML file the CLI reads (scenes, display files, calibrations) reports through
-//! [`one_line`] instead.
+//! [`error`] ([`crate::Error::Toml`]) or [`one_line`] instead.
+
+use crate::Error;
 
 /// `source:line:column: message` for an error in `text` (the file's contents); the message's
 /// own lines are joined with `, `. Without a position (an error found after parsing, e.g. a
-/// missing field): `source: message`.
+/// missing field): `source: message`. The text of [`error`].
 pub fn one_line(e: &toml::de::Error, text: &str, source: &str) -> String {
+    error(e, text, source).to_string()
+}
+
+/// The error [`Error::Toml`] for `e` in `text` (the file's contents), with its line and column
+/// (1-based, the column in characters) when `e` has a position; the message's own lines are
+/// joined with `, `.
+pub fn error(e: &toml::de::Error, text: &str, source: &str) -> Error {
     let msg = e
         .message()
         .lines()
@@ -14,7 +23,7 @@ pub fn one_line(e: &toml::de::Error, text: &str, source: &str) -> String {
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(", ");
-    match e.span() {
+    let (line, column) = match e.span() {
         Some(span) => {
             let at = span.start.min(text.len());
             // a span inside a multi-byte character would not be a char boundary
@@ -25,9 +34,15 @@ pub fn one_line(e: &toml::de::Error, text: &str, source: &str) -> String {
             let before = &text[..at];
             let line = before.matches('\n').count() + 1;
             let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-            format!("{source}:{line}:{column}: {msg}")
+            (Some(line), Some(column))
         }
-        None => format!("{source}: {msg}"),
+        None => (None, None),
+    };
+    Error::Toml {
+        file: source.to_string(),
+        line,
+        column,
+        message: msg,
     }
 }
 

@@ -10,8 +10,8 @@
 //! in f64 ([`specpoly_spectra::colour::reference`]). ΔE00 is CIEDE2000 (Sharma, Wu & Dalal 2005) between
 //! the two CIELAB values, both against the light's exact white.
 
+use crate::{Error, Result};
 use specpoly_core::{Illuminant, Observer, Tabulated};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stats::Stats;
 use specpoly_spectra::colour::{self, Colour};
 use specpoly_spectra::repr::Repr;
@@ -57,7 +57,7 @@ impl Method {
             Method::Repr(r) => colour::chains(*r, observer, light, spectra, chains),
             Method::PaperPath => colour::paper_path(observer, light, spectra, chains),
         }
-        .map_err(|e| CliError::data(format!("{}: {e}", self.name())))
+        .map_err(Error::fit(&self.name()))
     }
 }
 
@@ -184,7 +184,7 @@ pub struct Sample {
 
 /// The ColorChecker reflectances, embedded in the binary.
 pub fn colorchecker() -> Result<Vec<Named>> {
-    spectrum_names::resolve("colorchecker#*")
+    Ok(spectrum_names::resolve("colorchecker#*")?)
 }
 
 /// ΔE00 of each method over `set` for `observer`: one vector of samples per method.

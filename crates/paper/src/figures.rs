@@ -6,8 +6,8 @@
 //!   (`Spectrum::mul_exact`, degree `2D` per span, solid) against its reduction back to degree
 //!   `D` (`Spectrum::mul`, the paper's eq. 6, dashed), with the product of the data as points.
 
+use crate::{Error, Result};
 use specpoly_core::{Breaks, Layout, Spectrum};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_plot::size::Size;
 use specpoly_plot::{Figure, Series, Style};
 use specpoly_spectra::repr::{self, PolyVisitor, Repr};
@@ -70,10 +70,7 @@ impl PolyVisitor for Build<'_> {
     type Output = Result<(Vec<Series>, Vec<f64>)>;
     fn visit<const S: usize, const C: usize, L: Layout<S>>(self) -> Self::Output {
         let breaks = L::BREAKS;
-        let fit = |n: &Named| {
-            Spectrum::<S, C, L>::fit(&n.tabulated())
-                .map_err(|e| CliError::data(format!("{}: {e}", n.name)))
-        };
+        let fit = |n: &Named| Spectrum::<S, C, L>::fit(&n.tabulated()).map_err(Error::fit(&n.name));
         let markers: Vec<f64> = breaks
             .points()
             .skip(1)
@@ -185,10 +182,7 @@ pub const MAX_SIZE: Size = Size {
 pub fn spectra(named: &[Named], repr: Repr, product: bool, size: Size) -> Result<Figure> {
     let Size { width, height } = size.check(MIN_SIZE, MAX_SIZE)?;
     if product && named.len() != 2 {
-        return Err(CliError::usage(format!(
-            "--product plots the product of two spectra; {} given",
-            named.len()
-        )));
+        return Err(Error::ProductNeedsTwo { given: named.len() });
     }
     let (series, markers) = repr::dispatch_poly(repr, "plot", Build { named, product })??;
     let title = if product {

@@ -3,9 +3,9 @@
 //! ([`specpoly_core::Spectrum::fit_errors`]) and the fit's CIEDE2000 against the 1 nm reference
 //! under a chosen light (the light itself is never fitted).
 
+use crate::{Error, Result};
 use serde::Serialize;
 use specpoly_core::{Layout, Observer, Spectrum, Tabulated};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_spectra::colour;
 use specpoly_spectra::repr::{self, PolyVisitor, Repr};
 use specpoly_spectra::spectrum_names::Named;
@@ -74,11 +74,10 @@ pub fn fit_one(
     light: &Tabulated<'_>,
 ) -> Result<FitReport> {
     let data = n.tabulated();
-    let spans = repr::dispatch_poly(repr, "fit", FitOne { data })?
-        .map_err(|e| CliError::data(format!("{}: {e}", n.name)))?;
+    let spans = repr::dispatch_poly(repr, "fit", FitOne { data })?.map_err(Error::fit(&n.name))?;
     let tabs = [data];
-    let got = colour::chains(repr, observer, light, &tabs, &[vec![0]])
-        .map_err(|e| CliError::data(format!("{}: {e}", n.name)))?;
+    let got =
+        colour::chains(repr, observer, light, &tabs, &[vec![0]]).map_err(Error::fit(&n.name))?;
     let want = colour::reference(observer, light, &tabs, &[0]);
     Ok(FitReport {
         name: n.name.clone(),

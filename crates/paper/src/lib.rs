@@ -8,6 +8,9 @@
 #![forbid(unsafe_code)]
 
 pub mod accuracy;
+pub mod error;
 pub mod figures;
 pub mod fit_report;
 pub mod table1;
+
+pub use error::{Error, Result};

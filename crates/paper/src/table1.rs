@@ -16,9 +16,9 @@
 //!
 //! We do not have the green shingle; the default is `colorchecker#foliage`, a natural green.
 
+use crate::{Error, Result};
 use serde::Serialize;
 use specpoly_core::{paper::cmf_fit, Observer, Paper, PaperSpectrum, Spectrum, PAPER_BREAKS};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_spectra::spectrum_names;
 
 /// The paper's Table 1: per span, reflectance, x̄ and reduced errors.
@@ -60,14 +60,14 @@ impl Row {
 pub fn compute(spec: &str) -> Result<(String, Vec<Row>)> {
     let mut v = spectrum_names::resolve(spec)?;
     if v.len() != 1 {
-        return Err(CliError::usage(format!(
-            "`{spec}` names {} spectra; table1 takes one",
-            v.len()
-        )));
+        return Err(Error::NotOneSpectrum {
+            spec: spec.to_string(),
+            count: v.len(),
+        });
     }
     let n = v.remove(0);
     let data = n.tabulated();
-    let r = PaperSpectrum::fit(&data).map_err(|e| CliError::data(format!("{}: {e}", n.name)))?;
+    let r = PaperSpectrum::fit(&data).map_err(Error::fit(&n.name))?;
     let observer = Observer::Cie1964;
     let [xbar, _, _] = cmf_fit::<2, 4, Paper>(observer);
     let exact: Spectrum<2, 7, Paper> = r.mul_exact::<7>(&xbar);

@@ -9,12 +9,14 @@
 //! legend takes as many columns as it needs beside the plot, or rows below it, and a figure
 //! too small to hold it at that size is refused with the size that holds it.
 
+pub mod error;
 pub mod size;
+
+pub use error::{Error, Result};
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use specpoly_formats::error::{CliError, Result};
 
 /// The smallest text drawn (pixels): 9 px DejaVu Sans is still legible.
 pub const MIN_TEXT_PX: f64 = 9.0;
@@ -207,18 +209,18 @@ impl Figure {
             });
         }
         let need_h = (rows as f64 * entry.1 / 0.4).ceil();
-        Err(CliError::usage(format!(
-            "{n} legend entries do not fit a {}x{} figure in readable type (≥ {MIN_TEXT_PX} px): use --size {}x{} or larger, or plot fewer spectra",
-            self.width,
-            self.height,
-            self.width,
-            need_h.max(h)
-        )))
+        Err(Error::LegendTooBig {
+            entries: n,
+            width: self.width,
+            height: self.height,
+            min_text_px: MIN_TEXT_PX,
+            need_height: need_h.max(h),
+        })
     }
 
     /// Draws the figure on any plotters drawing area.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let fail = |e: String| CliError::data(format!("drawing the figure: {e}"));
+        let fail = Error::Draw;
         register_font();
         let l = self.layout()?;
         let w = self.width as f64;
@@ -426,7 +428,7 @@ impl Figure {
 
 /// RGB pixels as a PNG file's bytes.
 pub fn encode_png(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>> {
-    let fail = |e: png::EncodingError| CliError::data(format!("PNG encoding: {e}"));
+    let fail = Error::Png;
     let mut out = Vec::new();
     {
         let mut e = png::Encoder::new(&mut out, width, height);
@@ -455,7 +457,7 @@ pub fn draw_text(
         .color(&RGBColor(colour[0], colour[1], colour[2]));
     root.draw(&Text::new(text.to_string(), at, style))
         .and_then(|_| root.present())
-        .map_err(|e| CliError::data(format!("drawing text: {e}")))
+        .map_err(|e| Error::Text(e.to_string()))
 }
 
 /// The width of `text` in DejaVu Sans of `px` pixels, as plotters lays it out.

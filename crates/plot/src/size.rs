@@ -1,6 +1,6 @@
 //! An image size on the command line, `WIDTHxHEIGHT` (`--size` of `render` and `plot`).
 
-use specpoly_formats::error::{CliError, Result};
+use crate::{Error, Result};
 use std::fmt;
 use std::str::FromStr;
 
@@ -25,9 +25,11 @@ impl Size {
         {
             Ok(self)
         } else {
-            Err(CliError::usage(format!(
-                "--size `{self}`: between {min} and {max}"
-            )))
+            Err(Error::SizeOutOfRange {
+                size: self,
+                min,
+                max,
+            })
         }
     }
 }
@@ -39,17 +41,20 @@ impl fmt::Display for Size {
 }
 
 impl FromStr for Size {
-    type Err = CliError;
+    type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        let bad = || CliError::usage(format!("`{s}`: expected WIDTHxHEIGHT, e.g. 512x512"));
+        let bad = || Error::BadSize {
+            text: s.to_string(),
+            why: "expected WIDTHxHEIGHT, e.g. 512x512".into(),
+        };
         let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
         let (width, height): (u32, u32) =
             (w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?);
         if width == 0 || height == 0 || width > Self::MAX || height > Self::MAX {
-            return Err(CliError::usage(format!(
-                "`{s}`: each side must be 1..{}",
-                Self::MAX
-            )));
+            return Err(Error::BadSize {
+                text: s.to_string(),
+                why: format!("each side must be 1..{}", Self::MAX),
+            });
         }
         Ok(Size { width, height })
     }

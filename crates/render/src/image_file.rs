@@ -155,7 +155,7 @@ pub fn write_png(
     depth: png::BitDepth,
     tag: &ColourTag,
 ) -> Result<()> {
-    specpoly_formats::atomic::write_with(path, |w| {
+    Ok(specpoly_formats::atomic::write_with(path, |w| {
         let mut info = png::Info::with_size(width, height);
         info.color_type = png::ColorType::Rgb;
         info.bit_depth = depth;
@@ -169,7 +169,7 @@ pub fn write_png(
         let mut wr = enc.write_header().map_err(std::io::Error::other)?;
         wr.write_image_data(px).map_err(std::io::Error::other)?;
         wr.finish().map_err(std::io::Error::other)
-    })
+    })?)
 }
 
 fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<()> {
@@ -196,12 +196,12 @@ fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<
             (v[0], v[1], v[2])
         });
     let image = Image::from_channels((img.width as usize, img.height as usize), channels);
-    specpoly_formats::atomic::write_with(path, |f| {
+    Ok(specpoly_formats::atomic::write_with(path, |f| {
         image
             .write()
             .to_buffered(f)
             .map_err(|e| std::io::Error::other(e.to_string()))
-    })
+    })?)
 }
 
 /// The colour tag for a display: `sRGB` gets the `sRGB` chunk, a calibration file its ICC

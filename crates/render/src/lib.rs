@@ -158,14 +158,14 @@ pub fn scene_white(scene: &Scene) -> Xyz {
 /// Writes 8-bit RGB as a PNG, whole or not at all. The PNG has no time stamp: the same pixels
 /// give the same bytes.
 pub fn write_png(path: &std::path::Path, width: u32, height: u32, rgb: &[u8]) -> Result<()> {
-    specpoly_formats::atomic::write_with(path, |w| {
+    Ok(specpoly_formats::atomic::write_with(path, |w| {
         let mut enc = png::Encoder::new(w, width, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut wr = enc.write_header().map_err(std::io::Error::other)?;
         wr.write_image_data(rgb).map_err(std::io::Error::other)?;
         wr.finish().map_err(std::io::Error::other)
-    })
+    })?)
 }
 
 /// Per-pixel CIEDE2000 between two XYZ images (CIELAB relative to `white`, after `exposure`).

@@ -416,7 +416,7 @@ fn is_zero(s: &SpectrumSpec) -> bool {
 }
 
 fn flat(name: String, v: f32) -> Result<Named> {
-    Named::new(name, vec![380.0, 780.0], vec![v, v])
+    Ok(Named::new(name, vec![380.0, 780.0], vec![v, v])?)
 }
 
 /// Resolves one spectrum; `what` names it in errors (`scene.toml: materials.red.diffuse`).
@@ -463,7 +463,7 @@ pub fn resolve_spectrum_in(spec: &SpectrumSpec, what: &str, base: Option<&Path>)
     match spec {
         SpectrumSpec::Constant(v) => flat(format!("{v}"), finite(*v, "the value")?),
         SpectrumSpec::Name(n) => {
-            let mut v = spectrum_names::resolve(&rebase(n, base)).map_err(data)?;
+            let mut v = spectrum_names::resolve(&rebase(n, base)).map_err(|e| data(e.into()))?;
             if v.len() != 1 {
                 return Err(CliError::data(format!(
                     "{what}: `{n}` names {} spectra; name one column",

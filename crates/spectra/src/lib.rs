@@ -9,8 +9,11 @@
 
 pub mod colour;
 pub mod data;
+pub mod error;
 pub mod hero;
 pub mod light;
 pub mod plausible;
 pub mod repr;
 pub mod spectrum_names;
+
+pub use error::{Error, Result};

@@ -3,6 +3,7 @@
 //! shapes the printed records (`specpoly light`, `specpoly mix`).
 
 use crate::spectrum_names::{self, Named};
+use crate::{Error, Result};
 use serde::Serialize;
 use specpoly_core::light::{
     cct::Cct,
@@ -12,7 +13,6 @@ use specpoly_core::light::{
     LightError, Samples, Source,
 };
 use specpoly_core::Transfer;
-use specpoly_formats::error::{CliError, Result};
 
 /// Rounds for printing: far below any visible difference, without f64 noise in the output.
 fn r6(v: f64) -> f64 {
@@ -20,7 +20,10 @@ fn r6(v: f64) -> f64 {
 }
 
 fn source(n: &Named) -> Result<Source> {
-    Source::new(&n.tabulated()).map_err(|e| CliError::data(format!("{}: {e}", n.name)))
+    Source::new(&n.tabulated()).map_err(|source| Error::Light {
+        name: n.name.clone(),
+        source,
+    })
 }
 
 /// What `specpoly light` prints (JSON keys as in the issue).
@@ -134,7 +137,7 @@ fn domain(t: &Target) -> &'static str {
 }
 
 /// What the freedom of more than three channels is spent on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Optimize {
     /// Greatest CIE 224:2017 fidelity Rf.
     Rf,
@@ -157,11 +160,15 @@ pub struct Channel {
 
 /// Parses `NAME=FILE.csv[#COLUMN]` and loads the spectrum.
 pub fn load_channel(s: &str) -> Result<Channel> {
-    let (name, spec) = s
-        .split_once('=')
-        .ok_or_else(|| CliError::usage(format!("`{s}`: a channel is NAME=FILE.csv[#COLUMN]")))?;
+    let (name, spec) = s.split_once('=').ok_or_else(|| Error::BadChannel {
+        text: s.to_string(),
+        why: "a channel is NAME=FILE.csv[#COLUMN]",
+    })?;
     if name.trim().is_empty() {
-        return Err(CliError::usage(format!("`{s}`: the channel has no name")));
+        return Err(Error::BadChannel {
+            text: s.to_string(),
+            why: "the channel has no name",
+        });
     }
     Ok(Channel {
         name: name.trim().to_string(),
@@ -221,17 +228,15 @@ pub fn mix(
         Optimize::Power => Objective::Power,
     };
     let err = |e: LightError| match e {
-        LightError::Channels(_) | LightError::BadTarget => CliError::usage(format!("{e}")),
-        LightError::OutOfGamut => CliError::data(format!(
-            "target {} is outside the gamut of the channels {}",
-            describe(&target),
-            channels
+        LightError::OutOfGamut => Error::OutOfGamut {
+            target: describe(&target),
+            channels: channels
                 .iter()
                 .map(|c| c.name.as_str())
                 .collect::<Vec<_>>()
-                .join(", ")
-        )),
-        _ => CliError::data(format!("{e}")),
+                .join(", "),
+        },
+        _ => Error::Mix(e),
     };
     let m: Mix = solve_mix(&sources, target, luminance, objective).map_err(err)?;
     let driven = m.drive(&sources, transfer, bits).map_err(err)?;

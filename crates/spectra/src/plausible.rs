@@ -8,8 +8,8 @@
 //! [`Given::Scene`]); only the hint differs, naming the fix where the data was given.
 
 use crate::spectrum_names::Named;
+use crate::{Error, Result};
 use specpoly_core::Illuminant;
-use specpoly_formats::error::{CliError, Result};
 
 /// The largest reflectance value accepted: fluorescent samples exceed 1 a little, 1.5 is no
 /// longer a reflectance.
@@ -60,16 +60,19 @@ pub fn reflectance_given(n: &Named, given: Given) -> Result<()> {
     let (lo_i, lo) = extreme(&n.values, |a, b| a < b);
     let (hi_i, hi) = extreme(&n.values, |a, b| a > b);
     if let Some(i) = n.values.iter().position(|v| !v.is_finite()) {
-        return Err(CliError::data(format!(
-            "{}: value at {} nm is not finite",
-            n.name, n.wavelengths[i]
-        )));
+        return Err(Error::NotReflectance {
+            name: n.name.clone(),
+            why: format!("value at {} nm is not finite", n.wavelengths[i]),
+        });
     }
     if lo < MIN_REFLECTANCE {
-        return Err(CliError::data(format!(
-            "{}: reflectance {lo} at {} nm is negative; reflectances lie in 0–1",
-            n.name, n.wavelengths[lo_i]
-        )));
+        return Err(Error::NotReflectance {
+            name: n.name.clone(),
+            why: format!(
+                "reflectance {lo} at {} nm is negative; reflectances lie in 0–1",
+                n.wavelengths[lo_i]
+            ),
+        });
     }
     if hi > MAX_REFLECTANCE {
         let hint = if Illuminant::from_name(n.short()).is_some()
@@ -81,10 +84,13 @@ pub fn reflectance_given(n: &Named, given: Given) -> Result<()> {
         } else {
             format!("reflectances lie in 0–{MAX_REFLECTANCE}")
         };
-        return Err(CliError::data(format!(
-            "{}: reflectance {hi} at {} nm is above {MAX_REFLECTANCE}: {hint}",
-            n.name, n.wavelengths[hi_i]
-        )));
+        return Err(Error::NotReflectance {
+            name: n.name.clone(),
+            why: format!(
+                "reflectance {hi} at {} nm is above {MAX_REFLECTANCE}: {hint}",
+                n.wavelengths[hi_i]
+            ),
+        });
     }
     Ok(())
 }
@@ -110,7 +116,7 @@ pub fn reflectances(names: &[String], scale: f64, light_flag: bool) -> Result<Ve
 /// `n` with every value multiplied by `scale` (finite and > 0).
 pub fn scaled(mut n: Named, scale: f64) -> Result<Named> {
     if !(scale.is_finite() && scale > 0.0) {
-        return Err(CliError::usage(format!("--scale {scale}: must be > 0")));
+        return Err(Error::BadScale(scale));
     }
     if scale != 1.0 {
         for v in &mut n.values {
@@ -126,9 +132,9 @@ pub fn finite(name: &str, values: &[f64]) -> Result<()> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(CliError::data(format!(
-            "{name}: the result overflowed (not finite); check the input's scale"
-        )))
+        Err(Error::Overflow {
+            name: name.to_string(),
+        })
     }
 }
 
@@ -150,8 +156,8 @@ pub fn image(what: &str, xyz: &[specpoly_core::Xyz]) -> Result<()> {
     {
         Ok(())
     } else {
-        Err(CliError::data(format!(
-            "{what}: the image overflowed (not finite); check the lights' spectra and scales"
-        )))
+        Err(Error::ImageOverflow {
+            what: what.to_string(),
+        })
     }
 }

@@ -12,11 +12,11 @@
 //! - `rgb` — linear sRGB triples (the paper's "RGB problem");
 //! - `exact` — the 1 nm reference: 401 samples at 1 nm, identical to the 1 nm sum.
 
+use crate::{Error, Result};
 use specpoly_core::{
     DefaultSpectrum, Layout, Paper, PaperSpectrum, Rgb, Sampled, Shade, Spectrum, Uniform,
     DEFAULT_COEFFS, DEFAULT_SPANS,
 };
-use specpoly_formats::error::{CliError, Result};
 use specpoly_simd::Wide;
 use std::fmt;
 use std::str::FromStr;
@@ -60,9 +60,10 @@ impl Repr {
         if self.is_polynomial() {
             Ok(self)
         } else {
-            Err(CliError::usage(format!(
-                "`{command}` needs a polynomial representation (poly, paper, poly:SxD), not `{self}`"
-            )))
+            Err(Error::NotPolynomial {
+                command: command.to_string(),
+                repr: self,
+            })
         }
     }
 
@@ -100,13 +101,9 @@ fn list(v: &[usize]) -> String {
 }
 
 impl FromStr for Repr {
-    type Err = CliError;
+    type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
-        let bad = || {
-            CliError::usage(format!(
-                "unknown representation `{s}` (poly, paper, poly:SxD, sampled:N, hero:N, rgb, exact)"
-            ))
-        };
+        let bad = || Error::UnknownRepr(s.to_string());
         match s {
             "poly" => return Ok(Repr::DEFAULT),
             "paper" => return Ok(Repr::Paper),
@@ -120,11 +117,15 @@ impl FromStr for Repr {
             let spans: usize = a.parse().map_err(|_| bad())?;
             let degree: usize = b.parse().map_err(|_| bad())?;
             if !POLY_SPANS.contains(&spans) || !POLY_DEGREES.contains(&degree) {
-                return Err(CliError::usage(format!(
-                    "`{s}`: supported spans S are {} and degrees D are {}",
-                    list(POLY_SPANS),
-                    list(POLY_DEGREES)
-                )));
+                return Err(Error::UnsupportedRepr {
+                    text: s.to_string(),
+                    what: "spans S are",
+                    supported: format!(
+                        "{} and degrees D are {}",
+                        list(POLY_SPANS),
+                        list(POLY_DEGREES)
+                    ),
+                });
             }
             return Ok(Repr::Poly {
                 spans,
@@ -134,20 +135,22 @@ impl FromStr for Repr {
         if let Some(rest) = s.strip_prefix("sampled:") {
             let n: usize = rest.parse().map_err(|_| bad())?;
             if !SAMPLED_N.contains(&n) {
-                return Err(CliError::usage(format!(
-                    "`{s}`: supported sample counts N are {}",
-                    list(SAMPLED_N)
-                )));
+                return Err(Error::UnsupportedRepr {
+                    text: s.to_string(),
+                    what: "sample counts N are",
+                    supported: list(SAMPLED_N),
+                });
             }
             return Ok(Repr::Sampled(n));
         }
         if let Some(rest) = s.strip_prefix("hero:") {
             let n: usize = rest.parse().map_err(|_| bad())?;
             if !HERO_N.contains(&n) {
-                return Err(CliError::usage(format!(
-                    "`{s}`: supported wavelengths per path N are {}",
-                    list(HERO_N)
-                )));
+                return Err(Error::UnsupportedRepr {
+                    text: s.to_string(),
+                    what: "wavelengths per path N are",
+                    supported: list(HERO_N),
+                });
             }
             return Ok(Repr::Hero(n));
         }
@@ -230,7 +233,7 @@ pub const HERO_N: &[usize] = &[4];
 /// for the others (sampled, RGB, exact).
 pub fn dispatch_poly<V: PolyVisitor>(repr: Repr, command: &str, v: V) -> Result<V::Output> {
     let repr = repr.polynomial_for(command)?;
-    poly(repr, v).ok_or_else(|| CliError::usage(format!("`{repr}`: not a listed layout")))
+    poly(repr, v).ok_or(Error::UnlistedLayout(repr))
 }
 
 /// [`dispatch_poly`] without the message: `None` for a representation that is not polynomial

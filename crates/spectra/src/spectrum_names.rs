@@ -3,9 +3,9 @@
 //! built-in illuminant (`D65`). A file on disk wins over a built-in of the same name.
 
 use crate::data::TABLES;
+use crate::{Error, Result};
 use specpoly_core::{Illuminant, Tabulated};
 use specpoly_formats::csv::{self, Table};
-use specpoly_formats::error::{CliError, Result};
 
 /// A named spectrum with validated samples.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,8 +21,9 @@ pub struct Named {
 impl Named {
     /// Checks the samples and builds a named spectrum.
     pub fn new(name: String, wavelengths: Vec<f32>, values: Vec<f32>) -> Result<Self> {
-        Tabulated::new(&wavelengths, &values)
-            .map_err(|e| CliError::data(format!("{name}: {e}")))?;
+        if let Err(source) = Tabulated::new(&wavelengths, &values) {
+            return Err(Error::Samples { name, source });
+        }
         Ok(Self {
             name,
             wavelengths,
@@ -55,10 +56,10 @@ pub fn load_table(base: &str) -> Result<(String, Table)> {
     if let Some(t) = TABLES.iter().find(|t| t.name.eq_ignore_ascii_case(base)) {
         return Ok((t.name.to_string(), csv::parse(t.text, t.name)?));
     }
-    Err(CliError::usage(format!(
-        "`{base}`: no such file, and not a built-in table ({})",
-        builtin_names()
-    )))
+    Err(Error::UnknownTable {
+        name: base.to_string(),
+        builtins: builtin_names(),
+    })
 }
 
 /// Names of the built-ins, for error messages.
@@ -99,11 +100,11 @@ pub fn resolve(spec: &str) -> Result<Vec<Named>> {
     };
     match column {
         None if table.columns.len() == 1 => Ok(vec![make(&table.columns[0])?]),
-        None => Err(CliError::usage(format!(
-            "`{spec}` has {} columns: name one as `{spec}#COLUMN` (or `{spec}#*` for all): {}",
-            table.columns.len(),
-            column_list(&table)
-        ))),
+        None => Err(Error::ColumnNeeded {
+            spec: spec.to_string(),
+            count: table.columns.len(),
+            columns: column_list(&table),
+        }),
         Some("*") => table.columns.iter().map(make).collect(),
         Some(c) => {
             let col = table
@@ -117,11 +118,10 @@ pub fn resolve(spec: &str) -> Result<Vec<Named>> {
                         .find(|(n, _)| n.eq_ignore_ascii_case(c))
                 })
                 .or_else(|| unique_word_prefix(&table, c))
-                .ok_or_else(|| {
-                    CliError::usage(format!(
-                        "`{source}` has no column `{c}`; it has: {}",
-                        column_list(&table)
-                    ))
+                .ok_or_else(|| Error::UnknownColumn {
+                    table: source.clone(),
+                    column: c.to_string(),
+                    columns: column_list(&table),
                 })?;
             Ok(vec![make(col)?])
         }
@@ -165,16 +165,19 @@ pub fn light(spec: &str) -> Result<Named> {
         }
     }
     let mut v = resolve(spec).map_err(|e| match e {
-        CliError::Usage(m) => CliError::usage(format!(
-            "unknown illuminant {m} (built-in: A, D50, D65, E, FL2, FL7, FL11)"
-        )),
+        Error::UnknownTable { .. }
+        | Error::ColumnNeeded { .. }
+        | Error::UnknownColumn { .. }
+        | Error::Formats(specpoly_formats::Error::Missing { .. }) => {
+            Error::UnknownLight(Box::new(e))
+        }
         other => other,
     })?;
     if v.len() != 1 {
-        return Err(CliError::usage(format!(
-            "`{spec}` names {} spectra; a light is one",
-            v.len()
-        )));
+        return Err(Error::NotOneLight {
+            spec: spec.to_string(),
+            count: v.len(),
+        });
     }
     Ok(v.remove(0))
 }

@@ -198,7 +198,7 @@ impl ArgyllOptions {
         for (k, v) in options {
             let word = |v: &str| {
                 if v.is_empty() || v.contains(char::is_whitespace) {
-                    Err(spec.bad(k, v, "expected one word"))
+                    Err(spec.bad::<CliError>(k, v, "expected one word"))
                 } else {
                     Ok(v.to_string())
                 }

@@ -39,7 +39,7 @@ pub fn run(a: &AccuracyArgs) -> Result<()> {
         specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
-        return specpoly_formats::stdout::print_json(&summary);
+        return Ok(specpoly_formats::stdout::print_json(&summary)?);
     }
     Ok(())
 }

@@ -217,7 +217,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         specpoly_formats::escape::one_line(&a.output.display().to_string())
     );
     if a.json {
-        return print_json(&fit_json(&cal, &a.output, fit_set.len()));
+        return Ok(print_json(&fit_json(&cal, &a.output, fit_set.len()))?);
     }
     let d = cal.data();
     let mut s = format!(
@@ -248,7 +248,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     for n in &d.provenance.notes {
         s.push_str(&format!("note: {n}\n"));
     }
-    print(&s)
+    Ok(print(&s)?)
 }
 
 /// What the fit decided, one line each: the model and how it was chosen, the patches dropped
@@ -334,7 +334,7 @@ pub fn show_json(cal: &Calibration) -> serde_json::Value {
 fn show(a: &ShowArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
     if a.json {
-        return print_json(&show_json(&cal));
+        return Ok(print_json(&show_json(&cal))?);
     }
     let d = cal.data();
     let u = if cal.absolute() { "cd/m²" } else { "relative" };
@@ -372,7 +372,7 @@ fn show(a: &ShowArgs) -> Result<()> {
         "source {} (fitted {})\n",
         d.provenance.source, d.provenance.created
     ));
-    print(&s)
+    Ok(print(&s)?)
 }
 
 fn icc_cmd(a: &IccArgs) -> Result<()> {

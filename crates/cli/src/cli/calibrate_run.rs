@@ -79,7 +79,7 @@ pub(crate) fn line(s: &str) -> Result<()> {
         eprintln!("{}", specpoly_formats::escape::one_line(s));
         return Ok(());
     }
-    specpoly_formats::stdout::print(&format!("{s}\n"))
+    Ok(specpoly_formats::stdout::print(&format!("{s}\n"))?)
 }
 
 /// Whether this run prints JSON (set once at the start of [`run`]).
@@ -198,7 +198,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         v["readings"] = serde_json::json!(ti3.display().to_string());
         v["patches_measured"] = serde_json::json!(taken.len());
         v["patches_verify"] = serde_json::json!(n_verify);
-        return specpoly_formats::stdout::print_json(&v);
+        return Ok(specpoly_formats::stdout::print_json(&v)?);
     }
     print_fit(&cal, &a.output)
 }

@@ -41,9 +41,9 @@ pub fn run(a: &FitArgs) -> Result<()> {
     let reports = named
         .iter()
         .map(|n| fit_one(n, repr, *observer, &light.tabulated()))
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     if a.json {
-        return print_json(&reports);
+        return Ok(print_json(&reports)?);
     }
     let mut o = String::new();
     for r in &reports {
@@ -75,5 +75,5 @@ pub fn run(a: &FitArgs) -> Result<()> {
             );
         }
     }
-    specpoly_formats::stdout::print(&o)
+    Ok(specpoly_formats::stdout::print(&o)?)
 }

@@ -379,7 +379,7 @@ pub fn run(args: &LedArgs) -> Result<()> {
         if args.check {
             v["check"] = serde_json::json!({"agrees": true, "detail": agreed});
         }
-        return print_json(&v);
+        return Ok(print_json(&v)?);
     }
     if let Some(d) = agreed {
         print(&format!("check: {d}\n"))?;

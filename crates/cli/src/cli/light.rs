@@ -82,7 +82,7 @@ pub fn run(a: &LightArgs) -> Result<()> {
     let named = spectrum_names::light(&a.spd)?;
     let r = report(&named)?;
     if a.json {
-        return print_json(&r);
+        return Ok(print_json(&r)?);
     }
-    specpoly_formats::stdout::print(&text(&named.name, &r))
+    Ok(specpoly_formats::stdout::print(&text(&named.name, &r))?)
 }

@@ -6,7 +6,7 @@ use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
 use specpoly_core::light::Target;
 use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::print_json;
-use specpoly_spectra::light::{self, describe, load_channel, parse_target, Optimize};
+use specpoly_spectra::light::{self, describe, load_channel, parse_target};
 use std::fmt::Write as _;
 
 fn luminance(s: &str) -> std::result::Result<f64, String> {
@@ -15,6 +15,31 @@ fn luminance(s: &str) -> std::result::Result<f64, String> {
         _ => Err(format!(
             "`{s}`: the relative luminance is a number in (0, 1]"
         )),
+    }
+}
+
+/// What the freedom of more than three channels is spent on (`--optimize`; the command line's
+/// spelling of [`light::Optimize`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Optimize {
+    /// Greatest CIE 224:2017 fidelity Rf.
+    Rf,
+    /// Greatest CIE 13.3 Ra.
+    Ra,
+    /// Greatest luminous efficacy of radiation.
+    Efficacy,
+    /// Least total drive.
+    Power,
+}
+
+impl From<Optimize> for light::Optimize {
+    fn from(o: Optimize) -> Self {
+        match o {
+            Optimize::Rf => light::Optimize::Rf,
+            Optimize::Ra => light::Optimize::Ra,
+            Optimize::Efficacy => light::Optimize::Efficacy,
+            Optimize::Power => light::Optimize::Power,
+        }
     }
 }
 
@@ -61,17 +86,17 @@ pub fn run(a: &MixArgs) -> Result<()> {
         .channels
         .iter()
         .map(|c| load_channel(c))
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     let r = light::mix(
         &channels,
         a.target,
         a.luminance,
-        a.optimize,
+        a.optimize.into(),
         &a.trc.into(),
         a.bits,
     )?;
     if a.json {
-        return print_json(&r);
+        return Ok(print_json(&r)?);
     }
     let mut o = String::new();
     let _ = writeln!(
@@ -107,5 +132,5 @@ pub fn run(a: &MixArgs) -> Result<()> {
         opt(r.rg, 1),
         r.efficacy
     );
-    specpoly_formats::stdout::print(&o)
+    Ok(specpoly_formats::stdout::print(&o)?)
 }

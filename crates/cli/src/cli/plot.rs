@@ -44,7 +44,7 @@ pub fn figure(a: &PlotArgs) -> Result<Figure> {
     let repr = a.repr.polynomial_for("plot")?;
     a.size.check(figures::MIN_SIZE, figures::MAX_SIZE)?;
     let named = specpoly_spectra::plausible::reflectances(&a.spectra, a.scale, false)?;
-    figures::spectra(&named, repr, a.product, a.size)
+    Ok(figures::spectra(&named, repr, a.product, a.size)?)
 }
 
 /// Runs `specpoly plot`.

@@ -28,7 +28,9 @@ pub struct Table1Args {
 pub fn run(a: &Table1Args) -> Result<()> {
     let (name, rows) = compute(&a.spectrum)?;
     if a.json {
-        return print_json(&serde_json::json!({ "spectrum": name, "rows": rows }));
+        return Ok(print_json(
+            &serde_json::json!({ "spectrum": name, "rows": rows }),
+        )?);
     }
     let mut o = String::new();
     let _ = writeln!(
@@ -54,5 +56,5 @@ pub fn run(a: &Table1Args) -> Result<()> {
         let span = format!("{} {}-{}", ["one", "two"][i], r.span_nm[0], r.span_nm[1]);
         let _ = writeln!(o, "{span:<12} {}", cells.join(" "));
     }
-    specpoly_formats::stdout::print(&o)
+    Ok(specpoly_formats::stdout::print(&o)?)
 }

@@ -140,7 +140,7 @@ const NAME_COLUMN: usize = 48;
 pub fn run(a: &XyzArgs) -> Result<()> {
     let rows = compute(a)?;
     if a.json {
-        return print_json(&rows);
+        return Ok(print_json(&rows)?);
     }
     let mut o = String::new();
     // names longer than NAME_COLUMN overflow their column rather than widen every row
@@ -180,5 +180,5 @@ pub fn run(a: &XyzArgs) -> Result<()> {
             None => o.push('\n'),
         }
     }
-    specpoly_formats::stdout::print(&o)
+    Ok(specpoly_formats::stdout::print(&o)?)
 }
