@@ -532,7 +532,7 @@ fn created(cal: &Calibration) -> [i64; 6] {
         {
             [y, mo, d, h, mi, s]
         }
-        _ => crate::calibration::utc_parts(),
+        _ => crate::time::utc_parts(),
     }
 }
 

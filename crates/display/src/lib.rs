@@ -14,4 +14,5 @@ pub mod icc_read;
 pub mod lattice;
 pub mod spec;
 pub mod target;
+pub mod time;
 pub mod video_lut;

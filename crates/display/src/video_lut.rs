@@ -215,7 +215,7 @@ impl VideoLut {
         let mut s = String::from("CAL    \n\n");
         s.push_str("DESCRIPTOR \"Argyll Device Calibration State\"\n");
         let _ = writeln!(s, "ORIGINATOR \"{}\"", quote(originator));
-        let _ = writeln!(s, "CREATED \"{}\"", crate::calibration::now_utc());
+        let _ = writeln!(s, "CREATED \"{}\"", crate::time::now_utc());
         s.push_str("KEYWORD \"DEVICE_CLASS\"\nDEVICE_CLASS \"DISPLAY\"\n");
         s.push_str("KEYWORD \"COLOR_REP\"\nCOLOR_REP \"RGB\"\n");
         s.push_str(

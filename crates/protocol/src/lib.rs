@@ -21,6 +21,7 @@
 
 pub mod command;
 pub mod fault;
+mod grammar;
 pub mod line;
 pub mod lut;
 pub mod mix;
