@@ -10,6 +10,10 @@ use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
 
+pub mod common;
+
+use common::fit_json;
+
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
 pub enum CalibrateCommand {
@@ -29,7 +33,7 @@ pub enum CalibrateCommand {
     /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
     Export(ExportArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
-    Run(crate::cli::calibrate_run::RunArgs),
+    Run(common::RunArgs),
     /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
     /// give back with `run --patches`).
     Patches(PatchesArgs),
@@ -277,30 +281,6 @@ pub fn fit_facts(f: &calibration::FitReport) -> String {
         s.push_str(&format!("constrained: {c}\n"));
     }
     s
-}
-
-/// The JSON `calibrate fit --json` (and `run --json`) prints about a fitted calibration
-/// written to `output` from `fitted` patches (keys documented in docs/calibration.md).
-pub fn fit_json(cal: &Calibration, output: &std::path::Path, fitted: usize) -> serde_json::Value {
-    let d = cal.data();
-    serde_json::json!({
-        "output": output.display().to_string(),
-        "source": d.provenance.source,
-        "units": d.units,
-        "matrix": d.fit.matrix,
-        "patches_fit": fitted,
-        "fit_delta_e00": d.fit.residual,
-        "held_out_delta_e00": d.fit.verification,
-        "additivity": match (d.fit.additivity_delta_e00, d.fit.additivity_luminance_percent) {
-            (Some(de), Some(pc)) => serde_json::json!({"delta_e00": de, "luminance_percent": pc}),
-            _ => serde_json::Value::Null,
-        },
-        "notes": d.provenance.notes,
-        "model": d.fit.model,
-        "model_candidates": d.fit.candidates,
-        "outliers": d.fit.outliers,
-        "constrained": d.fit.constrained,
-    })
 }
 
 /// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
