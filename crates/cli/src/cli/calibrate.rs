@@ -3,7 +3,7 @@
 
 use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
 use specpoly_core::chromaticity;
-use specpoly_display::calibration::{self, Calibration, TransferKind};
+use specpoly_display::calibration::{self, Calibration};
 use specpoly_display::{export, icc};
 use specpoly_formats::cgats;
 use specpoly_formats::error::{CliError, Result};
@@ -11,8 +11,10 @@ use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
 
 pub mod common;
+pub mod values;
 
 use common::fit_json;
+use values::{BitsValue, FormatValue, IccVersionValue, SourceValue, TransferValue, WhiteValue};
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -63,8 +65,8 @@ pub struct FitArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// The transfer curve the model uses (both are fitted and stored).
-    #[arg(long, value_enum, default_value_t = TransferKind::Table)]
-    pub transfer: TransferKind,
+    #[arg(long, value_enum, default_value_t = TransferValue::Table)]
+    pub transfer: TransferValue,
     /// How the matrix is found.
     #[arg(long, value_enum, default_value_t = MatrixFit::LeastSquares)]
     pub matrix: MatrixFit,
@@ -110,7 +112,7 @@ pub struct IccArgs {
     pub description: Option<String>,
     /// ICC version: 2 (v2.4, read by every consumer, ArgyllCMS 2.3 included) or 4 (v4.4).
     #[arg(long, value_enum, default_value = "2", value_name = "2|4")]
-    pub version: icc::IccVersion,
+    pub version: IccVersionValue,
     /// Also write `A2B0`/`B2A0` tables sampled from the model [default: when the model has
     /// channel interaction].
     #[arg(long)]
@@ -124,17 +126,17 @@ pub struct ExportArgs {
     #[arg(long)]
     pub calibration: PathBuf,
     /// The colour space the firmware's UI draws in.
-    #[arg(long, value_enum, default_value_t = export::SourceArg::Srgb)]
-    pub source: export::SourceArg,
+    #[arg(long, value_enum, default_value_t = SourceValue::Srgb)]
+    pub source: SourceValue,
     /// C header or Rust source.
     #[arg(long, value_enum)]
-    pub format: export::Format,
+    pub format: FormatValue,
     /// The panel's bits per channel.
-    #[arg(long, value_enum, default_value_t = export::Bits::Rgb565)]
-    pub bits: export::Bits,
+    #[arg(long, value_enum, default_value_t = BitsValue::Rgb565)]
+    pub bits: BitsValue,
     /// The source white: adapted to the panel's, or kept.
-    #[arg(long, value_enum, default_value_t = export::WhiteArg::Adapt)]
-    pub white: export::WhiteArg,
+    #[arg(long, value_enum, default_value_t = WhiteValue::Adapt)]
+    pub white: WhiteValue,
     /// The tables' name prefix (a C/Rust identifier).
     #[arg(long, default_value = "panel", value_parser = export::identifier)]
     pub name: String,
@@ -175,7 +177,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         (meas, Vec::new())
     };
     let opts = FitOptions {
-        transfer: a.transfer,
+        transfer: a.transfer.into(),
         matrix: a.matrix,
         table_points: a.table_points,
         absolute,
@@ -335,7 +337,7 @@ fn show(a: &ShowArgs) -> Result<()> {
         d.transfer.gamma[0],
         d.transfer.gamma[1],
         d.transfer.gamma[2],
-        crate::cli::args::name(&d.transfer.kind)
+        crate::cli::args::name(&TransferValue::from(d.transfer.kind))
     ));
     s.push_str(&format!(
         "matrix {}; fit ΔE00 mean {:.3}, max {:.3} over {} patches\n",
@@ -365,14 +367,14 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
     });
     let auto = icc::IccOptions::for_calibration(&cal);
     let opts = icc::IccOptions {
-        version: a.version,
+        version: a.version.into(),
         tables: a.tables || auto.tables,
     };
     let bytes = icc::build(&cal, &desc, &opts)?;
     specpoly_formats::atomic::write(&a.output, &bytes)?;
     let version = match a.version {
-        icc::IccVersion::V2 => "v2.4",
-        icc::IccVersion::V4 => "v4.4",
+        IccVersionValue::V2 => "v2.4",
+        IccVersionValue::V4 => "v4.4",
     };
     let mut what = format!("ICC {version} matrix/TRC display profile");
     if opts.tables {
@@ -391,7 +393,7 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
-    let p = export::transform(&cal, a.source, a.white, a.bits)?;
+    let p = export::transform(&cal, a.source.into(), a.white.into(), a.bits.into())?;
     let origin = format!(
         "calibration {}, source {}, white {}, {}",
         a.calibration.display(),
@@ -399,7 +401,7 @@ fn export_cmd(a: &ExportArgs) -> Result<()> {
         crate::cli::args::name(&a.white),
         crate::cli::args::name(&a.bits)
     );
-    let text = export::source_text(&p, a.format, &a.name, &origin)?;
+    let text = export::source_text(&p, a.format.into(), &a.name, &origin)?;
     specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
     eprintln!(
         "wrote {} ({} bytes of tables)",

@@ -99,7 +99,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         c.target,
         &mut rig,
         &target::Options::default(),
-        &mut |s| line(&score_line(s)),
+        &mut |s| Ok(line(&score_line(s))?),
     )?;
     for n in &outcome.notes {
         eprintln!("note: {n}");
