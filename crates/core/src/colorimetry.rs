@@ -11,10 +11,11 @@
 //!
 //! Component types follow the crate's policy (crate docs): [`Xyz`] is f32 in the kernels (the
 //! default) or f64 at the host's edges, [`Xyy`] is f32, [`Lab`] and CIEDE2000 are f64;
-//! [`bradford`] works at either type from the one [`BRADFORD`] table. Arithmetic where it means something: tristimulus
-//! values add and scale (light adds, [`Xyz`]); CIELAB coordinates subtract to a difference
-//! vector and average (`Add`, `Sub`, `Mul<f64>` on [`Lab`]); chromaticities do neither (a
-//! mixture's chromaticity is not the sum of the parts'), so [`Xyy`] has no arithmetic.
+//! [`bradford`] works at either type from the one [`BRADFORD`] table. Arithmetic where it
+//! means something: tristimulus values add and scale (light adds, [`Xyz`]); CIELAB
+//! coordinates subtract to a difference vector and average (`Add`, `Sub`, `Mul<f64>` on
+//! [`Lab`]); chromaticities do neither (a mixture's chromaticity is not the sum of the
+//! parts'), so [`Xyy`] has no arithmetic.
 //! Conversions are named `from_xyz`/`to_xyz`.
 
 use crate::matrix::Real;

@@ -119,14 +119,14 @@ impl Real for f32 {
     /// FPU, e.g. the Cortex-M4F firmware, where f64 linked ≈ 3.4 KiB).
     ///
     /// The matrix is first scaled by the power of two `s` at or below its largest magnitude
-    /// (exact; `|aᵢⱼ| < 2`, no overflow or
-    /// underflow in the determinant), inverted by the adjugate, `X₀ = adj(A/s)ᵀ / det`, and
-    /// refined by one Newton step `X₁ = X₀ + X₀ R` whose residual `R = I − (A/s) X₀` is summed
-    /// with its rounding errors (Dekker's exact product, Knuth's exact sum; Ogita, Rump & Oishi,
-    /// "Accurate sum and dot product", SIAM J. Sci. Comput. 26, 2005), which leaves about the
-    /// error of rounding `X₁`; the inverse of `A` is `X₁ / s`. Singular when an entry of `X₀` exceeds 10⁶ or is not
-    /// finite (condition number ≳ 10⁶, beyond what f32 resolves). Against the f64 adjugate: ≤ 0.5 ulp of the
-    /// largest entry over display matrices (unit test `inverse_matches_f64`).
+    /// (exact; `|aᵢⱼ| < 2`, no overflow or underflow in the determinant), inverted by the
+    /// adjugate, `X₀ = adj(A/s)ᵀ / det`, and refined by one Newton step `X₁ = X₀ + X₀ R` whose
+    /// residual `R = I − (A/s) X₀` is summed with its rounding errors (Dekker's exact product,
+    /// Knuth's exact sum; Ogita, Rump & Oishi, "Accurate sum and dot product", SIAM J. Sci.
+    /// Comput. 26, 2005), which leaves about the error of rounding `X₁`; the inverse of `A` is
+    /// `X₁ / s`. Singular when an entry of `X₀` exceeds 10⁶ or is not finite (condition number
+    /// ≳ 10⁶, beyond what f32 resolves). Against Gauss–Jordan elimination in f64: ≤ 1 ulp of
+    /// the largest entry over display matrices (unit test `inverse_matches_f64`).
     fn inverse3(a: &[[f32; 3]; 3]) -> Result<[[f32; 3]; 3], Error> {
         let top = a.iter().flatten().fold(0.0f32, |a, v| a.max(v.abs()));
         if !(top.is_finite() && top >= f32::MIN_POSITIVE) {
