@@ -1,34 +1,27 @@
 //! An f64 model of a calibrated panel and the reference for the framebuffer pixel transform
 //! (`specpoly_core::pixel`): source curve, source and panel matrices from chromaticities,
-//! Bradford, the gamut maps, all in f64 and written here, independently of the fixed-point code.
+//! Bradford, the gamut maps, all in f64 and written here, independently of the fixed-point code
+//! (the f64 matrix arithmetic and Bradford are the core's [`Mat3`] at f64, tested on their own).
 
 use specpoly_core::pixel::{Source, White};
-use specpoly_core::{Display, GamutMap, Transfer, Xyz};
+use specpoly_core::{Display, GamutMap, Mat3, Transfer, Xyz};
 
 /// A 3×3 matrix, row-major.
 pub type M3 = [[f64; 3]; 3];
 
-/// `a · b`.
+/// `a · b` ([`Mat3`] at f64).
 pub fn mul(a: &M3, b: &M3) -> M3 {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+    Mat3(*a).mul(&Mat3(*b)).0
 }
 
 /// `m · v`.
 pub fn apply(m: &M3, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+    Mat3(*m).apply(v)
 }
 
-/// The inverse (adjugate over determinant).
+/// The inverse (NaN entries for a singular matrix).
 pub fn inv(m: &M3) -> M3 {
-    let c =
-        |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
-    let cof = [
-        [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
-        [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
-        [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
-    ];
-    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| cof[j][i] / det))
+    Mat3(*m).inverse().map_or([[f64::NAN; 3]; 3], |i| i.0)
 }
 
 /// Columns: the primaries' XYZ from chromaticities and luminances.
@@ -51,21 +44,10 @@ pub fn primaries_white(xy: [[f64; 2]; 3], white: [f64; 2]) -> M3 {
     primaries(xy, apply(&inv(&unit), w))
 }
 
-/// Bradford adaptation (Lam 1985) from white `from` to white `to`.
+/// Bradford adaptation (Lam 1985) from white `from` to white `to`: the core's one Bradford at
+/// f64 (checked against Lindbloom's published matrix in `crates/core/tests`).
 pub fn bradford(from: [f64; 3], to: [f64; 3]) -> M3 {
-    // Lam (1985)
-    let b = [
-        [0.8951, 0.2664, -0.1614],
-        [-0.7502, 1.7135, 0.0367],
-        [0.0389, -0.0685, 1.0296],
-    ];
-    let (s, d) = (apply(&b, from), apply(&b, to));
-    let diag = [
-        [d[0] / s[0], 0.0, 0.0],
-        [0.0, d[1] / s[1], 0.0],
-        [0.0, 0.0, d[2] / s[2]],
-    ];
-    mul(&inv(&b), &mul(&diag, &b))
+    specpoly_core::bradford(Xyz::from_array(from), Xyz::from_array(to)).0
 }
 
 #[derive(Clone)]

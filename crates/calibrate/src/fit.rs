@@ -503,7 +503,7 @@ impl Model<'_> {
         let locus_notes = locus::constrain(&mut p);
         let prim = p.map(Primary::from_xyz);
         let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + k[r]);
-        Calibration::new(CalibrationData {
+        Ok(Calibration::new(CalibrationData {
             format: FORMAT.into(),
             version: VERSION,
             units: if self.opts.absolute {
@@ -533,7 +533,7 @@ impl Model<'_> {
                 ..Default::default()
             },
             provenance: Provenance::default(),
-        })
+        })?)
     }
 
     /// Each channel's linear light at `dev` under the current curves.

@@ -167,7 +167,10 @@ impl SimModel {
             // scale each primary so that R + G + B has the chromaticity (x, y): s = P⁻¹ · W
             let m = [0, 1, 2].map(|r| [p[0][r], p[1][r], p[2][r]]);
             let w = [x / y, 1.0, (1.0 - x - y) / y];
-            let s = specpoly_display::icc::mat_inv(&m)
+            let s = specpoly_core::Mat3(m)
+                .inverse()
+                .ok()
+                .map(|inv| inv.0)
                 .map(|inv| [0, 1, 2].map(|r| (0..3).map(|c| inv[r][c] * w[c]).sum::<f64>()))
                 .filter(|s| s.iter().all(|v| *v > 0.0 && v.is_finite()))
                 .ok_or_else(|| {

@@ -9,15 +9,18 @@
 //! dependency beyond `libm`/`heapless` on a microcontroller, and the host tests cross-check
 //! against palette and Sharma's data.
 //!
-//! Component types follow the crate's policy (crate docs): [`Xyz`] and [`Xyy`] are f32 kernel
-//! values, [`Lab`] and CIEDE2000 are f64. Arithmetic where it means something: tristimulus
-//! values add and scale (light adds, [`Xyz`]); CIELAB coordinates subtract to a difference
-//! vector and average (`Add`, `Sub`, `Mul<f64>` on [`Lab`]); chromaticities do neither (a
-//! mixture's chromaticity is not the sum of the parts'), so [`Xyy`] has no arithmetic.
+//! Component types follow the crate's policy (crate docs): [`Xyz`] is f32 in the kernels (the
+//! default) or f64 at the host's edges, [`Xyy`] is f32, [`Lab`] and CIEDE2000 are f64;
+//! [`bradford`] works at either type from the one [`BRADFORD`] table. Arithmetic where it
+//! means something: tristimulus values add and scale (light adds, [`Xyz`]); CIELAB
+//! coordinates subtract to a difference vector and average (`Add`, `Sub`, `Mul<f64>` on
+//! [`Lab`]); chromaticities do neither (a mixture's chromaticity is not the sum of the
+//! parts'), so [`Xyy`] has no arithmetic.
 //! Conversions are named `from_xyz`/`to_xyz`.
 
+use crate::matrix::Real;
 use crate::Mat3;
-use core::ops::{Add, Div, Mul, Sub};
+use core::ops::{Add, Mul, Sub};
 
 /// Chromaticity `x = X/(X+Y+Z)`, `y = Y/(X+Y+Z)` (the paper's eq. 8): the project's one
 /// definition, in f64 (see [`Xyy::from_xyz`] for f32). Black (`X + Y + Z ≤ 0`) has no
@@ -27,23 +30,7 @@ pub fn chromaticity(xyz: [f64; 3], white: [f64; 3]) -> [f64; 2] {
     chroma(xyz, white)
 }
 
-/// f32 or f64, for the one chromaticity definition.
-trait Component: Copy + PartialOrd + Add<Output = Self> + Div<Output = Self> {
-    const ZERO: Self;
-    const THIRD: Self;
-}
-
-impl Component for f32 {
-    const ZERO: f32 = 0.0;
-    const THIRD: f32 = 1.0 / 3.0;
-}
-
-impl Component for f64 {
-    const ZERO: f64 = 0.0;
-    const THIRD: f64 = 1.0 / 3.0;
-}
-
-fn chroma<T: Component>(v: [T; 3], white: [T; 3]) -> [T; 2] {
+fn chroma<T: Real>(v: [T; 3], white: [T; 3]) -> [T; 2] {
     let own = |v: [T; 3]| {
         let s = v[0] + v[1] + v[2];
         (s > T::ZERO).then(|| [v[0] / s, v[1] / s])
@@ -51,67 +38,70 @@ fn chroma<T: Component>(v: [T; 3], white: [T; 3]) -> [T; 2] {
     own(v).or_else(|| own(white)).unwrap_or([T::THIRD; 2])
 }
 
-/// CIE XYZ tristimulus values (the project's convention: a perfect white has `Y = 100`).
+/// CIE XYZ tristimulus values (the project's convention: a perfect white has `Y = 100`), f32
+/// in the kernels (the default) or f64 at the host's edges ([`Real`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Xyz {
+pub struct Xyz<T = f32> {
     /// X
-    pub x: f32,
+    pub x: T,
     /// Y (luminance)
-    pub y: f32,
+    pub y: T,
     /// Z
-    pub z: f32,
+    pub z: T,
 }
 
-impl Xyz {
+impl<T> Xyz<T> {
     /// A new triple.
-    pub const fn new(x: f32, y: f32, z: f32) -> Self {
+    pub const fn new(x: T, y: T, z: T) -> Self {
         Self { x, y, z }
     }
+}
 
+impl<T: Real> Xyz<T> {
     /// As an array `[X, Y, Z]`.
-    pub fn to_array(self) -> [f32; 3] {
+    pub fn to_array(self) -> [T; 3] {
         [self.x, self.y, self.z]
     }
 
     /// From an array.
-    pub fn from_array(a: [f32; 3]) -> Self {
+    pub fn from_array(a: [T; 3]) -> Self {
         Self::new(a[0], a[1], a[2])
     }
 
     /// Scaled by `k` (the same as `self * k`).
-    pub fn scale(self, k: f32) -> Xyz {
+    pub fn scale(self, k: T) -> Xyz<T> {
         Xyz::new(self.x * k, self.y * k, self.z * k)
     }
 }
 
-impl Add for Xyz {
-    type Output = Xyz;
+impl<T: Real> Add for Xyz<T> {
+    type Output = Xyz<T>;
     /// Component-wise sum (lights add).
-    fn add(self, o: Xyz) -> Xyz {
+    fn add(self, o: Xyz<T>) -> Xyz<T> {
         Xyz::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
 }
 
-impl Sub for Xyz {
-    type Output = Xyz;
+impl<T: Real> Sub for Xyz<T> {
+    type Output = Xyz<T>;
     /// Component-wise difference (e.g. a reading minus the black level).
-    fn sub(self, o: Xyz) -> Xyz {
+    fn sub(self, o: Xyz<T>) -> Xyz<T> {
         Xyz::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }
 }
 
-impl Mul<f32> for Xyz {
-    type Output = Xyz;
+impl<T: Real> Mul<T> for Xyz<T> {
+    type Output = Xyz<T>;
     /// Scaled by `k` ([`Xyz::scale`]).
-    fn mul(self, k: f32) -> Xyz {
+    fn mul(self, k: T) -> Xyz<T> {
         self.scale(k)
     }
 }
 
-impl From<Xyz> for [f64; 3] {
-    /// Widened to f64 (for CIELAB and reports).
-    fn from(v: Xyz) -> [f64; 3] {
-        [v.x as f64, v.y as f64, v.z as f64]
+impl<T: Real> From<Xyz<T>> for [f64; 3] {
+    /// As f64 (f32 widened; for CIELAB and reports).
+    fn from(v: Xyz<T>) -> [f64; 3] {
+        [v.x.to_f64(), v.y.to_f64(), v.z.to_f64()]
     }
 }
 
@@ -340,24 +330,25 @@ pub fn delta_e2000_xyz(a: [f64; 3], b: [f64; 3], white: [f64; 3]) -> f64 {
     delta_e2000(Lab::from_xyz(a, white), Lab::from_xyz(b, white))
 }
 
-/// The Bradford cone-response matrix (Lam 1985).
-pub const BRADFORD: Mat3 = Mat3([
+/// The Bradford cone-response matrix (Lam 1985), the one copy; [`bradford`] takes it at
+/// either component type ([`Mat3::cast`]).
+pub const BRADFORD: Mat3<f64> = Mat3([
     [0.8951, 0.2664, -0.1614],
     [-0.7502, 1.7135, 0.0367],
     [0.0389, -0.0685, 1.0296],
 ]);
 
+/// The ICC profile connection space's illuminant D50 as ICC.1 writes it (s15Fixed16-exact:
+/// `X = 0.9642, Y = 1, Z = 0.8249`; CIE's D50 is 0.96422, 1, 0.82521).
+pub const ICC_D50: Xyz<f64> = Xyz::new(0.9642, 1.0, 0.8249);
+
 /// The matrix adapting XYZ seen under white `from` to the corresponding XYZ under white `to`
-/// (Bradford: `M⁻¹ · diag(ρ_to / ρ_from) · M`).
-pub fn bradford(from: Xyz, to: Xyz) -> Mat3 {
-    let m = BRADFORD;
+/// (Bradford: `M⁻¹ · diag(ρ_to / ρ_from) · M`), in f32 or f64.
+pub fn bradford<T: Real>(from: Xyz<T>, to: Xyz<T>) -> Mat3<T> {
+    let m: Mat3<T> = BRADFORD.cast();
     let s = m.apply(from.to_array());
     let d = m.apply(to.to_array());
-    let diag = Mat3([
-        [d[0] / s[0], 0.0, 0.0],
-        [0.0, d[1] / s[1], 0.0],
-        [0.0, 0.0, d[2] / s[2]],
-    ]);
+    let diag = Mat3::diagonal([d[0] / s[0], d[1] / s[1], d[2] / s[2]]);
     // BRADFORD is invertible (det ≈ 1.9); this cannot fail.
     let inv = m.inverse().unwrap_or(Mat3::IDENTITY);
     inv.mul(&diag).mul(&m)

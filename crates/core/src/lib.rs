@@ -36,9 +36,15 @@
 //!   firmware computes. 24 bits are far beyond the data (measured reflectances carry 3–4
 //!   digits), f32 is what a Cortex-M4F does in hardware, and twice as many lanes vectorise.
 //! - **f64 at the edges**: sums over many terms (moments over 401 wavelengths, fits' normal
-//!   equations, the 1 nm reference [`exact_xyz`]), linear algebra ([`solve`], [`Mat3::inverse`]
-//!   computes in f64), the paper's raw-λ monomials, and CIELAB/CIEDE2000 ([`Lab`], differences
-//!   of nearly equal numbers), and every figure the host reports.
+//!   equations, the 1 nm reference [`exact_xyz`]), linear algebra ([`solve`]), the paper's
+//!   raw-λ monomials, CIELAB/CIEDE2000 ([`Lab`], differences of nearly equal numbers),
+//!   CIECAM02, the host's ICC profiles, and every figure the host reports.
+//! - **One type at both**: [`Mat3<T>`](Mat3) and [`Xyz<T>`](Xyz) are generic over [`Real`]
+//!   (`f32`, the default, or `f64`), and so is [`bradford`]: one Bradford, one 3×3 product,
+//!   one inverse per component type. The f32 inverse stays in f32 (the adjugate refined by a
+//!   Newton step summed with its rounding errors: no soft f64 on the firmware); the f64 one is
+//!   the adjugate. Literals with nothing else to fix their type are f64 (Rust's fallback):
+//!   write `Xyz::<f32>::new(…)` where an f32 value is meant.
 //! - Crossing: f32 → f64 by widening (`<[f64; 3]>::from(xyz)`, [`Lab::from_xyz`] takes both);
 //!   f64 → f32 once, when a kernel value is made (a fit, a moment, a matrix).
 //!
@@ -51,8 +57,8 @@
 //! source: the same tables in two languages); the documented constants and result structs of
 //! `light::cct` and `light::tm30` (one doc line per item); the tests of `pixel::transform`
 //! (one `Options` literal and one `PanelTransform` each). `light::channels` inverts 3×3 systems
-//! in f32 by the adjugate and solves 2×2 ones by Cramer's rule rather than calling
-//! [`solve`]/[`Mat3::inverse`] (f64): on the Cortex-M4F f64 is soft float and a six-channel mix
+//! in f32 by the adjugate alone and solves 2×2 ones by Cramer's rule rather than calling
+//! [`solve`] (f64) or [`Mat3::inverse`] (refined): on the Cortex-M4F f64 is soft float and a six-channel mix
 //! takes 20 inverses and 240 2×2 solves per fade step (docs/leds.md).
 #![no_std]
 #![forbid(unsafe_code)]
@@ -93,7 +99,7 @@ pub use fit::FitErrors;
 pub use illuminant::Illuminant;
 pub use interaction::Interaction;
 pub use layout::{Breaks, Layout, Paper, Uniform, PAPER_BREAKS};
-pub use matrix::Mat3;
+pub use matrix::{Mat3, Real};
 pub use moments::{exact_xyz, Moments};
 pub use observer::Observer;
 pub use shade::{Rgb, RgbLight, Sampled, SampledLight, Shade};

@@ -33,11 +33,12 @@
 //! Every key is described in docs/calibration.md. Loading checks the format name, the
 //! version, and that every number is finite and the model is usable.
 
+use crate::error::{Error, Result};
 pub use crate::lattice::Lattice;
+pub use crate::time::{now_utc, utc_parts};
 use serde::{Deserialize, Serialize};
 use specpoly_core::display_model::FULL;
 use specpoly_core::{Display, DisplayModel, Interaction, Transfer, Xyz};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::toml_error::one_line;
 use std::path::Path;
 
@@ -95,7 +96,7 @@ impl Primaries {
 }
 
 /// Which transfer curve the model uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TransferKind {
     /// The measured ramp, resampled to at most 64 evenly spaced points.
@@ -258,9 +259,10 @@ pub struct Calibration {
 
 fn finite(name: &str, v: &[f64]) -> Result<()> {
     match v.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(CliError::data(format!(
-            "{name}[{i}] is not a finite number"
-        ))),
+        Some(i) => Err(Error::NotFinite {
+            field: name.to_string(),
+            index: i,
+        }),
         None => Ok(()),
     }
 }
@@ -269,35 +271,38 @@ impl Calibration {
     /// Checks the contents and builds the display model.
     pub fn new(data: CalibrationData) -> Result<Self> {
         if data.format != FORMAT {
-            return Err(CliError::data(format!(
-                "format is \"{}\", expected \"{FORMAT}\"",
-                data.format
-            )));
+            return Err(Error::WrongFormat {
+                found: data.format.clone(),
+                expected: FORMAT,
+            });
         }
         if data.version != VERSION {
-            return Err(CliError::data(format!(
-                "calibration version {} is not supported (this build reads version {VERSION})",
-                data.version
-            )));
+            return Err(Error::Version {
+                found: data.version.into(),
+                supported: VERSION,
+            });
         }
         if data.units != "cd/m2" && data.units != "relative" {
-            return Err(CliError::data(format!(
-                "units \"{}\" must be \"cd/m2\" or \"relative\"",
-                data.units
-            )));
+            return Err(Error::invalid(
+                format!("units \"{}\"", data.units),
+                "must be \"cd/m2\" or \"relative\"",
+            ));
         }
         finite("black", &data.black)?;
         finite("white", &data.white)?;
         if data.white[1] <= 0.0 {
-            return Err(CliError::data("white Y must be positive"));
+            return Err(Error::invalid("white Y", "must be positive"));
         }
         for (name, p) in ["red", "green", "blue"].iter().zip(data.primaries.array()) {
             finite(&format!("primaries.{name}"), &[p.x, p.y, p.luminance])?;
             if p.y <= 0.0 || p.x < 0.0 || p.x + p.y > 1.0 + 1e-9 || p.luminance <= 0.0 {
-                return Err(CliError::data(format!(
-                    "primaries.{name}: x = {}, y = {}, Y = {} is not a valid primary (need y > 0, x + y ≤ 1, Y > 0)",
-                    p.x, p.y, p.luminance
-                )));
+                return Err(Error::bad(
+                    format!("primaries.{name}"),
+                    format!(
+                        "x = {}, y = {}, Y = {} is not a valid primary (need y > 0, x + y ≤ 1, Y > 0)",
+                        p.x, p.y, p.luminance
+                    ),
+                ));
             }
         }
         let t = &data.transfer;
@@ -305,30 +310,35 @@ impl Calibration {
         for (c, name) in ["red", "green", "blue"].iter().enumerate() {
             finite("transfer.gamma", &t.gamma)?;
             if !(0.1..=10.0).contains(&t.gamma[c]) {
-                return Err(CliError::data(format!(
-                    "transfer.gamma[{c}] = {} is outside 0.1–10",
-                    t.gamma[c]
-                )));
+                return Err(Error::invalid(
+                    format!("transfer.gamma[{c}] = {}", t.gamma[c]),
+                    "is outside 0.1–10",
+                ));
             }
             let table = t.tables()[c];
             finite(&format!("transfer.{name}"), table)?;
             let f: Vec<f32> = table.iter().map(|v| *v as f32).collect();
-            let tab = Transfer::table(&f).map_err(|e| {
-                CliError::data(format!(
-                    "transfer.{name}: {e} (need 2–{} non-decreasing values)",
+            let tab = Transfer::table(&f).map_err(|error| Error::Model {
+                what: format!("transfer.{name}"),
+                error,
+                hint: format!(
+                    " (need 2–{} non-decreasing values)",
                     specpoly_core::display::TABLE_MAX
-                ))
+                ),
             })?;
             // the controller's rule for `trc table` (firmware/PROTOCOL.md): off is 0, full is 1
             if t.kind == TransferKind::Table
                 && (table.first() != Some(&0.0) || table.last() != Some(&1.0))
             {
-                return Err(CliError::data(format!(
-                    "transfer.{name}: a table must start at 0 and end at 1 (linear light at \
-                     device 0 and 1), not {} … {}",
-                    table.first().copied().unwrap_or(f64::NAN),
-                    table.last().copied().unwrap_or(f64::NAN)
-                )));
+                return Err(Error::bad(
+                    format!("transfer.{name}"),
+                    format!(
+                        "a table must start at 0 and end at 1 (linear light at device 0 and 1), \
+                         not {} … {}",
+                        table.first().copied().unwrap_or(f64::NAN),
+                        table.last().copied().unwrap_or(f64::NAN)
+                    ),
+                ));
             }
             curves[c] = match t.kind {
                 TransferKind::Table => tab,
@@ -337,10 +347,12 @@ impl Calibration {
         }
         let interaction = match &data.interaction {
             Some(l) => {
-                l.check().map_err(CliError::data)?;
+                l.check()?;
                 let v = l.values.iter().map(|v| v.map(|x| x as f32));
-                Some(Interaction::new(l.grid, v).map_err(|e| {
-                    CliError::data(format!("interaction: {e} (an offset beyond f32?)"))
+                Some(Interaction::new(l.grid, v).map_err(|error| Error::Model {
+                    what: "interaction".into(),
+                    error,
+                    hint: " (an offset beyond f32?)".into(),
                 })?)
             }
             None => None,
@@ -356,7 +368,11 @@ impl Calibration {
             ),
             curves,
         )
-        .map_err(|e| CliError::data(format!("the primaries do not make a display: {e}")))?;
+        .map_err(|error| Error::Model {
+            what: "the primaries do not make a display".into(),
+            error,
+            hint: String::new(),
+        })?;
         Ok(Calibration {
             data,
             model: Box::new(DisplayModel::new(display, interaction)),
@@ -439,8 +455,10 @@ impl Calibration {
 
     /// The TOML text of the file.
     pub fn to_toml(&self) -> Result<String> {
-        let body = toml::to_string(&self.data)
-            .map_err(|e| CliError::data(format!("cannot write the calibration: {e}")))?;
+        let body = toml::to_string(&self.data).map_err(|error| Error::Write {
+            what: "the calibration",
+            error,
+        })?;
         // the optional table goes last, after every table of the model
         let lut = match &self.video_lut {
             None => String::new(),
@@ -449,8 +467,9 @@ impl Calibration {
                 struct Lut<'a> {
                     video_lut: &'a crate::video_lut::VideoLut,
                 }
-                let t = toml::to_string(&Lut { video_lut: l }).map_err(|e| {
-                    CliError::data(format!("cannot write the calibration's video LUT: {e}"))
+                let t = toml::to_string(&Lut { video_lut: l }).map_err(|error| Error::Write {
+                    what: "the calibration's video LUT",
+                    error,
                 })?;
                 format!("\n{t}")
             }
@@ -462,47 +481,47 @@ impl Calibration {
 
     /// Parses a calibration file's text; `source` names it in errors.
     pub fn from_toml(text: &str, source: &str) -> Result<Self> {
-        let value: toml::Value = text
-            .parse()
-            .map_err(|e: toml::de::Error| CliError::data(one_line(&e, text, source)))?;
+        let value: toml::Value = text.parse().map_err(|e: toml::de::Error| Error::Toml {
+            message: one_line(&e, text, source),
+        })?;
         match value.get("format").and_then(|v| v.as_str()) {
             Some(FORMAT) => {}
             Some(f) => {
                 // the file's own text, shown on one line (found by fuzzing)
                 let f = specpoly_formats::escape::one_line(f);
-                return Err(CliError::data(format!(
-                    "{source}: format is \"{f}\", expected \"{FORMAT}\""
-                )));
+                return Err(Error::WrongFormat {
+                    found: f.into_owned(),
+                    expected: FORMAT,
+                }
+                .in_file(source));
             }
-            None => {
-                return Err(CliError::data(format!(
-                    "{source}: not a specpoly calibration (no format = \"{FORMAT}\")"
-                )))
-            }
+            None => return Err(Error::NotACalibration { expected: FORMAT }.in_file(source)),
         }
         match value.get("version").and_then(|v| v.as_integer()) {
             Some(v) if v == VERSION as i64 => {}
             Some(v) => {
-                return Err(CliError::data(format!(
-                    "{source}: calibration version {v} is not supported (this build reads version {VERSION})"
-                )))
+                return Err(Error::Version {
+                    found: v,
+                    supported: VERSION,
+                }
+                .in_file(source))
             }
-            None => return Err(CliError::data(format!("{source}: no version"))),
+            None => return Err(Error::NoVersion.in_file(source)),
         }
         let lut =
             match value.get("video_lut") {
                 None => None,
                 Some(v) => Some(v.clone().try_into::<crate::video_lut::VideoLut>().map_err(
-                    |e| CliError::data(one_line(&e, text, &format!("{source}: video_lut"))),
+                    |e| Error::Toml {
+                        message: one_line(&e, text, &format!("{source}: video_lut")),
+                    },
                 )?),
             };
-        let data: CalibrationData = value
-            .try_into()
-            .map_err(|e: toml::de::Error| CliError::data(one_line(&e, text, source)))?;
-        let mut cal =
-            Calibration::new(data).map_err(|e| CliError::data(format!("{source}: {e}")))?;
-        cal.set_video_lut(lut)
-            .map_err(|e| CliError::data(format!("{source}: {e}")))?;
+        let data: CalibrationData = value.try_into().map_err(|e: toml::de::Error| Error::Toml {
+            message: one_line(&e, text, source),
+        })?;
+        let mut cal = Calibration::new(data).map_err(|e| e.in_file(source))?;
+        cal.set_video_lut(lut).map_err(|e| e.in_file(source))?;
         Ok(cal)
     }
 
@@ -517,32 +536,6 @@ impl Calibration {
 
 /// Loads a calibration file.
 pub fn load(path: &Path) -> Result<Calibration> {
-    let text = specpoly_formats::read::text(std::path::Path::new(path))?;
+    let text = specpoly_formats::read::text(path)?;
     Calibration::from_toml(&text, &path.display().to_string())
-}
-
-/// The current time, UTC, ISO 8601 (`2026-11-22T21:40:39Z`).
-pub fn now_utc() -> String {
-    let [y, m, d, h, min, s] = utc_parts();
-    format!("{y:04}-{m:02}-{d:02}T{h:02}:{min:02}:{s:02}Z")
-}
-
-/// The current time, UTC: year, month, day, hour, minute, second.
-pub fn utc_parts() -> [i64; 6] {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs() as i64)
-        .unwrap_or(0);
-    let (days, rem) = (secs.div_euclid(86400), secs.rem_euclid(86400));
-    // Howard Hinnant's civil_from_days
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    [y, m, d, rem / 3600, rem % 3600 / 60, rem % 60]
 }

@@ -4,12 +4,12 @@
 //! (docs/calibration.md, "Framebuffer export").
 
 use crate::calibration::Calibration;
+use crate::error::{Error, Result};
 use specpoly_core::pixel::{export, Options, PanelTransform, Source, White};
 use specpoly_core::GamutMap;
-use specpoly_formats::error::{CliError, Result};
 
 /// The source colour space of the firmware's UI.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SourceArg {
     /// sRGB (IEC 61966-2-1).
     #[default]
@@ -31,7 +31,7 @@ impl From<SourceArg> for Source {
 }
 
 /// What to write.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     /// A C99 header: tables and `NAME_levels`, `NAME_codes`, `NAME_rgb565`.
     CTable,
@@ -40,7 +40,7 @@ pub enum Format {
 }
 
 /// The panel's bits per channel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Bits {
     /// 5-6-5.
     #[default]
@@ -62,7 +62,7 @@ impl Bits {
 }
 
 /// How the source white is reproduced.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum WhiteArg {
     /// Adapted (Bradford) to the panel's white: source white → full drive.
     #[default]
@@ -110,8 +110,11 @@ pub fn transform(
         map: GamutMap::Clip,
         bits: bits.array(),
     };
-    PanelTransform::new(&cal.display(), opts)
-        .map_err(|e| CliError::data(format!("cannot build the pixel transform: {e}")))
+    PanelTransform::new(&cal.display(), opts).map_err(|error| Error::Model {
+        what: "cannot build the pixel transform".into(),
+        error,
+        hint: String::new(),
+    })
 }
 
 /// The source text of `p` in `format`, named `name`; `origin` is said in its leading comment.
@@ -121,7 +124,6 @@ pub fn source_text(p: &PanelTransform, format: Format, name: &str, origin: &str)
         Format::CTable => export::write_c(p, name, origin, &mut out),
         Format::Rust => export::write_rust(p, &name.to_ascii_uppercase(), origin, &mut out),
     };
-    written
-        .map_err(|_| CliError::data("cannot write the tables (the C export needs the clip map)"))?;
+    written.map_err(|_| Error::ExportNeedsClip)?;
     Ok(out)
 }

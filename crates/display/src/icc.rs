@@ -27,55 +27,19 @@
 //! 1, 1, 1), so relative colorimetric transforms map device white to D50.
 
 use crate::calibration::{Calibration, TransferKind};
+use crate::error::{Error, Result};
 use crate::video_lut::VideoLut;
-use specpoly_formats::error::{CliError, Result};
+use specpoly_core::colorimetry::ICC_D50;
+use specpoly_core::{bradford, Mat3, Xyz};
 
-/// The ICC PCS illuminant D50 as the ICC writes it (s15Fixed16-exact values).
-pub const D50: [f64; 3] = [0.9642, 1.0, 0.8249];
+/// The ICC PCS illuminant D50 as the ICC writes it (s15Fixed16-exact values):
+/// [`specpoly_core::colorimetry::ICC_D50`] as an array.
+pub const D50: [f64; 3] = [ICC_D50.x, ICC_D50.y, ICC_D50.z];
 
-/// The Bradford matrix (Lam 1985), as in `specpoly_core::colorimetry::BRADFORD`.
-const BRADFORD: [[f64; 3]; 3] = [
-    [0.8951, 0.2664, -0.1614],
-    [-0.7502, 1.7135, 0.0367],
-    [0.0389, -0.0685, 1.0296],
-];
-
-fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
-}
-
-fn mat_mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-/// The inverse of a 3×3 matrix (adjugate), `None` if singular.
-pub fn mat_inv(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    let c =
-        |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
-    let cof = [
-        [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
-        [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
-        [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
-    ];
-    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
-    if !det.is_finite() || det.abs() < 1e-300 {
-        return None;
-    }
-    Some([0, 1, 2].map(|i| [0, 1, 2].map(|j| cof[j][i] / det)))
-}
-
-/// Bradford adaptation from white `from` to white `to` (f64).
-pub fn bradford(from: [f64; 3], to: [f64; 3]) -> [[f64; 3]; 3] {
-    let s = mat_vec(&BRADFORD, from);
-    let d = mat_vec(&BRADFORD, to);
-    let diag = [
-        [d[0] / s[0], 0.0, 0.0],
-        [0.0, d[1] / s[1], 0.0],
-        [0.0, 0.0, d[2] / s[2]],
-    ];
-    // the Bradford matrix is invertible (det ≈ 1.9)
-    let inv = mat_inv(&BRADFORD).unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-    mat_mul(&mat_mul(&inv, &diag), &BRADFORD)
+/// Bradford adaptation from the white `white` (any scale: taken at `Y = 1`) to the PCS's D50:
+/// the profile's `chad`.
+pub fn chad(white: [f64; 3]) -> Mat3<f64> {
+    bradford(Xyz::from_array(white.map(|v| v / white[1])), ICC_D50)
 }
 
 /// The model's white (device 1, 1, 1) in the calibration's units.
@@ -87,8 +51,7 @@ pub fn model_white(cal: &Calibration) -> [f64; 3] {
 /// `chad · XYZ / Y_white`. What a colour-managed application gets from the profile.
 pub fn predict_pcs(cal: &Calibration, rgb: [f64; 3]) -> [f64; 3] {
     let w = model_white(cal);
-    let chad = bradford(w.map(|v| v / w[1]), D50);
-    mat_vec(&chad, cal.predict(rgb).map(|v| v / w[1]))
+    chad(w).apply(cal.predict(rgb).map(|v| v / w[1]))
 }
 
 fn s15(v: f64) -> [u8; 4] {
@@ -156,14 +119,12 @@ fn trc(cal: &Calibration, channel: usize, k: f64) -> Vec<u8> {
 }
 
 /// The profile version written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum IccVersion {
     /// ICC v2.4 (the default: every consumer reads it).
     #[default]
-    #[value(name = "2")]
     V2,
     /// ICC v4.4.
-    #[value(name = "4")]
     V4,
 }
 
@@ -368,10 +329,13 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
     // B2A0
     let w = model_white(cal);
     if !(w[1] > 0.0) {
-        return Err(CliError::data("the calibration's white has no luminance"));
+        return Err(Error::Unprofilable(
+            "the calibration's white has no luminance",
+        ));
     }
-    let chad = bradford(w.map(|v| v / w[1]), D50);
-    let unchad = mat_inv(&chad).ok_or_else(|| CliError::data("the white is degenerate"))?;
+    let unchad = chad(w)
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the white is degenerate"))?;
     let lin_of = |rgb: [f64; 3]| {
         [0, 1, 2].map(|c| {
             let t = &curves[c];
@@ -387,7 +351,7 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
         for y in 0..GRID {
             for z in 0..GRID {
                 let pcs = [g(x) * full, g(y) * full, g(z) * full];
-                let xyz = mat_vec(&unchad, pcs).map(|v| v * w[1]);
+                let xyz = unchad.apply(pcs).map(|v| v * w[1]);
                 // inside the gamut the model's own inverse; outside, the base matrix's linear
                 // drive unclipped, so the grid stays linear across the gamut's boundary
                 let lin = match crate::target::reach(cal, xyz) {
@@ -421,17 +385,20 @@ pub fn build(cal: &Calibration, description: &str, opts: &IccOptions) -> Result<
     let v2 = opts.version == IccVersion::V2;
     let m = cal.matrix(); // rows X, Y, Z; columns R, G, B
     let black = cal.data().black;
-    let inv =
-        mat_inv(&m).ok_or_else(|| CliError::data("the calibration's primaries are singular"))?;
-    let k = mat_vec(&inv, black).map(|v| v.max(0.0));
+    let inv = Mat3(m)
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
+    let k = inv.apply(black).map(|v| v.max(0.0));
     // M' = M diag(1 + k)
     let m1 = [0, 1, 2].map(|r| [0, 1, 2].map(|c| m[r][c] * (1.0 + k[c])));
     let w = [0, 1, 2].map(|r| m1[r][0] + m1[r][1] + m1[r][2]);
     if w[1].is_nan() || w[1] <= 0.0 {
-        return Err(CliError::data("the calibration's white has no luminance"));
+        return Err(Error::Unprofilable(
+            "the calibration's white has no luminance",
+        ));
     }
-    let chad = bradford(w.map(|v| v / w[1]), D50);
-    let col = |c: usize| mat_vec(&chad, [m1[0][c] / w[1], m1[1][c] / w[1], m1[2][c] / w[1]]);
+    let chad = chad(w);
+    let col = |c: usize| chad.apply([m1[0][c] / w[1], m1[1][c] / w[1], m1[2][c] / w[1]]);
     let copyright = "No copyright; written by specpoly from a measured calibration";
     let (desc, cprt, wtpt) = if v2 {
         (
@@ -446,7 +413,7 @@ pub fn build(cal: &Calibration, description: &str, opts: &IccOptions) -> Result<
         (b"desc", desc),
         (b"cprt", cprt),
         (b"wtpt", wtpt),
-        (b"chad", sf32(&chad)),
+        (b"chad", sf32(&chad.0)),
         (b"rXYZ", xyz_tag(col(0))),
         (b"gXYZ", xyz_tag(col(1))),
         (b"bXYZ", xyz_tag(col(2))),
@@ -532,7 +499,7 @@ fn created(cal: &Calibration) -> [i64; 6] {
         {
             [y, mo, d, h, mi, s]
         }
-        _ => crate::calibration::utc_parts(),
+        _ => crate::time::utc_parts(),
     }
 }
 

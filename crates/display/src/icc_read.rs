@@ -20,16 +20,17 @@
 //!   model (exact at the nodes, trilinear between them, as Little CMS interpolates a 17³
 //!   table); `render --display` and `xyz --display` use it, `led` the matrix model.
 
+use crate::error::{Error, Result};
 use lcms2::{
     ColorSpaceSignature, Intent, PixelFormat, Profile, ProfileClassSignature, Tag, TagSignature,
     Transform,
 };
 use specpoly_core::display_model::FULL;
 use specpoly_core::{Display, DisplayModel, Interaction, Transfer, Xyz};
-use specpoly_formats::error::{CliError, Result};
 use std::path::Path;
 
-use crate::icc::{bradford, mat_inv, D50};
+use specpoly_core::colorimetry::ICC_D50;
+use specpoly_core::{bradford, Mat3};
 
 /// Whether `bytes` start like an ICC profile (`acsp` at offset 36).
 pub fn is_icc(bytes: &[u8]) -> bool {
@@ -58,10 +59,6 @@ pub fn load(path: &Path) -> Result<Display> {
     display(&bytes, &path.display().to_string())
 }
 
-fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
-}
-
 /// The display an ICC profile's bytes describe (its matrix model); `source` names it in errors.
 pub fn display(bytes: &[u8], source: &str) -> Result<Display> {
     Ok(model(bytes, source)?.display().clone())
@@ -86,7 +83,10 @@ pub const LATTICE_FLOOR: f64 = 1e-3;
 
 /// The model an ICC profile's bytes describe.
 pub fn model(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
-    let bad = |why: String| CliError::data(format!("{source}: {why}"));
+    let bad = |why: String| Error::Profile {
+        file: source.to_string(),
+        why,
+    };
     if !is_icc(bytes) {
         return Err(bad("not an ICC profile (no `acsp` signature)".into()));
     }
@@ -125,12 +125,14 @@ pub fn model(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
         _ => None,
     };
     let to_display = match chad {
-        Some(c) => mat_inv(&c).ok_or_else(|| bad("its `chad` matrix is singular".into()))?,
+        Some(c) => Mat3(c)
+            .inverse()
+            .map_err(|_| bad("its `chad` matrix is singular".into()))?,
         None if p.version() < 4.0 => match p.read_tag(TagSignature::MediaWhitePointTag) {
-            Tag::CIEXYZ(w) if w.Y > 0.0 => bradford(D50, [w.X / w.Y, 1.0, w.Z / w.Y]),
-            _ => bradford(D50, D50),
+            Tag::CIEXYZ(w) if w.Y > 0.0 => bradford(ICC_D50, Xyz::new(w.X / w.Y, 1.0, w.Z / w.Y)),
+            _ => bradford(ICC_D50, ICC_D50),
         },
-        None => bradford(D50, D50),
+        None => bradford(ICC_D50, ICC_D50),
     };
     let colorants = [
         TagSignature::RedColorantTag,
@@ -176,7 +178,7 @@ pub fn model(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
         };
     // black: what the curves give at 0, through the colorants
     let k: [f64; 3] = [0, 1, 2].map(|c| curves[c][0]);
-    let mut black = mat_vec(&to_display, black_pcs).map(|v| v * luminance);
+    let mut black = to_display.apply(black_pcs).map(|v| v * luminance);
     let mut prim = [[0.0; 3]; 3];
     let mut trc = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
     for c in 0..3 {
@@ -188,7 +190,7 @@ pub fn model(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
                 curves[c][n - 1]
             )));
         }
-        let xyz = mat_vec(&to_display, pcs[c]).map(|v| v * luminance);
+        let xyz = to_display.apply(pcs[c]).map(|v| v * luminance);
         for j in 0..3 {
             black[j] += k[c] * xyz[j];
             prim[c][j] = span * xyz[j];
@@ -221,7 +223,7 @@ pub fn model(bytes: &[u8], source: &str) -> Result<Box<DisplayModel<FULL>>> {
     .map_err(|e| bad(format!("its primaries do not make a display: {e}")))?;
     let lattice = if lut {
         sample_lattice(&p, &display, |pcs| {
-            mat_vec(&to_display, pcs).map(|v| v * luminance)
+            to_display.apply(pcs).map(|v| v * luminance)
         })
         .map_err(bad)?
     } else {

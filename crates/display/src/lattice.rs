@@ -16,6 +16,7 @@
 //! `O(n³)`. It is twenty lines of our own: the general crates that have one (nalgebra,
 //! faer) are large for this one call.
 
+use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The largest lattice side the calibration file accepts.
@@ -75,19 +76,22 @@ impl Lattice {
     }
 
     /// A one-line check: side 2–[`MAX_GRID`], `grid³` finite values.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<()> {
         if !(2..=MAX_GRID).contains(&self.grid) {
-            return Err(format!(
-                "interaction.grid = {} must be 2–{MAX_GRID}",
-                self.grid
+            return Err(Error::invalid(
+                format!("interaction.grid = {}", self.grid),
+                format!("must be 2–{MAX_GRID}"),
             ));
         }
         let n = self.grid.pow(3);
         if self.values.len() != n {
-            return Err(format!(
-                "interaction.values has {} entries, grid {} needs {n}",
-                self.values.len(),
-                self.grid
+            return Err(Error::invalid(
+                "interaction.values",
+                format!(
+                    "has {} entries, grid {} needs {n}",
+                    self.values.len(),
+                    self.grid
+                ),
             ));
         }
         if let Some(i) = self
@@ -95,7 +99,10 @@ impl Lattice {
             .iter()
             .position(|v| v.iter().any(|x| !x.is_finite()))
         {
-            return Err(format!("interaction.values[{i}] is not finite"));
+            return Err(Error::invalid(
+                format!("interaction.values[{i}]"),
+                "is not finite",
+            ));
         }
         Ok(())
     }

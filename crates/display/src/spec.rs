@@ -16,10 +16,10 @@
 //! ```
 
 use crate::calibration::Calibration;
+use crate::error::{Error, Result};
 use serde::Deserialize;
 use specpoly_core::display_model::FULL;
 use specpoly_core::{Display, DisplayModel, Transfer, Xyz};
-use specpoly_formats::error::{CliError, Result};
 use std::path::{Path, PathBuf};
 
 /// A display description, read once.
@@ -55,9 +55,9 @@ impl DisplaySpec {
         }
         let path = Path::new(spec);
         if !path.exists() {
-            return Err(CliError::usage(format!(
-                "--display `{spec}`: not `sRGB` and no such file"
-            )));
+            return Err(Error::NoSuchDisplay {
+                spec: spec.to_string(),
+            });
         }
         if crate::icc_read::is_icc_file(path) {
             return Self::icc(path);
@@ -169,38 +169,43 @@ enum TransferSpec {
 
 /// Parses a display TOML; `source` names it in errors.
 pub fn parse(text: &str, source: &str) -> Result<Display> {
-    let f: DisplayFile = toml::from_str(text)
-        .map_err(|e| CliError::data(specpoly_formats::toml_error::one_line(&e, text, source)))?;
+    let f: DisplayFile = toml::from_str(text).map_err(|e| Error::Toml {
+        message: specpoly_formats::toml_error::one_line(&e, text, source),
+    })?;
     let curve = match (f.gamma, f.transfer) {
         (Some(_), Some(_)) => {
-            return Err(CliError::data(format!(
-                "{source}: give `gamma` or `transfer`, not both"
-            )))
+            return Err(Error::invalid("give `gamma` or `transfer`,", "not both").in_file(source))
         }
         (Some(g), None) if g.is_finite() && g > 0.0 => Transfer::Gamma(g),
         (Some(g), None) => {
-            return Err(CliError::data(format!(
-                "{source}: gamma {g} must be positive"
-            )))
+            return Err(Error::invalid(format!("gamma {g}"), "must be positive").in_file(source))
         }
         (None, None) => Transfer::Srgb,
         (None, Some(TransferSpec::Name(n))) => match n.to_ascii_lowercase().as_str() {
             "srgb" => Transfer::Srgb,
             "linear" => Transfer::Linear,
             _ => {
-                return Err(CliError::data(format!(
-                    "{source}: transfer `{n}`: use \"srgb\", \"linear\" or a table"
-                )))
+                return Err(Error::bad(
+                    format!("transfer `{n}`"),
+                    "use \"srgb\", \"linear\" or a table",
+                )
+                .in_file(source))
             }
         },
-        (None, Some(TransferSpec::Table(t))) => Transfer::table(&t)
-            .map_err(|e| CliError::data(format!("{source}: transfer table: {e}")))?,
+        (None, Some(TransferSpec::Table(t))) => Transfer::table(&t).map_err(|error| {
+            Error::Model {
+                what: "transfer table".into(),
+                error,
+                hint: String::new(),
+            }
+            .in_file(source)
+        })?,
     };
     let black = f.black.map(Xyz::from_array).unwrap_or_default();
     if f.luminance.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
-        return Err(CliError::data(format!(
-            "{source}: every primary's luminance must be positive"
-        )));
+        return Err(
+            Error::invalid("every primary's luminance", "must be positive").in_file(source),
+        );
     }
     Display::from_primaries(
         f.primaries,
@@ -208,7 +213,7 @@ pub fn parse(text: &str, source: &str) -> Result<Display> {
         black,
         [curve.clone(), curve.clone(), curve],
     )
-    .map_err(|e| CliError::data(format!("{source}: {e}")))
+    .map_err(|e| Error::Core(e).in_file(source))
 }
 
 #[cfg(test)]

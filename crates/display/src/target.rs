@@ -33,10 +33,10 @@
 //! after [`Options::iterations`].
 
 use crate::calibration::Calibration;
+use crate::error::{Error, Result};
 use crate::video_lut::VideoLut;
 use specpoly_core::delta_e2000_xyz as delta_e00;
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 
 /// A grey (and the white) counts as on target within this ΔE00 of its aim: DisplayCAL's
 /// "recommended" white tolerance (1) halved, as the refinement reaches it on every simulated
@@ -112,8 +112,12 @@ pub fn parse(s: &str) -> Result<Target> {
     let mut t = Target::default();
     let mut i = 0;
     let opts = &spec.options;
-    let bad =
-        |k: &str, v: &str, why: &str| CliError::usage(format!("--target `{s}`: `{k}={v}`: {why}"));
+    let bad = |k: &str, v: &str, why: &'static str| Error::TargetValue {
+        spec: s.to_string(),
+        key: k.to_string(),
+        value: v.to_string(),
+        why,
+    };
     while i < opts.len() {
         let (k, v) = opts[i];
         match k {
@@ -131,9 +135,7 @@ pub fn parse(s: &str) -> Result<Target> {
                                     .get(i + 1)
                                     .filter(|(y, e)| e.is_empty() && y.parse::<f64>().is_ok())
                                     .map(|(y, _)| *y)
-                                    .ok_or_else(|| {
-                                        bad(k, v, "expected D65, D50, native or x,y")
-                                    })?;
+                                    .ok_or_else(|| bad(k, v, "expected D65, D50, native or x,y"))?;
                                 i += 1;
                                 (v, y)
                             }
@@ -159,8 +161,7 @@ pub fn parse(s: &str) -> Result<Target> {
                 }
             }
             "luminance" => {
-                t.luminance = if v.eq_ignore_ascii_case("native") || v.eq_ignore_ascii_case("max")
-                {
+                t.luminance = if v.eq_ignore_ascii_case("native") || v.eq_ignore_ascii_case("max") {
                     None
                 } else {
                     match v.parse::<f64>() {
@@ -170,9 +171,10 @@ pub fn parse(s: &str) -> Result<Target> {
                 }
             }
             _ => {
-                return Err(CliError::usage(format!(
-                    "--target `{s}`: unknown `{k}` (white=D65|native|x,y, gamma=G|srgb|bt1886|lstar, luminance=N|native)"
-                )))
+                return Err(Error::TargetKey {
+                    spec: s.to_string(),
+                    key: k.to_string(),
+                })
             }
         }
         i += 1;
@@ -261,11 +263,10 @@ impl Aim {
             }
             if lo <= black[1] * 1.5 {
                 let s = unit[0] + 1.0 + unit[2];
-                return Err(CliError::data(format!(
-                    "target white x {:.4} y {:.4} is outside the display's gamut",
-                    unit[0] / s,
-                    1.0 / s
-                )));
+                return Err(Error::invalid(
+                    format!("target white x {:.4} y {:.4}", unit[0] / s, 1.0 / s),
+                    "is outside the display's gamut",
+                ));
             }
             lo * HEADROOM
         };
@@ -284,10 +285,10 @@ impl Aim {
                 max_y
             }
             Some(l) if l <= black[1] * 1.5 => {
-                return Err(CliError::data(format!(
-                    "luminance {l} cd/m² is not above the display's black ({:.3} cd/m²)",
-                    black[1]
-                )))
+                return Err(Error::invalid(
+                    format!("luminance {l} cd/m²"),
+                    format!("is not above the display's black ({:.3} cd/m²)", black[1]),
+                ))
             }
             Some(l) => l,
         };
@@ -472,8 +473,12 @@ impl Score {
 
 /// Measures device triples (a display and an instrument, or ArgyllCMS's `dispread`).
 pub trait Meter {
-    /// The XYZ of each of `devices`, in order.
-    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>>;
+    /// The XYZ of each of `devices`, in order. Meters are the measuring crate's, which still
+    /// reports the interim `CliError`; the solve passes it on as [`crate::Error::Lower`].
+    fn measure(
+        &mut self,
+        devices: &[[f64; 3]],
+    ) -> std::result::Result<Vec<[f64; 3]>, specpoly_formats::error::CliError>;
 }
 
 /// The solve's settings.

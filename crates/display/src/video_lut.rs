@@ -10,8 +10,8 @@
 //! `[video_lut]` table (`red`, `green`, `blue`: the outputs); in an ICC profile it is the
 //! `vcgt` tag ([`crate::icc`]).
 
+use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
-use specpoly_formats::error::{CliError, Result};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -54,27 +54,31 @@ impl VideoLut {
     pub fn check(&self) -> Result<()> {
         let n = self.red.len();
         if self.green.len() != n || self.blue.len() != n {
-            return Err(CliError::data(format!(
-                "video LUT: the channels have {}, {} and {} entries (they must be equal)",
-                n,
-                self.green.len(),
-                self.blue.len()
-            )));
+            return Err(Error::bad(
+                "video LUT",
+                format!(
+                    "the channels have {}, {} and {} entries (they must be equal)",
+                    n,
+                    self.green.len(),
+                    self.blue.len()
+                ),
+            ));
         }
         if !(MIN_ENTRIES..=MAX_ENTRIES).contains(&n) {
-            return Err(CliError::data(format!(
-                "video LUT: {n} entries per channel (need {MIN_ENTRIES}–{MAX_ENTRIES})"
-            )));
+            return Err(Error::bad(
+                "video LUT",
+                format!("{n} entries per channel (need {MIN_ENTRIES}–{MAX_ENTRIES})"),
+            ));
         }
         for (name, t) in ["red", "green", "blue"].iter().zip(self.tables()) {
             if let Some(k) = t
                 .iter()
                 .position(|v| !v.is_finite() || !(0.0..=1.0).contains(v))
             {
-                return Err(CliError::data(format!(
-                    "video LUT: {name}[{k}] = {} is not a number in 0–1",
-                    t[k]
-                )));
+                return Err(Error::bad(
+                    "video LUT",
+                    format!("{name}[{k}] = {} is not a number in 0–1", t[k]),
+                ));
             }
         }
         Ok(())
@@ -132,54 +136,61 @@ impl VideoLut {
     pub fn from_rows(rows: &[[f64; 4]], source: &str) -> Result<Self> {
         let n = rows.len();
         if n < 2 {
-            return Err(CliError::data(format!(
-                "{source}: the CAL table has {n} rows (need {MIN_ENTRIES}–{MAX_ENTRIES})"
-            )));
+            return Err(Error::invalid(
+                "the CAL table",
+                format!("has {n} rows (need {MIN_ENTRIES}–{MAX_ENTRIES})"),
+            )
+            .in_file(source));
         }
         for (k, r) in rows.iter().enumerate() {
             let want = k as f64 / (n - 1) as f64;
             if (r[0] - want).abs() > 1e-4 {
-                return Err(CliError::data(format!(
-                    "{source}: CAL row {}: RGB_I {} is not {want:.6} (the inputs must be equally spaced over 0–1)",
-                    k + 1,
-                    r[0]
-                )));
+                return Err(Error::bad(
+                    format!("CAL row {}", k + 1),
+                    format!(
+                        "RGB_I {} is not {want:.6} (the inputs must be equally spaced over 0–1)",
+                        r[0]
+                    ),
+                )
+                .in_file(source));
             }
         }
         let col = |c: usize| rows.iter().map(|r| r[c]).collect::<Vec<_>>();
-        Self::new(col(1), col(2), col(3)).map_err(|e| CliError::data(format!("{source}: {e}")))
+        Self::new(col(1), col(2), col(3)).map_err(|e| e.in_file(source))
     }
 
     /// Reads an ArgyllCMS `.cal` text; `source` names it in errors.
     pub fn from_cal(text: &str, source: &str) -> Result<Self> {
         let tables = specpoly_formats::cgats::parse(text, source)?;
         let t = tables.iter().find(|t| t.kind == "CAL").ok_or_else(|| {
-            CliError::data(format!(
-                "{source}: no CAL table (not an ArgyllCMS calibration file)"
-            ))
+            Error::invalid("no CAL table", "(not an ArgyllCMS calibration file)").in_file(source)
         })?;
         if let Some(class) = t.keyword("DEVICE_CLASS") {
             if class != "DISPLAY" {
-                return Err(CliError::data(format!(
-                    "{source}: DEVICE_CLASS \"{class}\": not a display calibration"
-                )));
+                return Err(Error::bad(
+                    format!("DEVICE_CLASS \"{class}\""),
+                    "not a display calibration",
+                )
+                .in_file(source));
             }
         }
         if let Some(rep) = t.keyword("COLOR_REP") {
             if rep != "RGB" {
-                return Err(CliError::data(format!(
-                    "{source}: COLOR_REP \"{rep}\": not an RGB calibration"
-                )));
+                return Err(
+                    Error::bad(format!("COLOR_REP \"{rep}\""), "not an RGB calibration")
+                        .in_file(source),
+                );
             }
         }
         let names = ["RGB_I", "RGB_R", "RGB_G", "RGB_B"];
         let mut cols = [0usize; 4];
         for (c, n) in cols.iter_mut().zip(names) {
             *c = t.field(n).ok_or_else(|| {
-                CliError::data(format!(
-                    "{source}: the CAL table has no field {n} (need {})",
-                    names.join(" ")
-                ))
+                Error::invalid(
+                    "the CAL table",
+                    format!("has no field {n} (need {})", names.join(" ")),
+                )
+                .in_file(source)
             })?;
         }
         let mut rows = Vec::with_capacity(t.rows.len());
@@ -190,11 +201,11 @@ impl VideoLut {
                     .parse::<f64>()
                     .ok()
                     .filter(|x| x.is_finite())
-                    .ok_or_else(|| {
-                        CliError::data(format!(
-                            "{source}:{line}: {} `{}` is not a number",
-                            names[k], row[cols[k]]
-                        ))
+                    .ok_or_else(|| Error::NotANumber {
+                        file: source.to_string(),
+                        line: *line,
+                        field: names[k].to_string(),
+                        text: row[cols[k]].clone(),
                     })?;
             }
             rows.push(r);
@@ -215,7 +226,7 @@ impl VideoLut {
         let mut s = String::from("CAL    \n\n");
         s.push_str("DESCRIPTOR \"Argyll Device Calibration State\"\n");
         let _ = writeln!(s, "ORIGINATOR \"{}\"", quote(originator));
-        let _ = writeln!(s, "CREATED \"{}\"", crate::calibration::now_utc());
+        let _ = writeln!(s, "CREATED \"{}\"", crate::time::now_utc());
         s.push_str("KEYWORD \"DEVICE_CLASS\"\nDEVICE_CLASS \"DISPLAY\"\n");
         s.push_str("KEYWORD \"COLOR_REP\"\nCOLOR_REP \"RGB\"\n");
         s.push_str(

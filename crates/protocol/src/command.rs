@@ -1,10 +1,11 @@
 //! Commands (host → controller): parsing and formatting. The grammar is in firmware/PROTOCOL.md.
 
+pub use crate::grammar::{map_name, write_curve};
+use crate::grammar::{number, Words};
 use crate::mix::ChannelCommand;
-use crate::number::{parse_f32, write_f32, write_f32_hex, NumberError};
+use crate::number::{write_f32, write_f32_hex};
 use crate::{ErrorCode, Fault, MAX_FACTORS};
 use core::fmt::{self, Write};
-use core::str::SplitAsciiWhitespace;
 use specpoly_core::light::channels::Goal;
 use specpoly_core::{
     display::TABLE_MAX, DefaultSpectrum, GamutMap, Illuminant, Layout, Moments, Observer, Paper,
@@ -183,52 +184,13 @@ pub enum Command {
     Lut(crate::lut::LutCommand),
 }
 
-pub(crate) fn number(tok: &str, at: usize) -> Result<f32, Fault> {
-    parse_f32(tok).map_err(|e| match e {
-        NumberError::Syntax => Fault::at(ErrorCode::BadNumber, at),
-        NumberError::Range => Fault::at(ErrorCode::OutOfRange, at),
-    })
-}
-
-/// Words of a line with their positions.
-pub(crate) struct Words<'a> {
-    it: SplitAsciiWhitespace<'a>,
-    pos: usize,
-}
-
-impl<'a> Words<'a> {
-    pub(crate) fn next(&mut self) -> Option<(&'a str, usize)> {
-        let w = self.it.next()?;
-        self.pos += 1;
-        Some((w, self.pos))
-    }
-    pub(crate) fn need(&mut self) -> Result<(&'a str, usize), Fault> {
-        self.next()
-            .ok_or(Fault::at(ErrorCode::MissingArgument, self.pos + 1))
-    }
-    /// The next word, not taken.
-    fn peek(&self) -> Option<&'a str> {
-        self.it.clone().next()
-    }
-    fn number(&mut self) -> Result<f32, Fault> {
-        let (w, at) = self.need()?;
-        number(w, at)
-    }
-    fn end(&mut self) -> Result<(), Fault> {
-        match self.next() {
-            None => Ok(()),
-            Some((_, at)) => Err(Fault::at(ErrorCode::ExtraArgument, at)),
-        }
-    }
-}
-
 impl Command {
     /// Parses one line (without its newline). Never panics; any input gives a command or a
     /// [`Fault`].
     pub fn parse(line: &str) -> Result<Command, Fault> {
         let mut it = line.split_ascii_whitespace();
         let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
-        let mut w = Words { it, pos: 0 };
+        let mut w = Words::new(it);
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
@@ -375,13 +337,13 @@ impl Command {
             }
             // without feature `mix` (a firmware without mixing) these are unknown commands
             #[cfg(feature = "mix")]
-            "channel" => crate::mix::parse_channel(&mut w)?,
+            "channel" => Command::Channel(crate::mix::parse_channel(&mut w)?),
             #[cfg(feature = "mix")]
-            "xy" => crate::mix::parse_goal(&mut w, false)?,
+            "xy" => Command::Mix(crate::mix::parse_goal(&mut w, false)?),
             #[cfg(feature = "mix")]
-            "cct" => crate::mix::parse_goal(&mut w, true)?,
+            "cct" => Command::Mix(crate::mix::parse_goal(&mut w, true)?),
             #[cfg(feature = "mix")]
-            "fade" => crate::mix::parse_fade(&mut w)?,
+            "fade" => Command::Fade(crate::mix::parse_fade(&mut w)?),
             #[cfg(feature = "lut")]
             "lut" => Command::Lut(crate::lut::parse(&mut w)?),
             _ => return Err(Fault::at(ErrorCode::UnknownCommand, 0)),
@@ -450,9 +412,9 @@ impl Command {
                 hex: true,
                 ..
             } => write_reflect_hex(w, *illuminant, core::slice::from_ref(product)),
-            Command::Channel(_) | Command::Mix(_) | Command::Fade(_) => {
-                crate::mix::write_command(w, self)
-            }
+            Command::Channel(c) => crate::mix::write_channel(w, c),
+            Command::Mix(g) => crate::mix::write_goal(w, g),
+            Command::Fade(ms) => crate::mix::write_fade(w, *ms),
             Command::Lut(c) => c.write(w),
         }
     }
@@ -501,42 +463,6 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
         }
         Some(p) => Ok((p, factors)),
         None => Err(Fault::new(ErrorCode::WrongCount)),
-    }
-}
-
-/// The wire name of a gamut map.
-pub fn map_name(m: GamutMap) -> &'static str {
-    match m {
-        GamutMap::Clip => "clip",
-        GamutMap::Desaturate => "desaturate",
-    }
-}
-
-/// Writes a curve as `linear`, `srgb`, `gamma G` or `table v0 v1 …`, with `sep` between the
-/// kind and its numbers (`' '` in commands, `':'` in `state` replies, where a table is written
-/// as its point count only).
-pub fn write_curve<W: Write>(w: &mut W, c: &Transfer, sep: char) -> fmt::Result {
-    match c {
-        Transfer::Linear => w.write_str("linear"),
-        Transfer::Srgb => w.write_str("srgb"),
-        Transfer::Gamma(g) => {
-            w.write_str("gamma")?;
-            w.write_char(sep)?;
-            write_f32(w, *g)
-        }
-        Transfer::Table(t) => {
-            w.write_str("table")?;
-            if sep == ' ' {
-                for v in t {
-                    w.write_char(' ')?;
-                    write_f32(w, *v)?;
-                }
-                Ok(())
-            } else {
-                w.write_char(sep)?;
-                crate::number::write_int(w, t.len() as i64)
-            }
-        }
     }
 }
 

@@ -12,6 +12,11 @@
 //! - [`mix`]: the multi-channel mixing commands and the one place they are answered;
 //! - [`number`] reads and writes decimals without `core`'s large float tables.
 //!
+//! Layers (no module cycles): [`number`] and [`fault`]; a private grammar layer (a line's
+//! words, number words, curve and gamut-map names); [`lut`] and [`mix`]'s commands and
+//! report; [`command`] and [`reply`], which hold them; [`mix::answer`] (in `mix/answer.rs`),
+//! which takes a command and makes a reply.
+//!
 //! `duplicates --repo protocol` lists two same-shape pairs, kept: the reply reader's `Keys`
 //! fields and their `match` of key names (one line per key, what the grammar is), and the
 //! `map`/`observer` arms of the command parser (a word matched against two names each).
@@ -21,6 +26,7 @@
 
 pub mod command;
 pub mod fault;
+mod grammar;
 pub mod line;
 pub mod lut;
 pub mod mix;

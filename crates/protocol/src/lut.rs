@@ -15,8 +15,8 @@ use core::fmt::{self, Write};
 use specpoly_core::drive_table::GRID_MAX;
 #[cfg(feature = "lut")]
 use {
-    crate::command::Words,
-    crate::{ErrorCode, Fault},
+    crate::fault::{ErrorCode, Fault},
+    crate::grammar::Words,
     specpoly_core::drive_table::GRID_MIN,
 };
 

@@ -3,13 +3,17 @@
 //! [`Mixer`] call and a reply, shared by the firmware and the host's simulated controller so
 //! the two cannot answer differently.
 
+mod answer;
+
+pub use answer::answer;
+
+use crate::fault::{ErrorCode, Fault};
+use crate::grammar::write_curve;
 #[cfg(feature = "mix")]
-use crate::command::Words;
-use crate::command::{write_curve, Command};
+use crate::grammar::{number, Words};
 use crate::number::{parse_u16, write_f32, write_f32_list, write_int, write_int_list};
-use crate::{ErrorCode, Fault, Reply};
 use core::fmt::{self, Write};
-use specpoly_core::light::channels::{Channel, Curve, Goal, MixError, Mixer};
+use specpoly_core::light::channels::{Curve, Goal, Mixer};
 #[cfg(feature = "mix")]
 use specpoly_core::light::locus;
 use specpoly_core::Transfer;
@@ -87,7 +91,7 @@ fn range(at: usize) -> Fault {
 #[cfg(feature = "mix")]
 fn within(w: &mut Words<'_>, lo: f32, hi: f32) -> Result<f32, Fault> {
     let (tok, at) = w.need()?;
-    let v = crate::command::number(tok, at)?;
+    let v = number(tok, at)?;
     if !(lo..=hi).contains(&v) {
         return Err(range(at));
     }
@@ -96,10 +100,10 @@ fn within(w: &mut Words<'_>, lo: f32, hi: f32) -> Result<f32, Fault> {
 
 /// Parses the words after `channel`.
 #[cfg(feature = "mix")]
-pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<Command, Fault> {
+pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<ChannelCommand, Fault> {
     let (first, at) = w.need()?;
     if first == "clear" {
-        return Ok(Command::Channel(ChannelCommand::Clear));
+        return Ok(ChannelCommand::Clear);
     }
     let index = match parse_u16(first) {
         Some(i) if (i as usize) < MIX_CHANNELS => i as u8,
@@ -115,9 +119,9 @@ pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<Command, Fault> {
             "gamma" => Curve::Gamma(within(w, 0.1, 10.0)?),
             _ => return Err(Fault::at(ErrorCode::UnknownName, at)),
         };
-        return Ok(Command::Channel(ChannelCommand::Curve { index, curve }));
+        return Ok(ChannelCommand::Curve { index, curve });
     }
-    let mut xyz = [crate::command::number(tok, at)?, 0.0, 0.0];
+    let mut xyz = [number(tok, at)?, 0.0, 0.0];
     if !(0.0..=f32::MAX).contains(&xyz[0]) {
         return Err(range(at));
     }
@@ -126,25 +130,25 @@ pub(crate) fn parse_channel(w: &mut Words<'_>) -> Result<Command, Fault> {
     let cost = match w.next() {
         None => 1.0,
         Some((tok, at)) => {
-            let c = crate::command::number(tok, at)?;
+            let c = number(tok, at)?;
             if !(0.0..=f32::MAX).contains(&c) {
                 return Err(range(at));
             }
             c
         }
     };
-    Ok(Command::Channel(ChannelCommand::Set { index, xyz, cost }))
+    Ok(ChannelCommand::Set { index, xyz, cost })
 }
 
 /// Parses the words after `xy` (`cct == false`) or `cct`.
 #[cfg(feature = "mix")]
-pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Command, Fault> {
+pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Goal, Fault> {
     let (a, b) = if cct {
         (within(w, locus::CCT_MIN, locus::CCT_MAX)?, 0.0)
     } else {
         let x = within(w, 0.0, 1.0)?;
         let (tok, at) = w.need()?;
-        let y = crate::command::number(tok, at)?;
+        let y = number(tok, at)?;
         if !(x > 0.0 && y > 0.0 && x + y < 1.0) {
             return Err(range(at));
         }
@@ -161,7 +165,7 @@ pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Command, Fault>
         }
     }
     let lum = lum.unwrap_or(1.0);
-    Ok(Command::Mix(if cct {
+    Ok(if cct {
         Goal::Cct {
             cct: a,
             duv: duv.unwrap_or(0.0),
@@ -169,30 +173,29 @@ pub(crate) fn parse_goal(w: &mut Words<'_>, cct: bool) -> Result<Command, Fault>
         }
     } else {
         Goal::Xy { xy: [a, b], lum }
-    }))
+    })
 }
 
 /// Parses the words after `fade`: whole milliseconds, 0 to [`FADE_MAX_MS`].
 #[cfg(feature = "mix")]
-pub(crate) fn parse_fade(w: &mut Words<'_>) -> Result<Command, Fault> {
+pub(crate) fn parse_fade(w: &mut Words<'_>) -> Result<u32, Fault> {
     let (tok, at) = w.need()?;
-    let v = crate::command::number(tok, at)?;
+    let v = number(tok, at)?;
     if !(0.0..=FADE_MAX_MS as f32).contains(&v) || v != (v as u32) as f32 {
         return Err(range(at));
     }
-    Ok(Command::Fade(v as u32))
+    Ok(v as u32)
 }
 
 fn curve_transfer(c: Curve) -> Transfer {
     c.transfer()
 }
 
-/// Writes a mixing command (`channel …`, `xy …`, `cct …`, `fade …`); other commands are not
-/// written here.
-pub(crate) fn write_command<W: Write>(w: &mut W, c: &Command) -> fmt::Result {
+/// Writes a `channel …` command.
+pub(crate) fn write_channel<W: Write>(w: &mut W, c: &ChannelCommand) -> fmt::Result {
     match c {
-        Command::Channel(ChannelCommand::Clear) => w.write_str("channel clear"),
-        Command::Channel(ChannelCommand::Set { index, xyz, cost }) => {
+        ChannelCommand::Clear => w.write_str("channel clear"),
+        ChannelCommand::Set { index, xyz, cost } => {
             w.write_str("channel ")?;
             write_int(w, *index as i64)?;
             for v in [xyz[0], xyz[1], xyz[2], *cost] {
@@ -201,13 +204,19 @@ pub(crate) fn write_command<W: Write>(w: &mut W, c: &Command) -> fmt::Result {
             }
             Ok(())
         }
-        Command::Channel(ChannelCommand::Curve { index, curve }) => {
+        ChannelCommand::Curve { index, curve } => {
             w.write_str("channel ")?;
             write_int(w, *index as i64)?;
             w.write_str(" curve ")?;
             write_curve(w, &curve_transfer(*curve), ' ')
         }
-        Command::Mix(Goal::Xy { xy, lum }) => {
+    }
+}
+
+/// Writes an `xy …` or `cct …` command.
+pub(crate) fn write_goal<W: Write>(w: &mut W, g: &Goal) -> fmt::Result {
+    match g {
+        Goal::Xy { xy, lum } => {
             w.write_str("xy ")?;
             write_f32(w, xy[0])?;
             w.write_char(' ')?;
@@ -215,7 +224,7 @@ pub(crate) fn write_command<W: Write>(w: &mut W, c: &Command) -> fmt::Result {
             w.write_str(" lum ")?;
             write_f32(w, *lum)
         }
-        Command::Mix(Goal::Cct { cct, duv, lum }) => {
+        Goal::Cct { cct, duv, lum } => {
             w.write_str("cct ")?;
             write_f32(w, *cct)?;
             w.write_str(" duv ")?;
@@ -223,59 +232,13 @@ pub(crate) fn write_command<W: Write>(w: &mut W, c: &Command) -> fmt::Result {
             w.write_str(" lum ")?;
             write_f32(w, *lum)
         }
-        Command::Fade(ms) => {
-            w.write_str("fade ")?;
-            write_int(w, *ms as i64)
-        }
-        _ => Err(fmt::Error),
     }
 }
 
-/// Answers a mixing command with `mixer` on PWM channels of full scale `max`; `None` for any
-/// other command. Errors: `channel` past the next free one → `out-of-range at=1`; a target
-/// with fewer than three channels → `no-channels`; outside the channels' gamut →
-/// `out-of-gamut`. On an error nothing changes.
-pub fn answer(mixer: &mut DeviceMixer, cmd: &Command, max: u16) -> Option<Reply> {
-    let r = match cmd {
-        Command::Channel(ChannelCommand::Clear) => {
-            mixer.channels.clear();
-            Ok(Reply::Done("channel"))
-        }
-        Command::Channel(ChannelCommand::Set { index, xyz, cost }) => {
-            let i = *index as usize;
-            let curve = mixer.channels.list().get(i).map(Channel::curve);
-            let c = Channel::new(*xyz, *cost, curve.unwrap_or_default());
-            mixer.channels.set(i, c).map(|_| Reply::Done("channel"))
-        }
-        Command::Channel(ChannelCommand::Curve { index, curve }) => mixer
-            .channels
-            .set_curve(*index as usize, *curve)
-            .map(|_| Reply::Done("channel")),
-        Command::Fade(ms) => {
-            mixer.fade_ms = *ms;
-            Ok(Reply::Done("fade"))
-        }
-        Command::Mix(goal) => mixer.target(*goal, max).map(|s| {
-            Reply::Mix(MixReport {
-                xy: s.point.xy(),
-                lum: s.point.lum,
-                light: s.light,
-                duty: s.duty,
-                n: s.n as u8,
-                max,
-                steps: s.steps,
-            })
-        }),
-        _ => return None,
-    };
-    Some(r.unwrap_or_else(|e| {
-        Reply::Error(match e {
-            MixError::Channels if matches!(cmd, Command::Channel(_)) => range(1),
-            MixError::Channels => Fault::new(ErrorCode::NoChannels),
-            MixError::OutOfGamut => Fault::new(ErrorCode::OutOfGamut),
-            MixError::BadTarget => Fault::new(ErrorCode::OutOfRange),
-        })
-    }))
+/// Writes a `fade …` command.
+pub(crate) fn write_fade<W: Write>(w: &mut W, ms: u32) -> fmt::Result {
+    w.write_str("fade ")?;
+    write_int(w, ms as i64)
 }
 
 /// Writes `ok mix xy=x,y lum=L light=… duty=… max=M steps=K`.
@@ -292,7 +255,7 @@ pub(crate) fn write_report<W: Write>(w: &mut W, r: &MixReport) -> fmt::Result {
 }
 
 /// Reads the `key=value` words of an `ok mix` reply (after `ok mix`).
-pub(crate) fn parse_report<'a>(words: impl Iterator<Item = &'a str>) -> Result<Reply, Fault> {
+pub(crate) fn parse_report<'a>(words: impl Iterator<Item = &'a str>) -> Result<MixReport, Fault> {
     let bad = Fault::new(ErrorCode::BadReply);
     let f32_of = |s: &str| crate::number::parse_f32(s).map_err(|_| bad);
     let mut r = MixReport {
@@ -352,13 +315,14 @@ pub(crate) fn parse_report<'a>(words: impl Iterator<Item = &'a str>) -> Result<R
     if !seen.iter().all(|s| *s) || light_n != Some(r.n as usize) || r.n < 3 {
         return Err(bad);
     }
-    Ok(Reply::Mix(r))
+    Ok(r)
 }
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::*;
+    use crate::{Command, Reply};
     use std::string::String;
 
     fn parse(l: &str) -> Result<Command, Fault> {

@@ -4,7 +4,7 @@
 //! comma-separated. A reader ignores keys it does not know, so later protocol versions may add
 //! keys without breaking older hosts.
 
-use crate::command::{map_name, write_curve};
+use crate::grammar::{map_name, write_curve};
 use crate::number::{
     parse_f32, parse_u16, write_f32_hex_list, write_f32_list, write_int, write_int_list,
 };
@@ -255,7 +255,7 @@ impl Reply {
             return Ok(Reply::Done(s));
         }
         if kind == "mix" {
-            return crate::mix::parse_report(it);
+            return crate::mix::parse_report(it).map(Reply::Mix);
         }
         let mut keys = Keys::default();
         if kind == "hello" && it.next() != Some("specpoly-led") {

@@ -3,12 +3,18 @@
 
 use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
 use specpoly_core::chromaticity;
-use specpoly_display::calibration::{self, Calibration, TransferKind};
+use specpoly_display::calibration::{self, Calibration};
 use specpoly_display::{export, icc};
 use specpoly_formats::cgats;
 use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
+
+pub mod common;
+pub mod values;
+
+use common::fit_json;
+use values::{BitsValue, FormatValue, IccVersionValue, SourceValue, TransferValue, WhiteValue};
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -29,7 +35,7 @@ pub enum CalibrateCommand {
     /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
     Export(ExportArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
-    Run(crate::cli::calibrate_run::RunArgs),
+    Run(common::RunArgs),
     /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
     /// give back with `run --patches`).
     Patches(PatchesArgs),
@@ -59,8 +65,8 @@ pub struct FitArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// The transfer curve the model uses (both are fitted and stored).
-    #[arg(long, value_enum, default_value_t = TransferKind::Table)]
-    pub transfer: TransferKind,
+    #[arg(long, value_enum, default_value_t = TransferValue::Table)]
+    pub transfer: TransferValue,
     /// How the matrix is found.
     #[arg(long, value_enum, default_value_t = MatrixFit::LeastSquares)]
     pub matrix: MatrixFit,
@@ -106,7 +112,7 @@ pub struct IccArgs {
     pub description: Option<String>,
     /// ICC version: 2 (v2.4, read by every consumer, ArgyllCMS 2.3 included) or 4 (v4.4).
     #[arg(long, value_enum, default_value = "2", value_name = "2|4")]
-    pub version: icc::IccVersion,
+    pub version: IccVersionValue,
     /// Also write `A2B0`/`B2A0` tables sampled from the model [default: when the model has
     /// channel interaction].
     #[arg(long)]
@@ -120,17 +126,17 @@ pub struct ExportArgs {
     #[arg(long)]
     pub calibration: PathBuf,
     /// The colour space the firmware's UI draws in.
-    #[arg(long, value_enum, default_value_t = export::SourceArg::Srgb)]
-    pub source: export::SourceArg,
+    #[arg(long, value_enum, default_value_t = SourceValue::Srgb)]
+    pub source: SourceValue,
     /// C header or Rust source.
     #[arg(long, value_enum)]
-    pub format: export::Format,
+    pub format: FormatValue,
     /// The panel's bits per channel.
-    #[arg(long, value_enum, default_value_t = export::Bits::Rgb565)]
-    pub bits: export::Bits,
+    #[arg(long, value_enum, default_value_t = BitsValue::Rgb565)]
+    pub bits: BitsValue,
     /// The source white: adapted to the panel's, or kept.
-    #[arg(long, value_enum, default_value_t = export::WhiteArg::Adapt)]
-    pub white: export::WhiteArg,
+    #[arg(long, value_enum, default_value_t = WhiteValue::Adapt)]
+    pub white: WhiteValue,
     /// The tables' name prefix (a C/Rust identifier).
     #[arg(long, default_value = "panel", value_parser = export::identifier)]
     pub name: String,
@@ -171,7 +177,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         (meas, Vec::new())
     };
     let opts = FitOptions {
-        transfer: a.transfer,
+        transfer: a.transfer.into(),
         matrix: a.matrix,
         table_points: a.table_points,
         absolute,
@@ -279,30 +285,6 @@ pub fn fit_facts(f: &calibration::FitReport) -> String {
     s
 }
 
-/// The JSON `calibrate fit --json` (and `run --json`) prints about a fitted calibration
-/// written to `output` from `fitted` patches (keys documented in docs/calibration.md).
-pub fn fit_json(cal: &Calibration, output: &std::path::Path, fitted: usize) -> serde_json::Value {
-    let d = cal.data();
-    serde_json::json!({
-        "output": output.display().to_string(),
-        "source": d.provenance.source,
-        "units": d.units,
-        "matrix": d.fit.matrix,
-        "patches_fit": fitted,
-        "fit_delta_e00": d.fit.residual,
-        "held_out_delta_e00": d.fit.verification,
-        "additivity": match (d.fit.additivity_delta_e00, d.fit.additivity_luminance_percent) {
-            (Some(de), Some(pc)) => serde_json::json!({"delta_e00": de, "luminance_percent": pc}),
-            _ => serde_json::Value::Null,
-        },
-        "notes": d.provenance.notes,
-        "model": d.fit.model,
-        "model_candidates": d.fit.candidates,
-        "outliers": d.fit.outliers,
-        "constrained": d.fit.constrained,
-    })
-}
-
 /// The JSON `calibrate show --json` prints (keys documented in docs/calibration.md).
 pub fn show_json(cal: &Calibration) -> serde_json::Value {
     let d = cal.data();
@@ -355,7 +337,7 @@ fn show(a: &ShowArgs) -> Result<()> {
         d.transfer.gamma[0],
         d.transfer.gamma[1],
         d.transfer.gamma[2],
-        crate::cli::args::name(&d.transfer.kind)
+        crate::cli::args::name(&TransferValue::from(d.transfer.kind))
     ));
     s.push_str(&format!(
         "matrix {}; fit ΔE00 mean {:.3}, max {:.3} over {} patches\n",
@@ -385,14 +367,14 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
     });
     let auto = icc::IccOptions::for_calibration(&cal);
     let opts = icc::IccOptions {
-        version: a.version,
+        version: a.version.into(),
         tables: a.tables || auto.tables,
     };
     let bytes = icc::build(&cal, &desc, &opts)?;
     specpoly_formats::atomic::write(&a.output, &bytes)?;
     let version = match a.version {
-        icc::IccVersion::V2 => "v2.4",
-        icc::IccVersion::V4 => "v4.4",
+        IccVersionValue::V2 => "v2.4",
+        IccVersionValue::V4 => "v4.4",
     };
     let mut what = format!("ICC {version} matrix/TRC display profile");
     if opts.tables {
@@ -411,7 +393,7 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
-    let p = export::transform(&cal, a.source, a.white, a.bits)?;
+    let p = export::transform(&cal, a.source.into(), a.white.into(), a.bits.into())?;
     let origin = format!(
         "calibration {}, source {}, white {}, {}",
         a.calibration.display(),
@@ -419,7 +401,7 @@ fn export_cmd(a: &ExportArgs) -> Result<()> {
         crate::cli::args::name(&a.white),
         crate::cli::args::name(&a.bits)
     );
-    let text = export::source_text(&p, a.format, &a.name, &origin)?;
+    let text = export::source_text(&p, a.format.into(), &a.name, &origin)?;
     specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
     eprintln!(
         "wrote {} ({} bytes of tables)",

@@ -8,7 +8,7 @@
 //! `CAL` table, as `dispread -k` writes it) and `CAL.toml` (their fit, with the LUT in its
 //! `[video_lut]`).
 
-use crate::cli::calibrate_run::{line, print_fit, RunArgs};
+use crate::cli::calibrate::common::{cal_path, line, print_fit, RunArgs};
 use specpoly_calibrate::fit::{self, FitOptions};
 use specpoly_calibrate::patches::Patch;
 use specpoly_calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
@@ -16,17 +16,7 @@ use specpoly_calibrate::session::{Existing, Session};
 use specpoly_display::target::{self, Score, Target};
 use specpoly_formats::cgats::Ti3Info;
 use specpoly_formats::error::{CliError, Result};
-use std::path::{Path, PathBuf};
-
-/// Where the native readings go: `CAL.toml` → `CAL.native.ti3`.
-pub fn native_ti3_path(output: &Path) -> PathBuf {
-    output.with_extension("native.ti3")
-}
-
-/// Where the LUT goes: `CAL.toml` → `CAL.cal`.
-pub fn cal_path(output: &Path) -> PathBuf {
-    output.with_extension("cal")
-}
+use std::path::Path;
 
 /// What `calibrate run` hands over.
 pub struct Context<'a> {
@@ -109,7 +99,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         c.target,
         &mut rig,
         &target::Options::default(),
-        &mut |s| line(&score_line(s)),
+        &mut |s| Ok(line(&score_line(s))?),
     )?;
     for n in &outcome.notes {
         eprintln!("note: {n}");

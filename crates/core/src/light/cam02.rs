@@ -13,25 +13,25 @@
 //!
 //! `palette` and other crates have no CIECAM02 with `no_std` and f64 for this; it is ~60 lines.
 
-const M_CAT02: [[f64; 3]; 3] = [
+use crate::Mat3;
+
+const M_CAT02: Mat3<f64> = Mat3([
     [0.7328, 0.4296, -0.1624],
     [-0.7036, 1.6975, 0.0061],
     [0.0030, 0.0136, 0.9834],
-];
-const M_CAT02_INV: [[f64; 3]; 3] = [
+]);
+/// CIE 159:2004's published inverse (6 decimals), as published rather than computed: the
+/// published CIECAM02 and TM-30 values are computed with it.
+const M_CAT02_INV: Mat3<f64> = Mat3([
     [1.096124, -0.278869, 0.182745],
     [0.454369, 0.473533, 0.072098],
     [-0.009628, -0.005698, 1.015326],
-];
-const M_HPE: [[f64; 3]; 3] = [
+]);
+const M_HPE: Mat3<f64> = Mat3([
     [0.38971, 0.68898, -0.07868],
     [-0.22981, 1.18340, 0.04641],
     [0.0, 0.0, 1.0],
-];
-
-fn apply(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    core::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
-}
+]);
 
 /// A surround: `F`, `c`, `N_c` (CIE 159:2004 Table 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,7 +87,7 @@ pub struct Cam02 {
 impl Cam02 {
     /// The model for white `xyz_w`, adapting luminance `la` (cd/m²) and background `yb`.
     pub fn new(xyz_w: [f64; 3], la: f64, yb: f64, surround: Surround) -> Self {
-        let rgb_w = apply(&M_CAT02, xyz_w);
+        let rgb_w = M_CAT02.apply(xyz_w);
         let gain = rgb_w.map(|c| xyz_w[1] / c);
         let k = 1.0 / (5.0 * la + 1.0);
         let k4 = k * k * k * k;
@@ -110,13 +110,13 @@ impl Cam02 {
     }
 
     fn compressed(&self, xyz: [f64; 3]) -> [f64; 3] {
-        let rgb = apply(&M_CAT02, xyz);
+        let rgb = M_CAT02.apply(xyz);
         let rgb_c = [
             rgb[0] * self.gain[0],
             rgb[1] * self.gain[1],
             rgb[2] * self.gain[2],
         ];
-        let rgb_p = apply(&M_HPE, apply(&M_CAT02_INV, rgb_c));
+        let rgb_p = M_HPE.apply(M_CAT02_INV.apply(rgb_c));
         rgb_p.map(|v| {
             let x = libm::pow(self.fl * v.abs() / 100.0, 0.42);
             libm::copysign(400.0 * x / (27.13 + x), v) + 0.1

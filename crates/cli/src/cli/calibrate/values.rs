@@ -1,0 +1,99 @@
+//! The `calibrate` command line's value enums (clap's `ValueEnum`, with the spellings and
+//! `--help` texts of the options), each converted to the display crate's type with `From`
+//! (`specpoly-display` has no clap).
+
+use specpoly_display::calibration::TransferKind;
+use specpoly_display::export::{Bits, Format, SourceArg, WhiteArg};
+use specpoly_display::icc::IccVersion;
+
+/// Which transfer curve the model uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum TransferValue {
+    /// The measured ramp, resampled to at most 64 evenly spaced points.
+    #[default]
+    Table,
+    /// A pure power law `l = v^γ` per channel.
+    Gamma,
+}
+
+/// The profile version written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum IccVersionValue {
+    /// ICC v2.4 (the default: every consumer reads it).
+    #[default]
+    #[value(name = "2")]
+    V2,
+    /// ICC v4.4.
+    #[value(name = "4")]
+    V4,
+}
+
+/// The source colour space of the firmware's UI.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SourceValue {
+    /// sRGB (IEC 61966-2-1).
+    #[default]
+    Srgb,
+    /// Display P3.
+    P3,
+    /// Linear-light sRGB.
+    Linear,
+}
+
+/// What to write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatValue {
+    /// A C99 header: tables and `NAME_levels`, `NAME_codes`, `NAME_rgb565`.
+    CTable,
+    /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform`.
+    Rust,
+}
+
+/// The panel's bits per channel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum BitsValue {
+    /// 5-6-5.
+    #[default]
+    Rgb565,
+    /// 6-6-6.
+    Rgb666,
+    /// 8-8-8.
+    Rgb888,
+}
+
+/// How the source white is reproduced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum WhiteValue {
+    /// Adapted (Bradford) to the panel's white: source white → full drive.
+    #[default]
+    Adapt,
+    /// D65 kept (clips at the source white on a panel whose white is not D65).
+    Absolute,
+}
+
+/// Both ways between a value enum and the display crate's enum, variant for variant.
+macro_rules! both_ways {
+    ($cli:ident, $lib:ty, $($v:ident => $w:ident),+) => {
+        impl From<$cli> for $lib {
+            fn from(v: $cli) -> $lib {
+                match v {
+                    $($cli::$v => <$lib>::$w,)+
+                }
+            }
+        }
+        impl From<$lib> for $cli {
+            fn from(v: $lib) -> $cli {
+                match v {
+                    $(<$lib>::$w => $cli::$v,)+
+                }
+            }
+        }
+    };
+}
+
+both_ways!(TransferValue, TransferKind, Table => Table, Gamma => Gamma);
+both_ways!(IccVersionValue, IccVersion, V2 => V2, V4 => V4);
+both_ways!(SourceValue, SourceArg, Srgb => Srgb, P3 => P3, Linear => Linear);
+both_ways!(FormatValue, Format, CTable => CTable, Rust => Rust);
+both_ways!(BitsValue, Bits, Rgb565 => Rgb565, Rgb666 => Rgb666, Rgb888 => Rgb888);
+both_ways!(WhiteValue, WhiteArg, Adapt => Adapt, Absolute => Absolute);
