@@ -130,7 +130,7 @@ pub fn calibration_toml(data: &[u8]) {
     use specpoly_display::calibration::Calibration;
     let text = text(data);
     match Calibration::from_toml(&text, "fuzz.toml") {
-        Err(e) => one_line(&CliError::from(e)),
+        Err(e) => one_line(&specpoly_formats::error::CliError::from(e)),
         Ok(c) => {
             let out = c.to_toml().expect("a calibration that reads is written");
             let back = Calibration::from_toml(&out, "again.toml")
@@ -143,7 +143,7 @@ pub fn calibration_toml(data: &[u8]) {
 /// A display file ([`specpoly_display::spec::parse`]): primaries, luminances, transfer curves.
 pub fn display_toml(data: &[u8]) {
     if let Err(e) = specpoly_display::spec::parse(&text(data), "fuzz.toml") {
-        one_line(&CliError::from(e));
+        one_line(&specpoly_formats::error::CliError::from(e));
     }
 }
 

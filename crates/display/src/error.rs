@@ -145,8 +145,10 @@ pub enum Error {
         /// The option.
         key: String,
     },
-    /// An error of a specpoly crate not yet converted to its own error type (reading files,
-    /// CGATS).
+    /// Reading or writing a file, CGATS and TOML syntax (`specpoly-formats`).
+    #[error(transparent)]
+    Formats(#[from] specpoly_formats::Error),
+    /// An error of a specpoly crate not yet converted to its own error type.
     #[error(transparent)]
     Lower(#[from] specpoly_formats::error::CliError),
 }
@@ -191,9 +193,11 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 impl From<Error> for specpoly_formats::error::CliError {
     fn from(e: Error) -> Self {
         use specpoly_formats::error::CliError;
-        if let Error::Lower(e) = e {
-            return e;
-        }
+        let e = match e {
+            Error::Lower(e) => return e,
+            Error::Formats(e) => return e.into(),
+            e => e,
+        };
         if e.is_usage() {
             CliError::Usage(e.to_string())
         } else {
@@ -211,6 +215,7 @@ impl Error {
             }
             Error::In { error, .. } => error.is_usage(),
             Error::Lower(e) => e.exit_code() == 2,
+            Error::Formats(_) => false,
             Error::Toml { .. }
             | Error::WrongFormat { .. }
             | Error::NotACalibration { .. }
