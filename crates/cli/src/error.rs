@@ -5,6 +5,8 @@ pub use specpoly_formats::error::{CliError, Result};
 
 mod render;
 
+pub use render::from_render;
+
 /// A clap error as one line (`unexpected argument '--x' found (tip: …); usage: specpoly …`), or
 /// `None` for `--help` and `--version`, which clap prints itself.
 pub fn clap_error_line(e: &clap::Error) -> Option<String> {

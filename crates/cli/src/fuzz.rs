@@ -111,18 +111,18 @@ pub fn scene_toml(data: &[u8]) {
     let text = text(data);
     let file = match SceneFile::parse(&text, "fuzz.toml") {
         Ok(f) => f,
-        Err(e) => return one_line(&e.into()),
+        Err(e) => return one_line(&crate::error::from_render(e)),
     };
     let mut scene = match file.resolve("fuzz.toml") {
         Ok(s) => s,
-        Err(e) => return one_line(&e.into()),
+        Err(e) => return one_line(&crate::error::from_render(e)),
     };
     scene.render.width = 1;
     scene.render.height = 1;
     scene.render.samples = 1;
     scene.render.spp = scene.render.spp.min(2);
     if let Err(e) = specpoly_render::render(&scene, specpoly_spectra::repr::Repr::Rgb, None) {
-        one_line(&e.into());
+        one_line(&crate::error::from_render(e));
     }
 }
 

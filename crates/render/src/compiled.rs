@@ -35,18 +35,18 @@ pub fn rays_traced() -> u64 {
 
 /// Counts one ray traced by the calling thread ([`rays_traced`]).
 #[inline]
-pub(crate) fn count_ray() {
+fn count_ray() {
     RAYS.with(|r| r.set(r.get() + 1));
 }
 
 /// Phong lobes `(R·V)ⁿ` below this are dropped.
-pub(crate) const PHONG_MIN: f32 = 1e-6;
+const PHONG_MIN: f32 = 1e-6;
 
 /// The energy-normalised Phong lobe `(n + 2)/(2π) · (R·V)ⁿ` (Lewis, "Making shaders more
 /// physically plausible", 1994) for light arriving along `l` (unit, toward the light) at a
 /// surface with unit normal `n` seen from `v`; 0 below [`PHONG_MIN`].
 #[inline]
-pub(crate) fn phong_lobe(exponent: f32, l: V3, n: V3, v: V3) -> f32 {
+fn phong_lobe(exponent: f32, l: V3, n: V3, v: V3) -> f32 {
     let rv = (-l).reflect(n).dot(v);
     if rv <= 0.0 {
         return 0.0;
@@ -110,15 +110,18 @@ impl Frame {
 
 /// A point light in representation `T`.
 pub(crate) struct LightT<T: Shade> {
-    pub(crate) position: V3,
-    pub(crate) intensity: f32,
+    position: V3,
+    intensity: f32,
+    /// Its spectrum in `T`.
     pub(crate) light: T::Light,
 }
 
 /// An area light in representation `T`.
 pub(crate) struct AreaT<T: Shade> {
-    pub(crate) shape: Emitter,
+    shape: Emitter,
+    /// Its radiance scale.
     pub(crate) radiance: f32,
+    /// Its spectrum in `T`.
     pub(crate) light: T::Light,
     /// `radiance · xyz(1, L)`: what the eye sees of it.
     pub(crate) emit_xyz: Xyz,
@@ -126,7 +129,9 @@ pub(crate) struct AreaT<T: Shade> {
 
 /// The environment light in representation `T`.
 pub(crate) struct EnvT<T: Shade> {
+    /// Its radiance scale.
     pub(crate) radiance: f32,
+    /// Its spectrum in `T`.
     pub(crate) light: T::Light,
     /// `radiance · xyz(1, L)`.
     pub(crate) emit_xyz: Xyz,
