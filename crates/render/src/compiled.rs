@@ -554,9 +554,6 @@ impl<T: Shade> Compiled<T> {
         Some(crossed.finish(scratch))
     }
 
-    /// Adds to `out` the light arriving along `ray` with throughput `tp` (`None` = 1) whose
-    /// largest value is at most `weight`.
-
     /// Point light `l` seen from point `p` (the hit or its lift) of the hit `hit` on material
     /// `m`: the shadow ray's filter and the diffuse and specular weights `(filter, a, b)` for
     /// [`Self::light_term`]; `None` if the light is behind the surface or blocked. Shared by the
