@@ -19,6 +19,9 @@
 pub use specpoly_formats::error::{CliError, Result};
 
 mod display;
+mod render;
+
+pub use render::from_render;
 
 /// A clap error as one line (`unexpected argument '--x' found (tip: …); usage: specpoly …`), or
 /// `None` for `--help` and `--version`, which clap prints itself.

@@ -102,25 +102,25 @@ pub fn argyll_ti3(data: &[u8]) {
     ti3_roundtrip(&text);
 }
 
-/// A scene file ([`specpoly_render::scene::SceneFile`]): parsed, resolved (built-in spectra
+/// A scene file ([`specpoly_render::scene_file::SceneFile`]): parsed, resolved (built-in spectra
 /// only, no base folder) and one pixel traced at the smallest size, within the render budget.
 pub fn scene_toml(data: &[u8]) {
-    use specpoly_render::scene::SceneFile;
+    use specpoly_render::scene_file::SceneFile;
     let text = text(data);
     let file = match SceneFile::parse(&text, "fuzz.toml") {
         Ok(f) => f,
-        Err(e) => return one_line(&e),
+        Err(e) => return one_line(&crate::error::from_render(e)),
     };
     let mut scene = match file.resolve("fuzz.toml") {
         Ok(s) => s,
-        Err(e) => return one_line(&e),
+        Err(e) => return one_line(&crate::error::from_render(e)),
     };
     scene.render.width = 1;
     scene.render.height = 1;
     scene.render.samples = 1;
     scene.render.spp = scene.render.spp.min(2);
     if let Err(e) = specpoly_render::render(&scene, specpoly_spectra::repr::Repr::Rgb, None) {
-        one_line(&e);
+        one_line(&crate::error::from_render(e));
     }
 }
 

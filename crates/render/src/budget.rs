@@ -14,8 +14,9 @@
 //!
 //! A scene over a limit is refused with the figures and what to change.
 
-use crate::scene::{Material, RenderSection};
-use specpoly_formats::error::{CliError, Result};
+use crate::error::{Error, Result};
+use crate::scene::Material;
+use crate::sections::RenderSection;
 use specpoly_spectra::spectrum_names::Named;
 
 /// The deepest path (reflections + refractions) a scene may ask for.
@@ -27,10 +28,11 @@ pub const MAX_RAYS_PER_SAMPLE: f64 = 16_384.0;
 /// Refuses a `[render]` section and materials whose worst-case work exceeds the limits.
 pub fn check(render: &RenderSection, materials: &[Material], source: &str) -> Result<()> {
     if render.max_depth > MAX_DEPTH {
-        return Err(CliError::data(format!(
-            "{source}: render.max_depth {} is above the limit {MAX_DEPTH}",
-            render.max_depth
-        )));
+        return Err(Error::DepthLimit {
+            file: source.to_string(),
+            depth: render.max_depth,
+            limit: MAX_DEPTH,
+        });
     }
     let peak = |n: &Option<Named>| -> f64 {
         n.as_ref().map_or(0.0, |n| {
@@ -51,12 +53,13 @@ pub fn check(render: &RenderSection, materials: &[Material], source: &str) -> Re
         .any(|m| m.mirror.is_some() && m.transmission.is_some());
     let rays = worst_case_rays(a, b, forks, render.max_depth, render.cutoff as f64);
     if rays > MAX_RAYS_PER_SAMPLE {
-        return Err(CliError::data(format!(
-            "{source}: render.max_depth {} with cutoff {} may trace {rays:.3e} rays per sample \
-             (a material both reflects and transmits; the limit is {MAX_RAYS_PER_SAMPLE}): \
-             lower max_depth or raise cutoff",
-            render.max_depth, render.cutoff
-        )));
+        return Err(Error::RayTree {
+            file: source.to_string(),
+            depth: render.max_depth,
+            cutoff: render.cutoff,
+            rays,
+            limit: MAX_RAYS_PER_SAMPLE,
+        });
     }
     Ok(())
 }

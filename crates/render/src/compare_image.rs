@@ -3,7 +3,7 @@
 //! ([`crate::heat`], 0 to [`crate::HEAT_MAX`]) with tick labels. Text is drawn in the plots'
 //! embedded font ([`specpoly_plot::draw_text`]), so it reads the same on every machine.
 
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_plot::{draw_text, measure_text};
 
 /// One panel: its label and its RGB pixels.

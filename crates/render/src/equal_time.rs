@@ -12,7 +12,7 @@
 //! and sampling's bias, hero sampling's wavelength noise): what a user sees at equal time.
 
 use super::{scene::Scene, scene_white, timed, Image, ModeResult, Timing};
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_spectra::repr::Repr;
 
 /// Renders per mode that measure its time per path.

@@ -2,7 +2,9 @@
 //! arriving through one filter.
 //!
 //! A shadow ray multiplies the transmission filter `F` of every transmitting surface it crosses
-//! (Whitted 1980; see [`crate::tracer`]). In a scene like the paper's Example 2 most filtered
+//! (Whitted 1980; see [`crate::tracer`]); the compiled scene's shadow rays
+//! ([`crate::compiled`]) build a [`Filter`]. Below the compiled scene, on its materials
+//! ([`crate::material`]). In a scene like the paper's Example 2 most filtered
 //! shadow rays cross one filter once or twice, so [`Filter`] keeps "`count` crossings of one
 //! material" as a reference and a count, and forms the product `Fᶜᵒᵘⁿᵗ` only when it is needed,
 //! with the same products in the same order as forming it crossing by crossing (so images are
@@ -15,16 +17,16 @@
 //! two integrals per material, filter, count and light once per frame, as the unfiltered first
 //! hit's `xyz(D, L)`, `xyz(S, L)` are.
 
-use crate::tracer::{Coef, Mat};
+use crate::material::{Coef, Mat};
 use specpoly_core::{Shade, Xyz};
 
 /// Crossings tabulated per filter at first hits: a straight ray crosses a convex cell's wall at
 /// most twice.
-pub(super) const FIRST_COUNTS: u32 = 2;
+pub(crate) const FIRST_COUNTS: u32 = 2;
 
 /// The filters a shadow ray crossed.
 #[derive(Debug)]
-pub(super) enum Filter<'a, T> {
+pub(crate) enum Filter<'a, T> {
     /// None: the light arrives unfiltered.
     Clear,
     /// `count` (≥ 1) crossings of material `mat`'s filter `coef`, and nothing else.
@@ -43,14 +45,14 @@ pub(super) enum Filter<'a, T> {
 impl<T: Shade> Filter<'_, T> {
     /// Whether the light arrives unfiltered.
     #[inline]
-    pub(super) fn is_clear(&self) -> bool {
+    pub(crate) fn is_clear(&self) -> bool {
         matches!(self, Filter::Clear)
     }
 
     /// Calls `f` with the product of the filters (`None` when clear), formed only for two or
     /// more crossings of one filter: `F`, then `F·F`, … as [`power`] forms it.
     #[inline]
-    pub(super) fn with<R>(&self, f: impl FnOnce(Option<&T>) -> R) -> R {
+    pub(crate) fn with<R>(&self, f: impl FnOnce(Option<&T>) -> R) -> R {
         match self {
             Filter::Clear => f(None),
             Filter::Same { coef, count: 1, .. } => f(Some(&coef.value)),
@@ -63,7 +65,7 @@ impl<T: Shade> Filter<'_, T> {
 /// `F` multiplied `count` times as a shadow ray forms it crossing by crossing: `F`, then
 /// `F·(previous)` with [`Coef::times`].
 #[inline]
-pub(super) fn power<T: Shade>(coef: &Coef<T>, count: u32) -> T {
+pub(crate) fn power<T: Shade>(coef: &Coef<T>, count: u32) -> T {
     let mut acc = coef.value;
     for _ in 1..count {
         acc = coef.times(&acc);
@@ -72,7 +74,7 @@ pub(super) fn power<T: Shade>(coef: &Coef<T>, count: u32) -> T {
 }
 
 /// Accumulates the filters crossed by one shadow ray, crossing by crossing.
-pub(super) struct Crossings<'a, T> {
+pub(crate) struct Crossings<'a, T> {
     /// `Some((coef, material, count))` while every crossing was of one filter.
     same: Option<(&'a Coef<T>, usize, u32)>,
     /// The product once two different filters were crossed.
@@ -82,7 +84,7 @@ pub(super) struct Crossings<'a, T> {
 impl<'a, T: Shade> Crossings<'a, T> {
     /// No crossings yet.
     #[inline]
-    pub(super) fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Self {
             same: None,
             mixed: None,
@@ -91,7 +93,7 @@ impl<'a, T: Shade> Crossings<'a, T> {
 
     /// One more crossing of material `mat`'s filter `f`.
     #[inline]
-    pub(super) fn cross(&mut self, f: &'a Coef<T>, mat: usize) {
+    pub(crate) fn cross(&mut self, f: &'a Coef<T>, mat: usize) {
         if let Some(acc) = &mut self.mixed {
             *acc = f.times(acc);
             return;
@@ -109,7 +111,7 @@ impl<'a, T: Shade> Crossings<'a, T> {
 
     /// The filters crossed, the product (if any) kept in `scratch`.
     #[inline]
-    pub(super) fn finish(self, scratch: &'a mut Option<T>) -> Filter<'a, T> {
+    pub(crate) fn finish(self, scratch: &'a mut Option<T>) -> Filter<'a, T> {
         match (self.same, self.mixed) {
             (_, Some(v)) => Filter::Mixed(scratch.insert(v)),
             (Some((coef, mat, count)), None) => Filter::Same { coef, mat, count },
@@ -122,7 +124,7 @@ impl<'a, T: Shade> Crossings<'a, T> {
 /// slot `l`, `(xyz(Fᶜ·D, L), xyz(Fᶜ·S, L))` exactly as the light term forms them from the
 /// product.
 #[derive(Debug, Default)]
-pub(super) struct FilteredFirst {
+pub(crate) struct FilteredFirst {
     /// The materials with a transmission filter, in the order of the table.
     filters: Vec<usize>,
     /// Light slots per (filter, count).
@@ -134,7 +136,7 @@ pub(super) struct FilteredFirst {
 impl FilteredFirst {
     /// Tabulates every material against every filter of `mats`, for 1..=[`FIRST_COUNTS`]
     /// crossings and the lights `lights` (in slot order).
-    pub(super) fn new<T: Shade>(mats: &[Mat<T>], lights: &[&T::Light]) -> Self {
+    pub(crate) fn new<T: Shade>(mats: &[Mat<T>], lights: &[&T::Light]) -> Self {
         let filters: Vec<usize> = (0..mats.len())
             .filter(|&i| mats[i].transmission.is_some())
             .collect();
@@ -177,7 +179,7 @@ impl FilteredFirst {
     /// `(xyz(Fᶜᵒᵘⁿᵗ·D, L), xyz(Fᶜᵒᵘⁿᵗ·S, L))` for material `mi`, filter material `fi` and light
     /// slot `slot`, if tabulated.
     #[inline]
-    pub(super) fn get(&self, mi: usize, fi: usize, count: u32, slot: usize) -> Option<(Xyz, Xyz)> {
+    pub(crate) fn get(&self, mi: usize, fi: usize, count: u32, slot: usize) -> Option<(Xyz, Xyz)> {
         if count == 0 || count > FIRST_COUNTS || slot >= self.slots {
             return None;
         }
@@ -190,7 +192,7 @@ impl FilteredFirst {
 #[cfg(test)]
 mod tests {
     use super::FIRST_COUNTS;
-    use crate::tracer::Compiled;
+    use crate::compiled::Compiled;
     use specpoly_core::{delta_e2000, exact_xyz, DefaultSpectrum, Lab};
 
     /// Largest ΔE00 between a tabulated first-hit colour and the 1 nm f64 integral: the default
@@ -225,7 +227,7 @@ mod tests {
         let light = scene.lights[0].spd.tabulated();
         for count in 1..=FIRST_COUNTS {
             let (xd, xs) = c
-                .first_filtered
+                .first_filtered()
                 .get(red, blue, count, 0)
                 .expect("tabulated");
             let through = |nm: f64| f.at(nm).powi(count as i32);
@@ -240,9 +242,9 @@ mod tests {
         }
         // not tabulated: more crossings than a convex cell gives, or an unknown filter
         assert!(c
-            .first_filtered
+            .first_filtered()
             .get(red, blue, FIRST_COUNTS + 1, 0)
             .is_none());
-        assert!(c.first_filtered.get(red, red, 1, 0).is_none());
+        assert!(c.first_filtered().get(red, red, 1, 0).is_none());
     }
 }

@@ -1,16 +1,16 @@
-//! Hero-wavelength sampling in the path tracer: every material's 1 nm tables, bound to a
-//! path's wavelengths ([`bind`]). The sampled spectrum itself, its density and its light are
+//! Hero-wavelength sampling in the path tracer ([`crate::path`]): every material's 1 nm
+//! tables, bound to a path's wavelengths ([`bind`]), and a scene compiled with them
+//! ([`compile`]). The sampled spectrum itself, its density and its light are
 //! [`specpoly_spectra::hero`].
 
-use crate::scene::Material;
-use crate::tracer::{Coef, Compiled, Mat};
+use crate::compiled::{Compiled, PerPath};
+use crate::error::{Error, Result};
+use crate::material::{Coef, Mat};
+use crate::scene::{Material, Scene};
 use specpoly_core::LAMBDA_MIN;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_spectra::hero::{Hero, TABLE};
 
-/// The 1 nm tables of one material's diffuse, specular, mirror and transmission spectra
-/// (`None` where the material has none).
-pub type MatTables = [Option<Vec<[f32; 1]>>; 4];
+pub use crate::material::MatTables;
 
 /// The 1 nm tables of every material, in material order.
 pub fn tables(materials: &[Material]) -> Vec<MatTables> {
@@ -35,16 +35,9 @@ pub fn tables(materials: &[Material]) -> Vec<MatTables> {
         .collect()
 }
 
-/// Per-path spectral sampling in a compiled scene: every material's 1 nm tables and the
-/// function that binds the materials to a path's wavelengths.
-pub(super) struct PerPath<T> {
-    pub(super) tables: Vec<MatTables>,
-    pub(super) bind: fn(&[MatTables], f32, &mut [Mat<T>]) -> T,
-}
-
 /// Binds the materials `mats` to the wavelengths of `u` (every coefficient evaluated there from
 /// its table) and returns a path's starting throughput: one at those wavelengths.
-pub(super) fn bind<const N: usize>(
+pub(crate) fn bind<const N: usize>(
     tables: &[MatTables],
     u: f32,
     mats: &mut [Mat<Hero<N>>],
@@ -72,14 +65,12 @@ pub(super) fn bind<const N: usize>(
 /// `scene` compiled for hero-wavelength sampling with `N` wavelengths per path: the path
 /// tracer binds the materials to each path's wavelengths (the Whitted tracer uses the fixed
 /// ones).
-pub fn compile<const N: usize>(scene: &crate::scene::Scene) -> Result<Compiled<Hero<N>>> {
-    let mut c = Compiled::<Hero<N>>::new(scene)
-        .map_err(|e| CliError::data(format!("converting the scene's spectra: {e}")))?;
-    c.per_path = Some(PerPath {
+pub fn compile<const N: usize>(scene: &Scene) -> Result<Compiled<Hero<N>>> {
+    let c = Compiled::<Hero<N>>::new(scene).map_err(Error::Convert)?;
+    Ok(c.with_per_path(PerPath {
         tables: tables(&scene.materials),
         bind: bind::<N>,
-    });
-    Ok(c)
+    }))
 }
 
 #[cfg(test)]

@@ -12,10 +12,10 @@
 //! Every file is written whole or not at all (the project's atomic writer).
 
 use super::{Image, Output};
+use crate::error::{Error, Result};
 use rayon::prelude::*;
 use specpoly_core::{quantize, quantize8, Xyz};
 use specpoly_display::spec::DisplaySpec;
-use specpoly_formats::error::{CliError, Result};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -41,14 +41,14 @@ pub enum ExrSpace {
 }
 
 impl std::str::FromStr for ExrSpace {
-    type Err = CliError;
+    type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
         match s.to_ascii_lowercase().as_str() {
             "rgb" => Ok(ExrSpace::Rgb),
             "xyz" => Ok(ExrSpace::Xyz),
-            _ => Err(CliError::usage(format!(
-                "--exr-space `{s}`: use rgb or xyz"
-            ))),
+            _ => Err(Error::ExrSpace {
+                given: s.to_string(),
+            }),
         }
     }
 }
@@ -74,16 +74,16 @@ pub fn format_for(path: &Path, bits: u8) -> Result<Format> {
     match (ext.as_str(), bits) {
         ("png", 8) => Ok(Format::Png8),
         ("png", 16) => Ok(Format::Png16),
-        ("png", b) => Err(CliError::usage(format!("--bits {b}: PNG takes 8 or 16"))),
+        ("png", bits) => Err(Error::PngBits { bits }),
         ("exr", _) => Ok(Format::Exr),
-        ("", _) => Err(CliError::usage(format!(
-            "{}: no file extension: use .png or .exr",
-            path.display()
-        ))),
-        (e, _) => Err(CliError::usage(format!(
-            "{}: unknown image format `.{e}`: use .png or .exr",
-            path.display()
-        ))),
+        ("", _) => Err(Error::ImageFormat {
+            path: path.to_path_buf(),
+            ext: None,
+        }),
+        (e, _) => Err(Error::ImageFormat {
+            path: path.to_path_buf(),
+            ext: Some(e.to_string()),
+        }),
     }
 }
 

@@ -1,40 +1,78 @@
-//! The spectral ray tracer: scene files ([`scene`]), geometry ([`geometry`]), the Whitted tracer
-//! generic over the colour representation ([`tracer`]), built-in scenes ([`builtin`]), and the
-//! way from XYZ pixels to a display's PNG ([`output`]) and to ΔE00 comparisons ([`compare`]).
+//! The spectral ray and path tracer: scene files, meshes, lights, integrators generic over the
+//! colour representation, and the way from XYZ pixels to a display's image files and to ΔE00
+//! comparisons.
 //!
 //! ```text
-//! scene.toml ─resolve─▶ Scene (tabulated spectra) ─Compiled<T>─▶ XYZ image ─Display─▶ PNG
+//! scene.toml ─resolve─▶ Scene (tabulated spectra) ─Compiled<T>─▶ XYZ image ─Display─▶ PNG/EXR
 //! ```
+//!
+//! The modules are layered; each uses only modules of the layers below it (and its own):
+//!
+//! 1. **Leaves**: [`geometry`] (vectors, rays, shapes, the camera), [`upsample`] (sRGB to a
+//!    reflectance), [`builtin`] (the built-in scenes' text), [`cpu_time`], [`error`].
+//! 2. **Meshes and emitters**: [`mesh`] (triangles, their BVH, OBJ files), [`mesh_ply`] (PLY
+//!    files, on [`mesh`]), [`lights`] (area lights, the environment, their sampling).
+//! 3. **The scene file**: [`sections`] (the TOML sections as written, with the
+//!    [`sections::Integrator`]) → [`scene_value`] (spectra and points resolved) →
+//!    [`scene`] (the resolved [`scene::Scene`]) → [`budget`] (the work a scene may ask for) and
+//!    [`scene_geometry`] (quads, mesh files, emitters) → [`scene_file`] (the whole file,
+//!    parsed and resolved).
+//! 4. **The compiled scene**: `material` (a scene's materials in representation `T`) →
+//!    `filter` (what shadow rays pass through) → [`compiled`] ([`compiled::Compiled`]: every
+//!    spectrum converted once, and the queries the integrators share: nearest hit, shadow
+//!    rays, light terms, emission).
+//! 5. **Integrators**, on the compiled scene: [`tracer`] (Whitted), [`path`] (the path
+//!    tracer), [`hero`] (hero-wavelength sampling: a scene compiled with per-path binding).
+//! 6. **This root**: [`load`] a scene, [`render`] it (dispatching over the representation and
+//!    the integrator), [`compare`] representations against the 1 nm reference; [`Image`],
+//!    [`ModeResult`].
+//! 7. **Image files and comparisons**, on the root's images: [`output`] (XYZ to display RGB),
+//!    [`image_file`] (PNG and EXR files), [`compare_image`] (the comparison panels),
+//!    [`equal_time`] (the path tracer's representations at equal time).
 
-pub mod budget;
+// leaves
 pub mod builtin;
-pub mod compare_image;
 pub mod cpu_time;
-pub mod equal_time;
-mod filter;
+pub mod error;
 pub mod geometry;
-pub mod hero;
-pub mod image_file;
+pub mod upsample;
+// meshes and emitters
 pub mod lights;
 pub mod mesh;
 pub mod mesh_ply;
-pub mod output;
-pub mod path;
+// the scene file and the resolved scene
+pub mod budget;
 pub mod scene;
+pub mod scene_file;
 pub mod scene_geometry;
+pub mod scene_value;
+pub mod sections;
+// the compiled scene
+pub mod compiled;
+mod filter;
+mod material;
+// integrators
+pub mod hero;
+pub mod path;
 pub mod tracer;
-pub mod upsample;
+// image files and comparisons
+pub mod compare_image;
+pub mod equal_time;
+pub mod image_file;
+pub mod output;
 
+use compiled::Compiled;
 use rayon::prelude::*;
-use scene::{Scene, SceneFile};
+use scene::Scene;
+use scene_file::SceneFile;
+use sections::Integrator;
 use specpoly_core::{delta_e2000, Lab, Shade, Xyz};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stats::Stats;
 use specpoly_spectra::repr::{self, Repr, Visitor};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
-use tracer::Compiled;
 
+pub use error::{Error, Result};
 pub use output::{to_rgb8, Output};
 
 /// An image of XYZ values (white `Y = 100`), row-major.
@@ -71,12 +109,14 @@ pub fn load(spec: &str) -> Result<Scene> {
         return SceneFile::parse(b.text, b.name)?.resolve(b.name);
     }
     if looks_like_file {
-        return Err(CliError::usage(format!("{spec}: no such scene file")));
+        return Err(Error::NoSuchSceneFile {
+            name: spec.to_string(),
+        });
     }
-    Err(CliError::usage(format!(
-        "unknown scene `{spec}`: not a file, and not a built-in ({})",
-        builtin::names()
-    )))
+    Err(Error::UnknownScene {
+        name: spec.to_string(),
+        builtins: builtin::names(),
+    })
 }
 
 /// Progress reporting: called with the number of rows done.
@@ -90,13 +130,13 @@ struct RenderVisit<'a> {
 impl Visitor for RenderVisit<'_> {
     type Output = Result<Image>;
     fn visit<T: Shade>(self) -> Result<Image> {
-        let c = Compiled::<T>::new(self.scene)
-            .map_err(|e| CliError::data(format!("converting the scene's spectra: {e}")))?;
+        let c = Compiled::<T>::new(self.scene).map_err(Error::Convert)?;
         Ok(render_compiled(&c, self.progress))
     }
 }
 
-/// Renders a compiled scene in parallel over rows (rayon). Deterministic: every pixel is
+/// Renders a compiled scene in parallel over rows (rayon), with its integrator (Whitted
+/// [`tracer`] or [`path`]). Deterministic: every pixel is
 /// computed on its own, whichever thread runs it.
 pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>) -> Image {
     let (w, h) = (c.width(), c.height());
@@ -106,9 +146,12 @@ pub fn render_compiled<T: Shade>(c: &Compiled<T>, progress: Option<Progress<'_>>
     xyz.par_chunks_mut(w as usize)
         .enumerate()
         .for_each(|(y, row)| {
-            let before = tracer::rays_traced();
-            c.row(y as u32, row);
-            rays.fetch_add(tracer::rays_traced() - before, Ordering::Relaxed);
+            let before = compiled::rays_traced();
+            match c.integrator() {
+                Integrator::Whitted => tracer::row(c, y as u32, row),
+                Integrator::Path => path::row(c, y as u32, row),
+            }
+            rays.fetch_add(compiled::rays_traced() - before, Ordering::Relaxed);
             if let Some(p) = progress {
                 p(done.fetch_add(1, Ordering::Relaxed) + 1);
             }
@@ -131,9 +174,9 @@ pub fn render(scene: &Scene, repr: Repr, progress: Option<Progress<'_>>) -> Resu
 
 /// The modes `render --compare` renders: rgb, paper, the default representation and
 /// sampled:81, and with the path tracer hero-wavelength sampling (`hero:4`).
-pub fn compare_modes(integrator: tracer::Integrator) -> Vec<Repr> {
+pub fn compare_modes(integrator: Integrator) -> Vec<Repr> {
     let mut m = vec![Repr::Rgb, Repr::Paper, Repr::DEFAULT, Repr::Sampled(81)];
-    if integrator == tracer::Integrator::Path {
+    if integrator == Integrator::Path {
         m.push(Repr::Hero(4));
     }
     m
@@ -142,8 +185,8 @@ pub fn compare_modes(integrator: tracer::Integrator) -> Vec<Repr> {
 /// Camera paths per pixel: `spp` for the path tracer, `samples²` for Whitted.
 pub fn paths_per_pixel(scene: &Scene) -> u32 {
     match scene.render.integrator {
-        tracer::Integrator::Path => scene.render.spp,
-        tracer::Integrator::Whitted => scene.render.samples * scene.render.samples,
+        Integrator::Path => scene.render.spp,
+        Integrator::Whitted => scene.render.samples * scene.render.samples,
     }
 }
 

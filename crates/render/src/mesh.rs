@@ -5,13 +5,16 @@
 //! Triangles are one-sided for nothing: a hit reports the geometric normal `(v1 − v0) × (v2 − v0)`
 //! normalised, and the tracers flip it toward the viewer as for every other shape. Shading uses
 //! the geometric (flat) normal.
+//!
+//! Below the scene file: PLY files are read by [`crate::mesh_ply`] on top of this module, and
+//! the scene file picks the reader by the file's name ([`crate::scene_geometry`]).
 
+use crate::error::{Error, Result};
 use crate::geometry::{Ray, EPS, V3};
 use glam::Vec3A;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};
 use obvhs::triangle::Triangle;
-use specpoly_formats::error::{CliError, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Duration;
@@ -176,15 +179,11 @@ pub struct ObjPlacement<'a> {
     pub map: &'a BTreeMap<String, usize>,
 }
 
-/// Reads a mesh file into `soup`: PLY for a `.ply` name ([`crate::mesh_ply`]), else OBJ.
-pub fn load(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
-    {
-        crate::mesh_ply::load_ply(path, place, soup)
-    } else {
-        load_obj(path, place, soup)
+/// [`Error::Mesh`] for the file `path`.
+pub(crate) fn mesh_error(path: &Path, why: impl Into<String>) -> Error {
+    Error::Mesh {
+        file: path.display().to_string(),
+        why: why.into(),
     }
 }
 
@@ -198,7 +197,7 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
         ..Default::default()
     };
     let (models, mtl) = tobj::load_obj(path, &opts)
-        .map_err(|e| CliError::data(format!("{}: not a readable OBJ file: {e}", path.display())))?;
+        .map_err(|e| mesh_error(path, format!("not a readable OBJ file: {e}")))?;
     // a missing .mtl is not an error: its faces take the default material
     let mtl_names: Vec<String> = mtl
         .map(|m| m.into_iter().map(|m| m.name).collect())
@@ -214,28 +213,25 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
             .unwrap_or(place.default);
         let p = &mesh.positions;
         if p.len() % 3 != 0 {
-            return Err(CliError::data(format!(
-                "{}: model `{}`: positions are not triples",
-                path.display(),
-                m.name
-            )));
+            return Err(mesh_error(
+                path,
+                format!("model `{}`: positions are not triples", m.name),
+            ));
         }
         let vertex = |i: u32| -> Result<V3> {
             let i = i as usize * 3;
             let v = p.get(i..i + 3).ok_or_else(|| {
-                CliError::data(format!(
-                    "{}: model `{}`: a face refers to a missing vertex",
-                    path.display(),
-                    m.name
-                ))
+                mesh_error(
+                    path,
+                    format!("model `{}`: a face refers to a missing vertex", m.name),
+                )
             })?;
             let v = V3::new(v[0], v[1], v[2]);
             if !(v.x.is_finite() && v.y.is_finite() && v.z.is_finite()) {
-                return Err(CliError::data(format!(
-                    "{}: model `{}`: a vertex is not finite",
-                    path.display(),
-                    m.name
-                )));
+                return Err(mesh_error(
+                    path,
+                    format!("model `{}`: a vertex is not finite", m.name),
+                ));
             }
             Ok(v * place.scale + place.translate)
         };
@@ -243,10 +239,10 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
             let t = [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?];
             soup.push(t, material);
             if soup.tris.len() > MAX_TRIANGLES {
-                return Err(CliError::data(format!(
-                    "{}: more than {MAX_TRIANGLES} triangles in the scene",
-                    path.display()
-                )));
+                return Err(mesh_error(
+                    path,
+                    format!("more than {MAX_TRIANGLES} triangles in the scene",),
+                ));
             }
         }
     }

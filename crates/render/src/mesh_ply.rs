@@ -8,11 +8,11 @@
 //! the header's element counts are checked against its size before the payload is parsed, so a
 //! header announcing a billion vertices is refused before anything is allocated for them.
 
+use crate::error::Result;
 use crate::geometry::V3;
-use crate::mesh::{ObjPlacement, TriangleSoup, MAX_TRIANGLES};
+use crate::mesh::{mesh_error, ObjPlacement, TriangleSoup, MAX_TRIANGLES};
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Property};
-use specpoly_formats::error::{CliError, Result};
 use std::path::Path;
 
 fn scalar(p: Option<&Property>) -> Option<f64> {
@@ -44,7 +44,7 @@ fn indices(p: Option<&Property>) -> Option<Vec<i64>> {
 /// Reads a PLY file into `soup` with material `place.default`; returns how many triangles it
 /// added.
 pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    let bad = |what: String| CliError::data(format!("{}: {what}", path.display()));
+    let bad = |what: String| mesh_error(path, what);
     let bytes = specpoly_formats::read::bytes(path)?;
     let mut r = std::io::Cursor::new(&bytes[..]);
     let parser = Parser::<DefaultElement>::new();

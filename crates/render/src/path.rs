@@ -1,7 +1,7 @@
 //! A unidirectional path tracer with next-event estimation and Russian roulette (Kajiya, "The
 //! rendering equation", SIGGRAPH 1986; Arvo & Kirk, "Particle transport and image synthesis",
 //! SIGGRAPH 1990), generic over the colour representation `T: Shade` like the Whitted tracer
-//! and sharing its scene, materials and light terms.
+//! and sharing its compiled scene, materials and light terms ([`crate::compiled`]).
 //!
 //! **Closed spectral algebra.** A path carries its throughput `T` — the product of the
 //! reflectances and filters met so far — as a value of the representation: a piecewise
@@ -42,9 +42,10 @@
 //! those wavelengths. Every other mode uses the frame's materials and is unchanged.
 //! The ambient term and the background reflectance are Whitted-only.
 
+use crate::compiled::{Compiled, Frame, Surf};
 use crate::geometry::Ray;
 use crate::lights::cosine_direction;
-use crate::tracer::{Compiled, Formed, Frame, Mat, Surf};
+use crate::material::{Formed, Mat};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 use specpoly_core::{Shade, Xyz};
@@ -85,194 +86,197 @@ enum Bounce {
     Transmit,
 }
 
-impl<T: Shade> Compiled<T> {
-    /// XYZ of pixel `(x, y)` by path tracing: the mean of `spp` paths through uniformly
-    /// jittered points of the pixel. `scratch` holds the materials bound to a path's
-    /// wavelengths under hero-wavelength sampling (unused otherwise).
-    pub(super) fn path_pixel(&self, x: u32, y: u32, scratch: &mut [Mat<T>]) -> Xyz {
-        let (w, h) = (self.width(), self.height());
-        let aspect = w as f32 / h as f32;
-        let mut sum = Xyz::default();
-        for s in 0..self.spp {
-            let mut rng = Sampler::new(self.seed, x, y, s);
-            let u = (x as f32 + rng.uniform()) / w as f32;
-            let v = (y as f32 + rng.uniform()) / h as f32;
-            let ray = self.camera.ray(u, v, aspect);
-            let radiance = match &self.per_path {
-                None => self.path(ray, &mut rng, &self.mats, None),
-                Some(pp) => {
-                    // the wavelengths from their own stream: the paths stay those of every mode
-                    let lambda_u = Sampler::new(self.seed ^ WAVELENGTH_STREAM, x, y, s).uniform();
-                    let start = (pp.bind)(&pp.tables, lambda_u, scratch);
-                    self.path(ray, &mut rng, scratch, Some(start))
-                }
-            };
-            sum = sum + radiance;
-        }
-        sum.scale(1.0 / self.spp as f32)
-    }
-
-    /// The radiance (XYZ) arriving along `ray`.
-    /// `mats` are the materials (bound to the path's wavelengths under hero sampling) and
-    /// `start` the starting throughput (`None` = 1).
-    fn path(&self, mut ray: Ray, rng: &mut Sampler, mats: &[Mat<T>], start: Option<T>) -> Xyz {
-        let mut out = Xyz::default();
-        let mut tp: Option<T> = start;
-        let mut weight = 1.0f32;
-        let mut count_emission = true;
-        let mut depth = 0u32;
-        loop {
-            let Some((t, normal, surf)) = self.nearest(&ray) else {
-                if let (true, Some(e)) = (count_emission, &self.env) {
-                    out = out + self.emitted(tp.as_ref(), &e.light, e.radiance, e.emit_xyz);
-                }
-                break;
-            };
-            let mi = match surf {
-                Surf::Mat(mi) => mi,
-                Surf::Light(k) => {
-                    if count_emission {
-                        let l = &self.area[k];
-                        out = out + self.emitted(tp.as_ref(), &l.light, l.radiance, l.emit_xyz);
-                    }
-                    break;
-                }
-            };
-            let m = &mats[mi];
-            let hit = Frame::at(&ray, t, normal);
-            let Frame { n, lift, .. } = hit;
-
-            // `T·D`, formed for direct light, is also the diffuse continuation's throughput
-            let lit = m.diffuse.is_some() || m.specular.is_some();
-            let formed = if lit {
-                m.times(tp.as_ref())
-            } else {
-                Formed { td: None, ts: None }
-            };
-            if lit {
-                out = out + self.direct(mats, mi, tp.as_ref(), &formed, &hit, rng);
+/// XYZ of pixel `(x, y)` by path tracing: the mean of `spp` paths through uniformly
+/// jittered points of the pixel. `scratch` holds the materials bound to a path's
+/// wavelengths under hero-wavelength sampling (unused otherwise).
+fn pixel<T: Shade>(c: &Compiled<T>, x: u32, y: u32, scratch: &mut [Mat<T>]) -> Xyz {
+    let (w, h) = (c.width(), c.height());
+    let set = c.settings();
+    let aspect = w as f32 / h as f32;
+    let mut sum = Xyz::default();
+    for s in 0..set.spp {
+        let mut rng = Sampler::new(set.seed, x, y, s);
+        let u = (x as f32 + rng.uniform()) / w as f32;
+        let v = (y as f32 + rng.uniform()) / h as f32;
+        let ray = set.camera.ray(u, v, aspect);
+        let radiance = match c.per_path() {
+            None => path(c, ray, &mut rng, c.materials(), None),
+            Some(pp) => {
+                // the wavelengths from their own stream: the paths stay those of every mode
+                let lambda_u = Sampler::new(set.seed ^ WAVELENGTH_STREAM, x, y, s).uniform();
+                let start = (pp.bind)(&pp.tables, lambda_u, scratch);
+                path(c, ray, &mut rng, scratch, Some(start))
             }
-            if depth >= self.max_depth {
-                break;
-            }
-            // by reference: a spectral coefficient is 136 bytes
-            let md = m.diffuse.as_ref().map_or(0.0, |c| c.max);
-            let mm = m.mirror.as_ref().map_or(0.0, |c| c.max);
-            let mt = m.transmission.as_ref().map_or(0.0, |c| c.max);
-            let total = md + mm + mt;
-            if total <= 0.0 {
-                break;
-            }
-            let xi = rng.uniform() * total;
-            let (coef, bounce) = match (&m.diffuse, &m.mirror, &m.transmission) {
-                (Some(d), _, _) if xi < md => (d, Bounce::Diffuse),
-                (_, Some(r), _) if xi < md + mm => (r, Bounce::Mirror),
-                (_, _, Some(f)) => (f, Bounce::Transmit),
-                (_, Some(r), None) => (r, Bounce::Mirror),
-                (Some(d), None, None) => (d, Bounce::Diffuse),
-                (None, None, None) => break,
-            };
-            let bound = weight * total;
-            let survive = if depth >= 2 { bound.min(1.0) } else { 1.0 };
-            let (u1, u2, u3) = (rng.uniform(), rng.uniform(), rng.uniform());
-            if u3 >= survive {
-                break;
-            }
-            let k = total / coef.max / survive;
-            tp = Some(match (bounce, &formed.td, k == 1.0) {
-                (Bounce::Diffuse, Some(td), true) => *td,
-                (Bounce::Diffuse, Some(td), false) => td.scale(k),
-                (_, _, true) => coef.after(tp.as_ref()),
-                (_, _, false) => coef.after(tp.as_ref()).scale(k),
-            });
-            weight = bound / survive;
-            ray = match bounce {
-                Bounce::Diffuse => {
-                    count_emission = false;
-                    Ray {
-                        origin: lift,
-                        dir: cosine_direction(n, u1, u2),
-                    }
-                }
-                Bounce::Mirror => {
-                    count_emission = true;
-                    Ray {
-                        origin: lift,
-                        dir: ray.dir.reflect(n),
-                    }
-                }
-                Bounce::Transmit => {
-                    if m.ior != 1.0 {
-                        count_emission = true;
-                    }
-                    hit.through(ray.dir, m.ior)
-                }
-            };
-            depth += 1;
-        }
-        out
-    }
-
-    /// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
-    /// with `T·D`, `T·S` formed ([`Mat::times`]).
-    fn direct(
-        &self,
-        mats: &[Mat<T>],
-        mi: usize,
-        tp: Option<&T>,
-        formed: &Formed<T>,
-        hit: &Frame,
-        rng: &mut Sampler,
-    ) -> Xyz {
-        let Frame { lift, n, .. } = *hit;
-        let m = &mats[mi];
-        let (td, ts) = (&formed.td, &formed.ts);
-        let mut acc = Xyz::default();
-        // the first-hit tables hold the frame's materials: not those bound per path (hero)
-        let first = tp.is_none() && self.per_path.is_none();
-        for (li, l) in self.lights.iter().enumerate() {
-            let mut scratch = None;
-            let Some((filter, a, b)) =
-                self.point_weights(mats, &mut scratch, l, m, hit, lift, true)
-            else {
-                continue;
-            };
-            let at = first.then_some((mi, li));
-            acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
-        }
-        for (k, l) in self.area.iter().enumerate() {
-            let (u1, u2) = (rng.uniform(), rng.uniform());
-            let mut scratch = None;
-            // share 1.0: `x * 1.0` is exactly `x`
-            let Some((filter, a, b)) =
-                self.area_weights(mats, &mut scratch, l, m, hit, (u1, u2), 1.0, true)
-            else {
-                continue;
-            };
-            let at = first.then_some((mi, self.area_slot(k)));
-            acc = acc + self.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
-        }
-        if let (Some(e), Some(_)) = (&self.env, &m.diffuse) {
-            let (u1, u2) = (rng.uniform(), rng.uniform());
-            let dir = cosine_direction(n, u1, u2);
-            let mut scratch = None;
-            if let Some(filter) = self.shadow(mats, &mut scratch, lift, dir, f32::INFINITY, true) {
-                // (D/π) · L · cos θ / (cos θ / π) = D · L
-                acc = acc
-                    + self.light_term(m, tp, td, &None, &filter, e.radiance, 0.0, &e.light, None);
-            }
-        }
-        acc
-    }
-
-    /// One row of path-traced pixels into `row` (length `width`).
-    pub fn path_row(&self, y: u32, row: &mut [Xyz]) {
-        let mut scratch = match self.per_path {
-            Some(_) => self.mats.clone(),
-            None => Vec::new(),
         };
-        for (x, px) in row.iter_mut().enumerate() {
-            *px = self.path_pixel(x as u32, y, &mut scratch);
+        sum = sum + radiance;
+    }
+    sum.scale(1.0 / set.spp as f32)
+}
+
+/// The radiance (XYZ) arriving along `ray`.
+/// `mats` are the materials (bound to the path's wavelengths under hero sampling) and
+/// `start` the starting throughput (`None` = 1).
+fn path<T: Shade>(
+    c: &Compiled<T>,
+    mut ray: Ray,
+    rng: &mut Sampler,
+    mats: &[Mat<T>],
+    start: Option<T>,
+) -> Xyz {
+    let mut out = Xyz::default();
+    let mut tp: Option<T> = start;
+    let mut weight = 1.0f32;
+    let mut count_emission = true;
+    let mut depth = 0u32;
+    loop {
+        let Some((t, normal, surf)) = c.nearest(&ray) else {
+            if let (true, Some(e)) = (count_emission, c.environment()) {
+                out = out + c.emitted(tp.as_ref(), &e.light, e.radiance, e.emit_xyz);
+            }
+            break;
+        };
+        let mi = match surf {
+            Surf::Mat(mi) => mi,
+            Surf::Light(k) => {
+                if count_emission {
+                    let l = &c.area_lights()[k];
+                    out = out + c.emitted(tp.as_ref(), &l.light, l.radiance, l.emit_xyz);
+                }
+                break;
+            }
+        };
+        let m = &mats[mi];
+        let hit = Frame::at(&ray, t, normal);
+        let Frame { n, lift, .. } = hit;
+
+        // `T·D`, formed for direct light, is also the diffuse continuation's throughput
+        let lit = m.diffuse.is_some() || m.specular.is_some();
+        let formed = if lit {
+            m.times(tp.as_ref())
+        } else {
+            Formed { td: None, ts: None }
+        };
+        if lit {
+            out = out + direct(c, mats, mi, tp.as_ref(), &formed, &hit, rng);
         }
+        if depth >= c.settings().max_depth {
+            break;
+        }
+        // by reference: a spectral coefficient is 136 bytes
+        let md = m.diffuse.as_ref().map_or(0.0, |c| c.max);
+        let mm = m.mirror.as_ref().map_or(0.0, |c| c.max);
+        let mt = m.transmission.as_ref().map_or(0.0, |c| c.max);
+        let total = md + mm + mt;
+        if total <= 0.0 {
+            break;
+        }
+        let xi = rng.uniform() * total;
+        let (coef, bounce) = match (&m.diffuse, &m.mirror, &m.transmission) {
+            (Some(d), _, _) if xi < md => (d, Bounce::Diffuse),
+            (_, Some(r), _) if xi < md + mm => (r, Bounce::Mirror),
+            (_, _, Some(f)) => (f, Bounce::Transmit),
+            (_, Some(r), None) => (r, Bounce::Mirror),
+            (Some(d), None, None) => (d, Bounce::Diffuse),
+            (None, None, None) => break,
+        };
+        let bound = weight * total;
+        let survive = if depth >= 2 { bound.min(1.0) } else { 1.0 };
+        let (u1, u2, u3) = (rng.uniform(), rng.uniform(), rng.uniform());
+        if u3 >= survive {
+            break;
+        }
+        let k = total / coef.max / survive;
+        tp = Some(match (bounce, &formed.td, k == 1.0) {
+            (Bounce::Diffuse, Some(td), true) => *td,
+            (Bounce::Diffuse, Some(td), false) => td.scale(k),
+            (_, _, true) => coef.after(tp.as_ref()),
+            (_, _, false) => coef.after(tp.as_ref()).scale(k),
+        });
+        weight = bound / survive;
+        ray = match bounce {
+            Bounce::Diffuse => {
+                count_emission = false;
+                Ray {
+                    origin: lift,
+                    dir: cosine_direction(n, u1, u2),
+                }
+            }
+            Bounce::Mirror => {
+                count_emission = true;
+                Ray {
+                    origin: lift,
+                    dir: ray.dir.reflect(n),
+                }
+            }
+            Bounce::Transmit => {
+                if m.ior != 1.0 {
+                    count_emission = true;
+                }
+                hit.through(ray.dir, m.ior)
+            }
+        };
+        depth += 1;
+    }
+    out
+}
+
+/// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
+/// with `T·D`, `T·S` formed ([`Mat::times`]).
+fn direct<T: Shade>(
+    c: &Compiled<T>,
+    mats: &[Mat<T>],
+    mi: usize,
+    tp: Option<&T>,
+    formed: &Formed<T>,
+    hit: &Frame,
+    rng: &mut Sampler,
+) -> Xyz {
+    let Frame { lift, n, .. } = *hit;
+    let m = &mats[mi];
+    let (td, ts) = (&formed.td, &formed.ts);
+    let mut acc = Xyz::default();
+    // the first-hit tables hold the frame's materials: not those bound per path (hero)
+    let first = tp.is_none() && c.per_path().is_none();
+    for (li, l) in c.point_lights().iter().enumerate() {
+        let mut scratch = None;
+        let Some((filter, a, b)) = c.point_weights(mats, &mut scratch, l, m, hit, lift, true)
+        else {
+            continue;
+        };
+        let at = first.then_some((mi, li));
+        acc = acc + c.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
+    }
+    for (k, l) in c.area_lights().iter().enumerate() {
+        let (u1, u2) = (rng.uniform(), rng.uniform());
+        let mut scratch = None;
+        // share 1.0: `x * 1.0` is exactly `x`
+        let Some((filter, a, b)) =
+            c.area_weights(mats, &mut scratch, l, m, hit, (u1, u2), 1.0, true)
+        else {
+            continue;
+        };
+        let at = first.then_some((mi, c.area_slot(k)));
+        acc = acc + c.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
+    }
+    if let (Some(e), Some(_)) = (c.environment(), &m.diffuse) {
+        let (u1, u2) = (rng.uniform(), rng.uniform());
+        let dir = cosine_direction(n, u1, u2);
+        let mut scratch = None;
+        if let Some(filter) = c.shadow(mats, &mut scratch, lift, dir, f32::INFINITY, true) {
+            // (D/π) · L · cos θ / (cos θ / π) = D · L
+            acc = acc + c.light_term(m, tp, td, &None, &filter, e.radiance, 0.0, &e.light, None);
+        }
+    }
+    acc
+}
+
+/// One row of path-traced pixels into `row` (length `width`).
+pub fn row<T: Shade>(c: &Compiled<T>, y: u32, row: &mut [Xyz]) {
+    let mut scratch = match c.per_path() {
+        Some(_) => c.materials().to_vec(),
+        None => Vec::new(),
+    };
+    for (x, px) in row.iter_mut().enumerate() {
+        *px = pixel(c, x as u32, y, &mut scratch);
     }
 }

@@ -17,6 +17,7 @@ pub mod mix;
 pub mod plot;
 pub mod render;
 pub mod render_equal_time;
+pub mod render_report;
 pub mod table1;
 pub mod xyz;
 

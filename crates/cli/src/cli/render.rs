@@ -5,19 +5,22 @@
 //! encoded for the display. `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` (and `hero:4` with the
 //! path tracer; `--rounds N` times, interleaved) and the 1 nm reference,
 //! writes `rgb | poly | reference | ΔE00 rgb | ΔE00 poly` side by side, and prints the ΔE00
-//! statistics of each mode against the reference.
+//! statistics of each mode against the reference. `--equal-time` is [`render_equal_time`]; both
+//! comparisons are written and printed by [`crate::cli::render_report`].
 
 use crate::cli::args::Gamut;
+use crate::cli::render_equal_time;
+use crate::cli::render_report::{report, Report, Target};
+use crate::error::from_render;
 use specpoly_calibrate::progress;
 use specpoly_display::spec::DisplaySpec;
 use specpoly_formats::error::Result;
 use specpoly_formats::stdout::{print, print_json};
 use specpoly_plot::size::Size;
 use specpoly_render::image_file::{self as image_out, ExrSpace};
-use specpoly_render::tracer::Integrator;
+use specpoly_render::sections::Integrator;
 use specpoly_render::{self as render, builtin, Output};
 use specpoly_spectra::repr::Repr;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -87,11 +90,11 @@ fn render_help() -> String {
 /// Runs `specpoly render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mode = a.mode;
-    let format = image_out::format_for(&a.output, a.bits)?;
-    let space: ExrSpace = a.exr_space.parse()?;
+    let format = image_out::format_for(&a.output, a.bits).map_err(from_render)?;
+    let space: ExrSpace = a.exr_space.parse().map_err(from_render)?;
     let spec = DisplaySpec::open(&a.display)?;
-    let tag = image_out::colour_tag(&spec)?;
-    let mut scene = render::load(&a.scene)?;
+    let tag = image_out::colour_tag(&spec).map_err(from_render)?;
+    let mut scene = render::load(&a.scene).map_err(from_render)?;
     if let Some(size) = a.size {
         scene.render.width = size.width;
         scene.render.height = size.height;
@@ -110,7 +113,12 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let (w, h) = (scene.render.width, scene.render.height);
 
     if a.equal_time {
-        return crate::cli::render_equal_time::run(a, &scene, &out);
+        let to = Target {
+            scene: &a.scene,
+            output: &a.output,
+            json: a.json,
+        };
+        return render_equal_time::run(&to, a.reference_spp, &scene, &out);
     }
     if a.compare {
         return run_compare(a, &scene, &out);
@@ -119,11 +127,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let pb = progress::bar(h as u64, &mode.to_string(), "rows");
     let tick = |n: usize| pb.set_position(n as u64);
     let t0 = Instant::now();
-    let img = render::render(&scene, mode, Some(&tick))?;
+    let img = render::render(&scene, mode, Some(&tick)).map_err(from_render)?;
     let secs = t0.elapsed().as_secs_f64();
     pb.finish_and_clear();
     specpoly_spectra::plausible::image(&a.scene, &img.xyz)?;
-    image_out::write(&a.output, &img, &out, format, &tag, space)?;
+    image_out::write(&a.output, &img, &out, format, &tag, space).map_err(from_render)?;
     let paths = render::paths_per_pixel(&scene);
     if a.json {
         print_json(&serde_json::json!({
@@ -163,7 +171,7 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         "compare",
         "renders",
     );
-    let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1))?;
+    let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1)).map_err(from_render)?;
     pb.finish_and_clear();
     specpoly_spectra::plausible::image(&a.scene, &c.reference.xyz)?;
     for m in &c.modes {
@@ -174,8 +182,13 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         Integrator::Path => "paths",
         Integrator::Whitted => "rays",
     };
+    let to = Target {
+        scene: &a.scene,
+        output: &a.output,
+        json: a.json,
+    };
     report(
-        a,
+        &to,
         out,
         Report {
             header: format!(
@@ -206,78 +219,4 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
             }),
         },
     )
-}
-
-/// A comparison to print and write: its header line, its modes (the `shown` ones as panels,
-/// beside the reference), and the JSON fields that go beside `modes` and `output`.
-pub(super) struct Report<'a> {
-    pub header: String,
-    pub modes: &'a [render::ModeResult],
-    pub shown: Vec<&'a render::ModeResult>,
-    pub reference: &'a render::Image,
-    pub json: serde_json::Value,
-}
-
-/// Writes a comparison's image (the shown modes, the reference and the modes' ΔE00 maps,
-/// labelled, over the colour bar) and prints its table of modes (`--json`: as JSON).
-pub(super) fn report(a: &RenderArgs, out: &Output, r: Report<'_>) -> Result<()> {
-    use render::compare_image::{comparison_panels, compose};
-    let (cw, ch, px) = compose(&comparison_panels(&r.shown, r.reference, out))?;
-    render::write_png(&a.output, cw, ch, &px)?;
-    let names: Vec<String> = r.shown.iter().map(|m| m.repr.to_string()).collect();
-    let written = format!(
-        "wrote {} ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \
-         yellow, white, its colour bar below)",
-        specpoly_formats::escape::one_line(&a.output.display().to_string()),
-        names.join(" | "),
-        render::HEAT_MAX
-    );
-    if a.json {
-        let mut j = r.json;
-        j["modes"] = r.modes.iter().map(mode_json).collect();
-        j["output"] = a.output.display().to_string().into();
-        print_json(&j)?;
-        eprintln!("{written}");
-        return Ok(());
-    }
-    let mut o = String::new();
-    let _ = writeln!(o, "{}", r.header);
-    let _ = writeln!(
-        o,
-        "{:<11} {:>7} {:>9} {:>8} {:>8} {:>8} {:>8}",
-        "mode", "per px", "time (s)", "cpu (s)", "mean", "95th", "max"
-    );
-    for m in r.modes {
-        let cpu = m.cpu_seconds.map_or("-".into(), |c| format!("{c:.2}"));
-        let _ = writeln!(
-            o,
-            "{:<11} {:>7} {:>9.3} {:>8} {:>8.3} {:>8.3} {:>8.3}",
-            m.repr.to_string(),
-            m.spp,
-            m.seconds,
-            cpu,
-            m.stats.mean,
-            m.stats.p95,
-            m.stats.max
-        );
-    }
-    print(&o)?;
-    eprintln!("{written}");
-    Ok(())
-}
-
-/// One mode of a comparison as JSON: its name, paths per pixel, wall and CPU time (the median
-/// of its rounds, and every round; no CPU time where the platform does not tell), rays traced and ΔE00 against the 1 nm reference (mean, 95th percentile,
-/// maximum).
-fn mode_json(m: &render::ModeResult) -> serde_json::Value {
-    serde_json::json!({
-        "mode": m.repr.to_string(),
-        "paths_per_pixel": m.spp,
-        "seconds": m.seconds,
-        "seconds_per_round": m.rounds,
-        "cpu_seconds": m.cpu_seconds,
-        "cpu_seconds_per_round": m.cpu_rounds,
-        "rays": m.image.rays,
-        "delta_e00": { "mean": m.stats.mean, "p95": m.stats.p95, "max": m.stats.max },
-    })
 }

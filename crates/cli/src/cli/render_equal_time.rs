@@ -4,12 +4,13 @@
 //! (mean / 95th / max; `--json` for JSON) and writes the images (top row: each mode and the
 //! reference) above their ΔE00 heat maps.
 
-use crate::cli::render::{report, RenderArgs, Report};
+use crate::cli::render_report::{report, Report, Target};
+use crate::error::from_render;
 use specpoly_calibrate::progress;
 use specpoly_formats::error::{CliError, Result};
 use specpoly_render::equal_time::equal_time;
 use specpoly_render::scene::Scene;
-use specpoly_render::tracer::Integrator;
+use specpoly_render::sections::Integrator;
 use specpoly_render::Output;
 use specpoly_spectra::repr::Repr;
 
@@ -25,7 +26,7 @@ pub fn modes() -> [Repr; 5] {
 }
 
 /// Runs the equal-time comparison for `render --compare --equal-time`.
-pub fn run(a: &RenderArgs, scene: &Scene, out: &Output) -> Result<()> {
+pub fn run(a: &Target<'_>, reference_spp: u32, scene: &Scene, out: &Output) -> Result<()> {
     if scene.render.integrator != Integrator::Path {
         return Err(CliError::usage(
             "--equal-time compares the path tracer: add --integrator path",
@@ -34,7 +35,8 @@ pub fn run(a: &RenderArgs, scene: &Scene, out: &Output) -> Result<()> {
     let (w, h) = (scene.render.width, scene.render.height);
     let modes = modes();
     let pb = progress::bar(2 + modes.len() as u64, "equal time", "renders");
-    let c = equal_time(scene, Repr::DEFAULT, &modes, a.reference_spp, &|| pb.inc(1))?;
+    let c = equal_time(scene, Repr::DEFAULT, &modes, reference_spp, &|| pb.inc(1))
+        .map_err(from_render)?;
     pb.finish_and_clear();
     report(
         a,

@@ -6,7 +6,8 @@
 #![allow(dead_code)]
 
 use specpoly_core::Observer;
-use specpoly_render::scene::{Scene, SceneFile};
+use specpoly_render::scene::Scene;
+use specpoly_render::scene_file::SceneFile;
 
 /// Relative tolerance against a closed form for Monte Carlo estimates at the sample counts the
 /// render tests use.
