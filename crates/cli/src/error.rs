@@ -1,7 +1,17 @@
-//! The CLI's errors: the library crates' errors, and clap's folded to one line
-//! ([`clap_error_line`]); `main` prints one line and exits with the error's code.
+//! The CLI's errors: the library crates' errors mapped to [`CliError`] (exit codes and
+//! messages, one submodule per crate), and clap's folded to one line ([`clap_error_line`]);
+//! `main` prints one line and exits with the error's code.
 
 pub use specpoly_formats::error::{CliError, Result};
+
+// The library crates' errors mapped to the CLI's: one file per crate. The mapping is a function
+// (`.map_err(from_X)?`), not `impl From`, while `CliError` is defined in `specpoly-formats`: the
+// orphan rule forbids implementing a foreign trait (`From`) between two foreign types here.
+mod calibrate;
+mod led;
+
+pub use calibrate::from_calibrate;
+pub use led::from_led;
 
 /// A clap error as one line (`unexpected argument '--x' found (tip: …); usage: specpoly …`), or
 /// `None` for `--help` and `--version`, which clap prints itself.

@@ -1,6 +1,7 @@
 //! `specpoly calibrate`: fit Cowan's model to measurements, show, predict, verify, export ICC,
 //! and (`run`) measure a display. See docs/calibration.md.
 
+use crate::error::from_calibrate;
 use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
 use specpoly_core::chromaticity;
 use specpoly_display::calibration::{self, Calibration, TransferKind};
@@ -9,6 +10,26 @@ use specpoly_formats::cgats;
 use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
+
+/// `--matrix`: [`MatrixFit`] as the command line spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum MatrixFitArg {
+    /// Cowan: the full-drive primaries minus black.
+    Cowan,
+    /// Weighted linear least squares over every fit patch (needs mixtures among them).
+    #[default]
+    #[value(name = "least-squares")]
+    LeastSquares,
+}
+
+impl From<MatrixFitArg> for MatrixFit {
+    fn from(m: MatrixFitArg) -> MatrixFit {
+        match m {
+            MatrixFitArg::Cowan => MatrixFit::Cowan,
+            MatrixFitArg::LeastSquares => MatrixFit::LeastSquares,
+        }
+    }
+}
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -62,8 +83,8 @@ pub struct FitArgs {
     #[arg(long, value_enum, default_value_t = TransferKind::Table)]
     pub transfer: TransferKind,
     /// How the matrix is found.
-    #[arg(long, value_enum, default_value_t = MatrixFit::LeastSquares)]
-    pub matrix: MatrixFit,
+    #[arg(long, value_enum, default_value_t = MatrixFitArg::LeastSquares)]
+    pub matrix: MatrixFitArg,
     /// Points of each transfer table (2–64).
     #[arg(long, default_value_t = 64)]
     pub table_points: usize,
@@ -154,7 +175,8 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
 }
 
 fn patches_cmd(a: &PatchesArgs) -> Result<()> {
-    let set = specpoly_calibrate::patches::standard(a.ramp_steps, a.verify)?;
+    let set =
+        specpoly_calibrate::patches::standard(a.ramp_steps, a.verify).map_err(from_calibrate)?;
     let devices: Vec<[f64; 3]> = set.iter().map(|p| p.device).collect();
     let text = specpoly_formats::ti1::write_ti1(&devices, "specpoly calibrate patches");
     specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
@@ -172,7 +194,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     };
     let opts = FitOptions {
         transfer: a.transfer,
-        matrix: a.matrix,
+        matrix: a.matrix.into(),
         table_points: a.table_points,
         absolute,
         interaction: a.interaction,

@@ -9,7 +9,8 @@
 //! see [`specpoly_calibrate::session`]) and `CAL.toml` (the fit of the non-verification
 //! patches).
 
-use specpoly_calibrate::fit::MatrixFit;
+use crate::cli::calibrate::MatrixFitArg;
+use crate::error::from_calibrate;
 use specpoly_calibrate::interrupt;
 use specpoly_calibrate::run::{
     fit_and_save, measure_session, patch_set, raw_primaries, ti3_path, Devices,
@@ -50,8 +51,8 @@ pub struct RunArgs {
     pub settle: Option<u64>,
     /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
     /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
-    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
-    pub matrix: MatrixFit,
+    #[arg(long, value_enum, default_value_t = MatrixFitArg::Cowan)]
+    pub matrix: MatrixFitArg,
     /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
     /// `calibrate patches`) instead of the ramps; every patch is fitted.
     #[arg(long, value_name = "SET.ti1")]
@@ -95,7 +96,7 @@ fn xyy(p: [f64; 3]) -> [f64; 3] {
 /// Runs `specpoly calibrate run`.
 pub fn run(a: &RunArgs) -> Result<()> {
     JSON.store(a.json, std::sync::atomic::Ordering::Relaxed);
-    let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify)?;
+    let set = patch_set(a.patches.as_deref(), a.ramp_steps, a.verify).map_err(from_calibrate)?;
     let ti3 = match a.target {
         Some(_) => crate::cli::calibrate_target::native_ti3_path(&a.output),
         None => ti3_path(&a.output),
@@ -120,7 +121,8 @@ pub fn run(a: &RunArgs) -> Result<()> {
         absolute: true,
         keywords: Vec::new(),
     };
-    let (mut session, note) = Session::open(&ti3, &set, existing, info.clone())?;
+    let (mut session, note) =
+        Session::open(&ti3, &set, existing, info.clone()).map_err(from_calibrate)?;
     if let Some(n) = note {
         eprintln!("{n}");
     }
@@ -151,23 +153,8 @@ pub fn run(a: &RunArgs) -> Result<()> {
         };
         return crate::cli::calibrate_target::run(&ctx, &mut session);
     }
-    let truth =
-        measure_session(&devices, &set, &mut session, &head, &mut |s| line(s)).map_err(|e| {
-            let n = session.taken();
-            let kept = if n == 0 {
-                "no readings taken".to_string()
-            } else {
-                format!(
-                    "{n} readings kept in {} (run again with --resume to measure the other {})",
-                    ti3.display(),
-                    set.len() - n
-                )
-            };
-            match e {
-                CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
-                e => CliError::data(format!("{e}; {kept}")),
-            }
-        })?;
+    let truth = measure_session(&devices, &set, &mut session, &head, &mut |s| line(s))
+        .map_err(from_calibrate)?;
     let taken = session.measurements();
     line(&format!(
         "measured {} patches → {}",
@@ -187,8 +174,15 @@ pub fn run(a: &RunArgs) -> Result<()> {
             ))?;
         }
     }
-    let (cal, [n_fit, n_verify]) =
-        fit_and_save(&a.output, &ti3, session.info(), a.matrix, &set, &taken)?;
+    let (cal, [n_fit, n_verify]) = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix.into(),
+        &set,
+        &taken,
+    )
+    .map_err(from_calibrate)?;
     eprintln!(
         "wrote {}",
         specpoly_formats::escape::one_line(&a.output.display().to_string())

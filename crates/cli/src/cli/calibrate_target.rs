@@ -9,13 +9,14 @@
 //! `[video_lut]`).
 
 use crate::cli::calibrate_run::{line, print_fit, RunArgs};
+use crate::error::from_calibrate;
 use specpoly_calibrate::fit::{self, FitOptions};
 use specpoly_calibrate::patches::Patch;
 use specpoly_calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
 use specpoly_calibrate::session::{Existing, Session};
 use specpoly_display::target::{self, Score, Target};
 use specpoly_formats::cgats::Ti3Info;
-use specpoly_formats::error::{CliError, Result};
+use specpoly_formats::error::Result;
 use std::path::{Path, PathBuf};
 
 /// Where the native readings go: `CAL.toml` → `CAL.native.ti3`.
@@ -64,25 +65,10 @@ fn score_line(s: &Score) -> String {
 /// Runs the calibration; `native` is the open session of the native readings.
 pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     let a = c.args;
-    let kept = |s: &Session, file: &Path, e: CliError| {
-        let n = s.taken();
-        let msg = if n == 0 {
-            format!("{e}; no readings taken")
-        } else {
-            format!(
-                "{e}; {n} readings kept in {} (run again with --resume)",
-                file.display()
-            )
-        };
-        match e {
-            CliError::Usage(_) => CliError::usage(msg),
-            _ => CliError::data(msg),
-        }
-    };
-    let mut rig = Rig::open(c.devices, &mut |s| line(s))?;
+    let mut rig = Rig::open(c.devices, &mut |s| line(s)).map_err(from_calibrate)?;
     line(c.head)?;
     line(&format!("target: {}", c.target))?;
-    record_session(&mut rig, c.set, native).map_err(|e| kept(native, c.devices.ti3, e))?;
+    record_session(&mut rig, c.set, native).map_err(from_calibrate)?;
     let taken = native.measurements();
     line(&format!(
         "measured {} patches → {} (native, no LUT)",
@@ -91,10 +77,10 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     ))?;
     let (fit_set, verify_set) = split(c.set, &taken);
     let opts = FitOptions {
-        matrix: a.matrix,
+        matrix: a.matrix.into(),
         ..FitOptions::default()
     };
-    let model = fit::fit_and_verify(&fit_set, &verify_set, &opts)?;
+    let model = fit::fit_and_verify(&fit_set, &verify_set, &opts).map_err(from_calibrate)?;
     let w = model.predict([1.0; 3]);
     let s = w[0] + w[1] + w[2];
     line(&format!(
@@ -139,11 +125,12 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     // the display with the LUT loaded: measure again and fit that
     rig.set_lut(Some(outcome.lut.clone()));
     let ti3 = ti3_path(&a.output);
-    let (mut session, note) = Session::open(&ti3, c.set, c.existing, c.info.clone())?;
+    let (mut session, note) =
+        Session::open(&ti3, c.set, c.existing, c.info.clone()).map_err(from_calibrate)?;
     if let Some(n) = note {
         eprintln!("{n}");
     }
-    record_session(&mut rig, c.set, &mut session).map_err(|e| kept(&session, &ti3, e))?;
+    record_session(&mut rig, c.set, &mut session).map_err(from_calibrate)?;
     // the LUT as the readings' CAL table (as `dispread -k` writes it)
     let text = specpoly_formats::read::text(&ti3)?;
     let with_cal = format!(
@@ -160,7 +147,15 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
-    let (mut cal, _) = fit_and_save(&a.output, &ti3, session.info(), a.matrix, c.set, &taken)?;
+    let (mut cal, _) = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix.into(),
+        c.set,
+        &taken,
+    )
+    .map_err(from_calibrate)?;
     cal.set_video_lut(Some(outcome.lut.clone()))?;
     cal.report_mut().1.notes.push(format!(
         "calibrated to {} with a video LUT ({}): the model holds while it is loaded",
