@@ -125,7 +125,7 @@ fn no_instrument_on_the_port() {
     let msg = e.to_string();
     assert!(msg.contains("no instrument answered on"), "{msg}");
     assert!(msg.contains("PHOTO"), "{msg}");
-    assert_eq!(e.exit_code(), 1);
+    assert_eq!(specpoly::error::from_calibrate(e.into()).exit_code(), 1);
     assert!(t.elapsed() < Duration::from_secs(5));
 }
 
