@@ -37,7 +37,7 @@ pub fn ti3_path(output: &Path) -> PathBuf {
 #[derive(Debug)]
 pub struct Interrupted {
     /// What went wrong, with the patch it happened at ([`Error::AtPatch`]).
-    pub error: Error,
+    pub error: Box<Error>,
     /// Readings taken so far, in patch order.
     pub taken: Vec<Measurement>,
 }
@@ -64,7 +64,7 @@ pub fn measure_all(
         if interrupt::requested() {
             bar.abandon();
             return Err(Interrupted {
-                error: at(Error::Interrupted),
+                error: Box::new(at(Error::Interrupted)),
                 taken,
             });
         }
@@ -82,7 +82,10 @@ pub fn measure_all(
             Ok(x) => x,
             Err(error) => {
                 bar.abandon();
-                return Err(Interrupted { error, taken });
+                return Err(Interrupted {
+                    error: Box::new(error),
+                    taken,
+                });
             }
         };
         taken.push(Measurement {
@@ -91,7 +94,10 @@ pub fn measure_all(
         });
         if let Err(e) = save(&taken) {
             bar.abandon();
-            return Err(Interrupted { error: e, taken });
+            return Err(Interrupted {
+                error: Box::new(e),
+                taken,
+            });
         }
         bar.inc(1);
     }
@@ -300,7 +306,7 @@ impl Rig {
             })
             .collect();
         measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, save)
-            .map_err(|i| i.error)
+            .map_err(|i| *i.error)
     }
 
     /// Asks the user to place the instrument (ArgyllCMS's window, on a terminal, not fake).
