@@ -672,7 +672,7 @@ fn host_and_firmware_agree_over_the_emulated_uart() {
     // bad and overlong lines get an error reply, and the controller carries on
     for bad in ["blink", "xyz 1 2", "refl paper D65 1 2 3"] {
         assert!(
-            matches!(link.send(bad), Err(specpoly_led::LedError::Rejected { .. })),
+            matches!(link.send(bad), Err(specpoly_led::Error::Rejected { .. })),
             "{bad:.20}"
         );
     }

@@ -185,7 +185,7 @@ pub const CRITERIA: [Criterion; 6] = [
 ];
 
 /// The level `calibrate verify` requires.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Level {
     /// DisplayCAL's nominal tolerances (and ISO 14861).

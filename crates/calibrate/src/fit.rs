@@ -42,23 +42,22 @@ pub mod locus;
 pub mod robust;
 pub mod select;
 
+use crate::error::{Error, Result};
 use crate::verify;
 use specpoly_display::calibration::{
     Calibration, CalibrationData, FitReport, Primaries, Primary, Provenance, TransferCurves,
     TransferKind, FORMAT, VERSION,
 };
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::measurement::Measurement;
 use specpoly_formats::stats::Stats;
 
 /// How the matrix `M` is found.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum MatrixFit {
     /// Cowan: the full-drive primaries minus black.
     Cowan,
     /// Weighted linear least squares over every fit patch (needs mixtures among them).
     #[default]
-    #[value(name = "least-squares")]
     LeastSquares,
 }
 
@@ -378,32 +377,25 @@ pub const MAX_READING: f64 = 1e6;
 /// beyond [`MAX_READING`].
 fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
     if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
-        return Err(CliError::usage(format!(
-            "table points {} must be 2–{}",
-            opts.table_points,
-            specpoly_core::display::TABLE_MAX
-        )));
+        return Err(Error::TablePoints {
+            points: opts.table_points,
+            max: specpoly_core::display::TABLE_MAX,
+        });
     }
     if let Some(i) = meas
         .iter()
         .position(|m| m.device.iter().chain(&m.xyz).any(|v| !v.is_finite()))
     {
-        return Err(CliError::data(format!(
-            "measurement {} is not finite",
-            i + 1
-        )));
+        return Err(Error::NotFinite { index: i + 1 });
     }
     if let Some(i) = meas
         .iter()
         .position(|m| m.xyz.iter().any(|v| v.abs() > MAX_READING))
     {
-        return Err(CliError::data(format!(
-            "measurement {}: XYZ {:.4e} {:.4e} {:.4e} is beyond ±{MAX_READING:e} cd/m² (not a display reading)",
-            i + 1,
-            meas[i].xyz[0],
-            meas[i].xyz[1],
-            meas[i].xyz[2]
-        )));
+        return Err(Error::BeyondRange {
+            index: i + 1,
+            xyz: meas[i].xyz,
+        });
     }
     Ok(())
 }
@@ -411,26 +403,19 @@ fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
 /// Black and the three primaries' XYZ at full drive minus black (Cowan 1983), from the
 /// grouped patches.
 fn primaries(g: &[Measurement]) -> Result<([f64; 3], [[f64; 3]; 3])> {
-    let black = find(g, [0.0; 3]).ok_or_else(|| {
-        CliError::data("no black patch (device 0 0 0): Cowan's model needs the black level")
-    })?;
+    let black = find(g, [0.0; 3]).ok_or(Error::NoBlack)?;
     let names = ["red", "green", "blue"];
     let mut p = [[0.0; 3]; 3];
     for c in 0..3 {
         let mut dev = [0.0; 3];
         dev[c] = 1.0;
-        let full = find(g, dev).ok_or_else(|| {
-            CliError::data(format!(
-                "no full-drive {} patch (device {} {} {})",
-                names[c], dev[0], dev[1], dev[2]
-            ))
+        let full = find(g, dev).ok_or(Error::NoFullDrive {
+            channel: names[c],
+            device: dev,
         })?;
         p[c] = sub(full, black);
         if p[c][1] <= 0.0 || p[c].iter().sum::<f64>() <= 0.0 {
-            return Err(CliError::data(format!(
-                "the full-drive {} patch is not brighter than black",
-                names[c]
-            )));
+            return Err(Error::DarkPrimary { channel: names[c] });
         }
     }
     Ok((black, p))
@@ -564,8 +549,7 @@ impl Model<'_> {
         mut tables: [Vec<f64>; 3],
         grid: Option<usize>,
     ) -> Result<Calibration> {
-        let no_span =
-            || CliError::data("least-squares matrix: the fit patches do not span three channels");
+        let no_span = || Error::NoSpan;
         let wxyz = self
             .white
             .unwrap_or([0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + black[r]));

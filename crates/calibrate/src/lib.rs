@@ -7,6 +7,7 @@
 #![forbid(unsafe_code)]
 
 pub mod criteria;
+pub mod error;
 pub mod fit;
 pub mod instrument;
 pub mod interrupt;
@@ -19,4 +20,5 @@ pub mod session;
 pub mod sim;
 pub mod verify;
 
+pub use error::{Error, InstrumentError, PatchDisplayError, Result};
 pub use specpoly_formats::measurement::Measurement;

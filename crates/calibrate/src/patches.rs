@@ -13,7 +13,7 @@
 //! LED controller can show), and duplicates after rounding are dropped. The default,
 //! `N = 9, V = 16`, gives 2 + 3·8 + 7 + 16 = 49 patches.
 
-use specpoly_formats::error::{CliError, Result};
+use crate::error::{Error, Result};
 
 /// What a patch is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -80,12 +80,10 @@ fn halton(mut i: u64, base: u64) -> f64 {
 /// The patch set for `ramp_steps` levels per ramp (2–256) and `verify` verification patches.
 pub fn standard(ramp_steps: usize, verify: usize) -> Result<Vec<Patch>> {
     if !(2..=256).contains(&ramp_steps) {
-        return Err(CliError::usage(format!(
-            "--ramp-steps {ramp_steps}: expected 2–256"
-        )));
+        return Err(Error::RampSteps(ramp_steps));
     }
     if verify > 10_000 {
-        return Err(CliError::usage(format!("--verify {verify}: at most 10000")));
+        return Err(Error::VerifyCount(verify));
     }
     let mut out: Vec<Patch> = Vec::new();
     // adds a patch unless one with the same (rounded) values is there; true if added
@@ -141,7 +139,7 @@ pub fn classify(d: [f64; 3]) -> PatchKind {
 /// order, each classified by [`classify`] and all used by the fit. Fails on an empty set.
 pub fn from_devices(devices: &[[f64; 3]]) -> Result<Vec<Patch>> {
     if devices.is_empty() {
-        return Err(CliError::data("the patch set is empty"));
+        return Err(Error::EmptyPatchSet);
     }
     Ok(devices
         .iter()

@@ -11,6 +11,7 @@
 //! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
 //! `--force` keeps it as `CAL.ti3.1` (`.2`, …) and starts over.
 
+use crate::error::{Error, Result};
 use crate::fit::{self, FitOptions, MatrixFit};
 use crate::instrument::{self, argyll, Instrument};
 use crate::interrupt;
@@ -19,10 +20,9 @@ use crate::patches::{self, Patch, PatchKind};
 use crate::progress;
 use crate::session::Session;
 use specpoly_display::calibration::Calibration;
-use specpoly_display::target::Meter;
+use specpoly_display::target::{Meter, MeterError};
 use specpoly_display::video_lut::VideoLut;
 use specpoly_formats::cgats::Ti3Info;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::measurement::Measurement;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -35,8 +35,8 @@ pub fn ti3_path(output: &Path) -> PathBuf {
 /// A failed run: the error and the readings taken before it.
 #[derive(Debug)]
 pub struct Interrupted {
-    /// What went wrong, with the patch it happened at.
-    pub error: CliError,
+    /// What went wrong, with the patch it happened at ([`Error::AtPatch`]).
+    pub error: Box<Error>,
     /// Readings taken so far, in patch order.
     pub taken: Vec<Measurement>,
 }
@@ -53,42 +53,38 @@ pub fn measure_all(
     let bar = progress::bar(patches.len() as u64, "measuring", "patches");
     let mut taken: Vec<Measurement> = Vec::with_capacity(patches.len());
     for (i, p) in patches.iter().enumerate() {
-        let at = |e: CliError| {
-            let msg = format!(
-                "patch {} of {} ({} {:.3} {:.3} {:.3}): {e}",
-                i + 1,
-                patches.len(),
-                p.kind.name(),
-                p.device[0],
-                p.device[1],
-                p.device[2]
-            );
-            match e {
-                CliError::Usage(_) => CliError::usage(msg),
-                _ => CliError::data(msg),
-            }
+        let at = |e: Error| Error::AtPatch {
+            number: i + 1,
+            total: patches.len(),
+            kind: p.kind.name(),
+            device: p.device,
+            source: Box::new(e),
         };
         if interrupt::requested() {
             bar.abandon();
             return Err(Interrupted {
-                error: at(CliError::data(interrupt::MESSAGE)),
+                error: Box::new(at(Error::Interrupted)),
                 taken,
             });
         }
         let reading = display
             .show(p.device)
+            .map_err(Error::from)
             .and_then(|()| {
                 if !settle.is_zero() {
                     std::thread::sleep(settle);
                 }
-                instrument.measure()
+                Ok(instrument.measure()?)
             })
             .map_err(at);
         let xyz = match reading {
             Ok(x) => x,
             Err(error) => {
                 bar.abandon();
-                return Err(Interrupted { error, taken });
+                return Err(Interrupted {
+                    error: Box::new(error),
+                    taken,
+                });
             }
         };
         taken.push(Measurement {
@@ -97,7 +93,10 @@ pub fn measure_all(
         });
         if let Err(e) = save(&taken) {
             bar.abandon();
-            return Err(Interrupted { error: e, taken });
+            return Err(Interrupted {
+                error: Box::new(e),
+                taken,
+            });
         }
         bar.inc(1);
     }
@@ -225,7 +224,10 @@ pub enum Rig {
 
 impl Rig {
     /// Opens the devices of `dev`; `say` prints what they are.
-    pub fn open(dev: &Devices<'_>, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<Rig> {
+    pub fn open(
+        dev: &Devices<'_>,
+        say: &mut dyn FnMut(&str) -> specpoly_formats::Result<()>,
+    ) -> Result<Rig> {
         if argyll::is_argyll(dev.instrument) {
             let reader = argyll::Dispread::open(
                 dev.instrument,
@@ -238,9 +240,7 @@ impl Rig {
             return Ok(Rig::Argyll { reader, lut: None });
         }
         if dev.display.starts_with("argyll") {
-            return Err(CliError::usage(
-                "--display argyll is ArgyllCMS's own patch window: use it with --instrument argyll[:options]",
-            ));
+            return Err(Error::ArgyllDisplayNeedsArgyll);
         }
         let display = patch_display::open(dev.display)?;
         say(&format!("display: {}", display.describe()))?;
@@ -305,7 +305,7 @@ impl Rig {
             })
             .collect();
         measure_all(display.as_mut(), instrument.as_mut(), &todo, *settle, save)
-            .map_err(|i| i.error)
+            .map_err(|i| *i.error)
     }
 
     /// Asks the user to place the instrument (ArgyllCMS's window, on a terminal, not fake).
@@ -319,15 +319,23 @@ impl Rig {
                 let mut line = String::new();
                 std::io::stdin()
                     .read_line(&mut line)
-                    .map_err(|e| CliError::io("stdin", e))?;
+                    .map_err(|e| Error::io("stdin", e))?;
             }
         }
         Ok(())
     }
 }
 
+/// The display crate's [`Meter`]: the rig's errors boxed, for the caller to downcast.
 impl Meter for Rig {
-    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, MeterError> {
+        self.read(devices).map_err(|e| Box::new(e) as MeterError)
+    }
+}
+
+impl Rig {
+    /// [`Meter::measure`]: shows and reads `devices` (through the LUT).
+    fn read(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
         match self {
             Rig::Patch { .. } => {
                 let patches = devices.iter().map(|d| Patch {
@@ -363,17 +371,22 @@ pub fn measure_session(
     set: &[Patch],
     session: &mut Session,
     head: &str,
-    say: &mut dyn FnMut(&str) -> Result<()>,
+    say: &mut dyn FnMut(&str) -> specpoly_formats::Result<()>,
 ) -> Result<Option<[[f64; 3]; 3]>> {
-    let mut rig = Rig::open(dev, say)?;
-    say(head)?;
+    let mut rig = Rig::open(dev, say).map_err(|e| session.stopped(e))?;
+    say(head).map_err(|e| session.stopped(e.into()))?;
     record_session(&mut rig, set, session)?;
     Ok(rig.truth())
 }
 
 /// Measures the patches `session` lacks on `rig` (through its LUT, if it has one), saving
-/// each reading (each batch, with ArgyllCMS) as it is taken.
+/// each reading (each batch, with ArgyllCMS) as it is taken. A failure comes as
+/// [`Error::Stopped`]: why, and the readings the session kept.
 pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
+    record(rig, set, session).map_err(|e| session.stopped(e))
+}
+
+fn record(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
     session.set_instrument(rig.describe_instrument());
     rig.place_instrument()?;
     let missing = session.missing();
@@ -395,7 +408,12 @@ pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Re
                 let last = chunk[chunk.len() - 1] + 1;
                 let xyz = reader.measure(&devices).map_err(|e| {
                     bar.abandon();
-                    CliError::data(format!("patches {first}–{last} of {total}: {e}"))
+                    Error::AtBatch {
+                        first,
+                        last,
+                        total,
+                        source: Box::new(e),
+                    }
                 })?;
                 let rows: Vec<(usize, [f64; 3])> = chunk.iter().copied().zip(xyz).collect();
                 session.set_instrument(reader.describe());

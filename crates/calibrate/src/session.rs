@@ -17,9 +17,9 @@
 //! FNV-1a (Fowler–Noll–Vo, 64-bit offset basis and prime) is written out here: eight lines,
 //! and a checksum crate would pin a hash this file format must keep stable anyway.
 
+use crate::error::{Error, Result};
 use crate::patches::Patch;
 use specpoly_formats::cgats::{self, Ti3Info};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::measurement::Measurement;
 use std::path::{Path, PathBuf};
 
@@ -107,42 +107,35 @@ impl Session {
             return Ok((me, note));
         }
         let shown = path.display();
+        let file = || path.to_path_buf();
         match existing {
-            Existing::Refuse => Err(CliError::usage(format!(
-                "{shown} already exists: add --resume to measure only the patches it lacks, or --force to start over (the old file is kept as {})",
-                backup_name(path).display()
-            ))),
+            Existing::Refuse => Err(Error::ReadingsExist {
+                file: file(),
+                backup: backup_name(path),
+            }),
             Existing::Force => {
                 let b = backup_name(path);
-                std::fs::rename(path, &b).map_err(|e| CliError::io(path, e))?;
+                std::fs::rename(path, &b).map_err(|e| Error::io(path, e))?;
                 Ok((me, Some(format!("kept the old {shown} as {}", b.display()))))
             }
             Existing::Resume => {
-                let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+                let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
                 let source = shown.to_string();
-                let t = cgats::read_ti3(&text, &source).map_err(|e| {
-                    CliError::data(format!(
-                        "cannot resume: {e} (use --force to start over; the file is kept as a backup)"
-                    ))
-                })?;
+                let t = cgats::read_ti3(&text, &source).map_err(Error::ResumeUnreadable)?;
                 match t.keyword(PATCH_SET_KEYWORD) {
                     Some(v) if v == fp => {}
                     Some(v) => {
-                        return Err(CliError::usage(format!(
-                            "cannot resume {shown}: it was measured with another patch set ({v}; this run has {fp}): give the same --ramp-steps, --verify or --patches, or --force to start over"
-                        )))
+                        return Err(Error::ResumeOtherSet {
+                            file: file(),
+                            found: v.to_string(),
+                            expected: fp,
+                        })
                     }
-                    None => {
-                        return Err(CliError::usage(format!(
-                            "cannot resume {shown}: it has no {PATCH_SET_KEYWORD} (not written by `calibrate run`): use --force to start over, or another -o"
-                        )))
-                    }
+                    None => return Err(Error::ResumeNoPatchSet { file: file() }),
                 }
                 let (m, absolute) = t.best_units();
                 if !absolute {
-                    return Err(CliError::data(format!(
-                        "cannot resume {shown}: normalised readings without LUMINANCE_XYZ_CDM2"
-                    )));
+                    return Err(Error::ResumeRelative { file: file() });
                 }
                 for (m, line) in m.iter().zip(&t.lines) {
                     let g = m.device.map(grid);
@@ -156,12 +149,11 @@ impl Session {
                     match slot {
                         Some(i) => me.readings[i] = Some(m.xyz),
                         None => {
-                            return Err(CliError::data(format!(
-                                "cannot resume {shown}:{line}: RGB {:.5} {:.5} {:.5} is not a patch of the set (or is there twice)",
-                                m.device[0] * 100.0,
-                                m.device[1] * 100.0,
-                                m.device[2] * 100.0
-                            )))
+                            return Err(Error::ResumeStrayPatch {
+                                file: file(),
+                                line: *line,
+                                rgb: m.device.map(|v| v * 100.0),
+                            })
                         }
                     }
                 }
@@ -198,6 +190,19 @@ impl Session {
     /// How many patches are measured.
     pub fn taken(&self) -> usize {
         self.readings.iter().filter(|r| r.is_some()).count()
+    }
+
+    /// `error`, stopping a run of this session, with what the session kept: how many readings
+    /// are in its file and how many patches `--resume` would measure ([`Error::Stopped`], the
+    /// one place the "readings kept" message comes from).
+    pub fn stopped(&self, error: Error) -> Error {
+        let kept = self.taken();
+        Error::Stopped {
+            source: Box::new(error),
+            kept,
+            file: self.path.clone(),
+            remaining: self.readings.len() - kept,
+        }
     }
 
     /// Records the reading of patch `i` and rewrites the file atomically.

@@ -20,9 +20,9 @@
 //! are scaled together so full white has `Y = white`. A device triple `rgb ∈ [0, 1]³` gives
 //! `XYZ = Σᵢ Lᵢ · Pᵢ + black + flare`, with `Lᵢ` the transfer curve of `rgbᵢ` after crosstalk.
 
+use crate::error::{Error, Result};
 use specpoly_core::{exact_xyz, Illuminant, Observer, Tabulated, Transfer};
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_spectra::spectrum_names;
 use std::sync::{Arc, Mutex};
 
@@ -56,7 +56,7 @@ impl SimOptions {
                 "white" => {
                     o.white = spec.non_negative(k, v)?;
                     if o.white == 0.0 {
-                        return Err(spec.bad(k, v, "must be > 0"));
+                        return Err(spec.bad(k, v, "must be > 0").into());
                     }
                 }
                 "gamma" => o.transfer = gamma(spec, v)?,
@@ -71,7 +71,9 @@ impl SimOptions {
                             o.white_xy = Some([x, y])
                         }
                         _ => {
-                            return Err(spec.bad(k, v, "expected X:Y with x, y > 0 and x + y < 1"))
+                            return Err(spec
+                                .bad(k, v, "expected X:Y with x, y > 0 and x + y < 1")
+                                .into())
                         }
                     }
                 }
@@ -79,16 +81,18 @@ impl SimOptions {
                 "crosstalk" => {
                     o.crosstalk = spec.non_negative(k, v)?;
                     if o.crosstalk >= 1.0 {
-                        return Err(spec.bad(k, v, "must be < 1"));
+                        return Err(spec.bad(k, v, "must be < 1").into());
                     }
                 }
                 "noise" => o.noise = spec.non_negative(k, v)?,
                 "seed" => o.seed = spec.integer(k, v)?,
                 _ => {
-                    return Err(spec.unknown(
-                        k,
-                        "white, gamma, black, white_xy, flare, crosstalk, noise, seed",
-                    ))
+                    return Err(spec
+                        .unknown(
+                            k,
+                            "white, gamma, black, white_xy, flare, crosstalk, noise, seed",
+                        )
+                        .into())
                 }
             }
         }
@@ -104,7 +108,9 @@ fn gamma(spec: &DeviceSpec<'_>, v: &str) -> Result<Transfer> {
         _ => {
             let g = spec.number("gamma", v)?;
             if !(0.1..=10.0).contains(&g) {
-                return Err(spec.bad("gamma", v, "expected 0.1–10, `srgb` or `linear`"));
+                return Err(spec
+                    .bad("gamma", v, "expected 0.1–10, `srgb` or `linear`")
+                    .into());
             }
             Transfer::Gamma(g as f32)
         }
@@ -159,8 +165,11 @@ impl SimModel {
     ) -> Result<Self> {
         let mut p = [[0.0f64; 3]; 3];
         for (i, s) in spds.iter().enumerate() {
-            let t = Tabulated::new(wavelengths, s)
-                .map_err(|e| CliError::data(format!("{source}: channel {i}: {e}")))?;
+            let t = Tabulated::new(wavelengths, s).map_err(|error| Error::SimChannel {
+                spectra: source.to_string(),
+                channel: i,
+                error,
+            })?;
             p[i] = spd_xyz(&t);
         }
         if let Some([x, y]) = options.white_xy {
@@ -173,10 +182,10 @@ impl SimModel {
                 .map(|inv| inv.0)
                 .map(|inv| [0, 1, 2].map(|r| (0..3).map(|c| inv[r][c] * w[c]).sum::<f64>()))
                 .filter(|s| s.iter().all(|v| *v > 0.0 && v.is_finite()))
-                .ok_or_else(|| {
-                    CliError::usage(format!(
-                        "{source}: white_xy={x}:{y} is outside the primaries' gamut"
-                    ))
+                .ok_or_else(|| Error::SimWhiteOutside {
+                    spectra: source.to_string(),
+                    x,
+                    y,
                 })?;
             for (c, k) in p.iter_mut().zip(s) {
                 for v in c.iter_mut() {
@@ -186,9 +195,9 @@ impl SimModel {
         }
         let y: f64 = p.iter().map(|c| c[1]).sum();
         if y.is_nan() || y <= 0.0 {
-            return Err(CliError::data(format!(
-                "{source}: the primaries have no luminance"
-            )));
+            return Err(Error::SimNoLuminance {
+                spectra: source.to_string(),
+            });
         }
         let k = options.white / y;
         for c in p.iter_mut() {
@@ -236,15 +245,15 @@ impl SimModel {
             (Some(r), Some(g), Some(b)) => [r, g, b],
             _ if table.columns.len() == 3 => [0, 1, 2],
             _ => {
-                return Err(CliError::data(format!(
-                    "{source}: a display's spectra need columns `red`, `green`, `blue` (or exactly three columns); it has {}",
-                    table
+                return Err(Error::SimColumns {
+                    spectra: source.to_string(),
+                    columns: table
                         .columns
                         .iter()
                         .map(|(n, _)| n.as_str())
                         .collect::<Vec<_>>()
-                        .join(", ")
-                )))
+                        .join(", "),
+                })
             }
         };
         Self::from_spds(

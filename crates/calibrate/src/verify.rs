@@ -8,9 +8,9 @@
 //! text or JSON and draws it as an HTML page ([`crate::report_html`]).
 
 use crate::criteria::{self, Outcome, PatchResult};
+use crate::error::{Error, Result};
 use specpoly_core::delta_e2000_xyz;
 use specpoly_display::calibration::Calibration;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::measurement::Measurement;
 use specpoly_formats::stats::Stats;
 
@@ -41,11 +41,7 @@ pub fn measurements_for(
         (true, false) => cal.data().white[1] / 100.0,
         // absolute → relative: the file's own white patch to Y = 100
         (false, true) => {
-            let w = specpoly_formats::cgats::white_patch(&m).ok_or_else(|| {
-                CliError::data(
-                    "the .ti3 is absolute, the calibration relative, and the .ti3 has no white patch to normalise by",
-                )
-            })?;
+            let w = specpoly_formats::cgats::white_patch(&m).ok_or(Error::NoWhitePatch)?;
             100.0 / w[1]
         }
     };

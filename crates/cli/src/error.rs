@@ -16,12 +16,74 @@
 //! become these codes (for now [`CliError`] and those mappings live beside the library crates'
 //! errors, as `From` impls, until [`CliError`] itself moves here).
 
-pub use specpoly_formats::error::{CliError, Result};
+use std::path::Path;
 
+/// A CLI failure: one line and an exit code. The library crates' errors become one through
+/// `From` (one file per crate below), which decides the exit code; the message is theirs.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// Bad arguments or an unknown name (exit code 2).
+    #[error("{0}")]
+    Usage(String),
+    /// Bad input data, a failed device or a failed computation (exit code 1).
+    #[error("{0}")]
+    Data(String),
+    /// A file could not be read or written (exit code 1).
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+}
+
+impl CliError {
+    /// The process exit code for this error.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::Usage(_) => 2,
+            CliError::Data(_) | CliError::Io { .. } => 1,
+        }
+    }
+
+    /// An I/O error on `path` (exit 1). An input file that does not exist is
+    /// [`CliError::missing`] instead.
+    pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
+        CliError::Io {
+            path: path.as_ref().display().to_string(),
+            source,
+        }
+    }
+
+    /// An input file named on the command line that does not exist (exit 2).
+    pub fn missing(path: impl AsRef<Path>) -> Self {
+        CliError::Usage(format!("{}: no such file", path.as_ref().display()))
+    }
+
+    /// A usage error.
+    pub fn usage(msg: impl Into<String>) -> Self {
+        CliError::Usage(msg.into())
+    }
+
+    /// A data error.
+    pub fn data(msg: impl Into<String>) -> Self {
+        CliError::Data(msg.into())
+    }
+}
+
+/// The CLI's result type.
+pub type Result<T, E = CliError> = std::result::Result<T, E>;
+
+// The library crates' errors mapped to the CLI's: one file per crate.
+mod calibrate;
 mod display;
+mod formats;
+mod led;
+mod paper;
+mod plot;
 mod render;
-
-pub use render::from_render;
+mod spectra;
 
 /// A clap error as one line (`unexpected argument '--x' found (tip: …); usage: specpoly …`), or
 /// `None` for `--help` and `--version`, which clap prints itself.

@@ -109,18 +109,18 @@ pub fn scene_toml(data: &[u8]) {
     let text = text(data);
     let file = match SceneFile::parse(&text, "fuzz.toml") {
         Ok(f) => f,
-        Err(e) => return one_line(&crate::error::from_render(e)),
+        Err(e) => return one_line(&crate::error::CliError::from(e)),
     };
     let mut scene = match file.resolve("fuzz.toml") {
         Ok(s) => s,
-        Err(e) => return one_line(&crate::error::from_render(e)),
+        Err(e) => return one_line(&crate::error::CliError::from(e)),
     };
     scene.render.width = 1;
     scene.render.height = 1;
     scene.render.samples = 1;
     scene.render.spp = scene.render.spp.min(2);
     if let Err(e) = specpoly_render::render(&scene, specpoly_spectra::repr::Repr::Rgb, None) {
-        one_line(&crate::error::from_render(e));
+        one_line(&crate::error::CliError::from(e));
     }
 }
 
@@ -130,7 +130,7 @@ pub fn calibration_toml(data: &[u8]) {
     use specpoly_display::calibration::Calibration;
     let text = text(data);
     match Calibration::from_toml(&text, "fuzz.toml") {
-        Err(e) => one_line(&specpoly_formats::error::CliError::from(e)),
+        Err(e) => one_line(&crate::error::CliError::from(e)),
         Ok(c) => {
             let out = c.to_toml().expect("a calibration that reads is written");
             let back = Calibration::from_toml(&out, "again.toml")
@@ -143,7 +143,7 @@ pub fn calibration_toml(data: &[u8]) {
 /// A display file ([`specpoly_display::spec::parse`]): primaries, luminances, transfer curves.
 pub fn display_toml(data: &[u8]) {
     if let Err(e) = specpoly_display::spec::parse(&text(data), "fuzz.toml") {
-        one_line(&specpoly_formats::error::CliError::from(e));
+        one_line(&crate::error::CliError::from(e));
     }
 }
 

@@ -125,7 +125,10 @@ fn no_instrument_on_the_port() {
     let msg = e.to_string();
     assert!(msg.contains("no instrument answered on"), "{msg}");
     assert!(msg.contains("PHOTO"), "{msg}");
-    assert_eq!(e.exit_code(), 1);
+    assert_eq!(
+        specpoly::error::CliError::from(specpoly_calibrate::Error::from(e)).exit_code(),
+        1
+    );
     assert!(t.elapsed() < Duration::from_secs(5));
 }
 

@@ -10,9 +10,9 @@ use crate::common::calibrate_run as common;
 use specpoly_calibrate::fit::{fit, FitOptions};
 use specpoly_calibrate::patches;
 use specpoly_calibrate::sim::{SimHandle, SimModel};
+use specpoly_display::target::MeterError;
 use specpoly_display::target::{self, Meter, Target, Tone, White};
 use specpoly_display::video_lut::VideoLut;
-use specpoly_formats::error::Result;
 use specpoly_formats::measurement::Measurement;
 use std::time::Duration;
 
@@ -72,7 +72,7 @@ fn judge(spec: &str, lut: &VideoLut, t: &Target) -> ([f64; 2], f64, f64) {
 struct SimMeter(SimHandle);
 
 impl Meter for SimMeter {
-    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, MeterError> {
         Ok(devices
             .iter()
             .map(|d| {

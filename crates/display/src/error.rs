@@ -148,9 +148,10 @@ pub enum Error {
     /// Reading or writing a file, CGATS and TOML syntax (`specpoly-formats`).
     #[error(transparent)]
     Formats(#[from] specpoly_formats::Error),
-    /// An error of a specpoly crate not yet converted to its own error type.
-    #[error(transparent)]
-    Lower(#[from] specpoly_formats::error::CliError),
+    /// The meter of a calibration to a target failed (its own error, boxed: see
+    /// [`crate::target::Meter`]).
+    #[error("{0}")]
+    Meter(crate::target::MeterError),
 }
 
 impl Error {
@@ -181,56 +182,3 @@ impl Error {
 
 /// The crate's result.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-/// Interim, until the crates calling this one (`specpoly-calibrate`, the CLI) take
-/// [`Error`] themselves: `?` turns it into the workspace's interim
-/// [`CliError`](specpoly_formats::error::CliError). The impl can only live here (both the
-/// trait's type parameter and `CliError` are foreign to the CLI crate); the CLI documents
-/// and tests the mapping in `crates/cli/src/error/display.rs`. Bad arguments (`--display`
-/// naming nothing, `--target` values and options) are usage errors (exit 2); everything
-/// else about files and values is a data error (exit 1); errors of the lower crates pass
-/// through.
-impl From<Error> for specpoly_formats::error::CliError {
-    fn from(e: Error) -> Self {
-        use specpoly_formats::error::CliError;
-        let e = match e {
-            Error::Lower(e) => return e,
-            Error::Formats(e) => return e.into(),
-            e => e,
-        };
-        if e.is_usage() {
-            CliError::Usage(e.to_string())
-        } else {
-            CliError::Data(e.to_string())
-        }
-    }
-}
-
-impl Error {
-    /// Whether the error is about the command line (an argument), not a file's contents.
-    pub fn is_usage(&self) -> bool {
-        match self {
-            Error::NoSuchDisplay { .. } | Error::TargetValue { .. } | Error::TargetKey { .. } => {
-                true
-            }
-            Error::In { error, .. } => error.is_usage(),
-            Error::Lower(e) => e.exit_code() == 2,
-            Error::Formats(_) => false,
-            Error::Toml { .. }
-            | Error::WrongFormat { .. }
-            | Error::NotACalibration { .. }
-            | Error::Version { .. }
-            | Error::NoVersion
-            | Error::NotFinite { .. }
-            | Error::BadValue { .. }
-            | Error::Invalid { .. }
-            | Error::NotANumber { .. }
-            | Error::Model { .. }
-            | Error::Core(_)
-            | Error::Write { .. }
-            | Error::Profile { .. }
-            | Error::Unprofilable(_)
-            | Error::ExportNeedsClip => false,
-        }
-    }
-}

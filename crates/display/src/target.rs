@@ -472,13 +472,15 @@ impl Score {
 }
 
 /// Measures device triples (a display and an instrument, or ArgyllCMS's `dispread`).
+/// A meter's failure: the measuring crate's own error, boxed (the display crate does not know
+/// it; the caller can downcast it back).
+pub type MeterError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Something that measures device colours.
 pub trait Meter {
     /// The XYZ of each of `devices`, in order. Meters are the measuring crate's, which still
-    /// reports the interim `CliError`; the solve passes it on as [`crate::Error::Lower`].
-    fn measure(
-        &mut self,
-        devices: &[[f64; 3]],
-    ) -> std::result::Result<Vec<[f64; 3]>, specpoly_formats::error::CliError>;
+    /// returns its own error; the solve passes it on as [`crate::Error::Meter`].
+    fn measure(&mut self, devices: &[[f64; 3]]) -> std::result::Result<Vec<[f64; 3]>, MeterError>;
 }
 
 /// The solve's settings.
@@ -546,7 +548,7 @@ pub fn calibrate(
     let (mut aim, notes) = Aim::new(cal, target)?;
     if target.white == White::Native && target.luminance.is_none() {
         // the native white is what the display shows at full drive, not what the model says
-        if let Some(w) = meter.measure(&[[1.0; 3]])?.first() {
+        if let Some(w) = meter.measure(&[[1.0; 3]]).map_err(Error::Meter)?.first() {
             aim.white = *w;
         }
     }
@@ -557,7 +559,7 @@ pub fn calibrate(
     let mut misses = 0;
     for it in 1..=opts.iterations.max(1) {
         let devices: Vec<[f64; 3]> = levels.iter().map(|&v| lut.apply([v; 3])).collect();
-        let xyz = meter.measure(&devices)?;
+        let xyz = meter.measure(&devices).map_err(Error::Meter)?;
         let score = Score::of(&aim, it, &levels, &xyz);
         progress(&score)?;
         let better = best

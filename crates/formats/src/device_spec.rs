@@ -61,25 +61,23 @@ impl<'a> DeviceSpec<'a> {
 
     /// An error about option `key=value` ([`Error::DeviceOption`]), as any error type it
     /// converts into (so a device's parser returns it as its own error).
-    pub fn bad<E: From<Error>>(&self, key: &str, value: &str, why: &str) -> E {
+    pub fn bad(&self, key: &str, value: &str, why: &str) -> Error {
         Error::DeviceOption {
             spec: self.text.to_string(),
             key: key.to_string(),
             value: value.to_string(),
             why: why.to_string(),
         }
-        .into()
     }
 
     /// An error for an unknown option ([`Error::UnknownDeviceOption`]); `known` lists the valid
     /// keys. As any error type it converts into, like [`DeviceSpec::bad`].
-    pub fn unknown<E: From<Error>>(&self, key: &str, known: &str) -> E {
+    pub fn unknown(&self, key: &str, known: &str) -> Error {
         Error::UnknownDeviceOption {
             spec: self.text.to_string(),
             key: key.to_string(),
             known: known.to_string(),
         }
-        .into()
     }
 
     /// A finite number.

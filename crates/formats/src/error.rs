@@ -1,5 +1,4 @@
-//! The errors of specpoly's files ([`Error`]), and the interim stringly [`CliError`] the other
-//! host crates still return.
+//! The errors of specpoly's files ([`Error`]).
 //!
 //! [`Error`] says what went wrong with which file, and where: a missing input file
 //! ([`Error::Missing`]), an I/O error with its path ([`Error::Io`]), a file that is not one this
@@ -9,10 +8,6 @@
 //! ([`crate::device_spec`]), a `.ti3` that cannot be written. Every message is one line, and
 //! names the file first (`FILE:LINE[:COLUMN]: what is wrong`) where there is one. Which of these
 //! is the user's mistake (exit 2) and which bad data (exit 1) is decided by the CLI, not here.
-//!
-//! [`CliError`] stays here until every crate has its own error type (its `From<Error>` below
-//! keeps `?` on this crate's functions working in functions that return it); it then moves into
-//! the CLI.
 
 use std::fmt;
 use std::path::Path;
@@ -197,98 +192,15 @@ impl fmt::Display for Position<'_> {
     }
 }
 
-/// A CLI failure (interim: the host crates' shared error until each has its own type; it then
-/// moves into the CLI, which alone decides messages and exit codes).
-#[derive(Debug, thiserror::Error)]
-pub enum CliError {
-    /// Bad arguments or an unknown name (exit code 2).
-    #[error("{0}")]
-    Usage(String),
-    /// Bad input data, a failed device or a failed computation (exit code 1).
-    #[error("{0}")]
-    Data(String),
-    /// A file could not be read or written (exit code 1).
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: String,
-        /// What went wrong.
-        source: std::io::Error,
-    },
-}
-
-impl CliError {
-    /// The process exit code for this error.
-    pub fn exit_code(&self) -> i32 {
-        match self {
-            CliError::Usage(_) => 2,
-            CliError::Data(_) | CliError::Io { .. } => 1,
-        }
-    }
-
-    /// An I/O error on `path` (exit 1). An input file that does not exist is
-    /// [`CliError::missing`] instead.
-    pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
-        CliError::Io {
-            path: path.as_ref().display().to_string(),
-            source,
-        }
-    }
-
-    /// An input file named on the command line that does not exist (exit 2).
-    pub fn missing(path: impl AsRef<Path>) -> Self {
-        CliError::Usage(format!("{}: no such file", path.as_ref().display()))
-    }
-
-    /// A usage error.
-    pub fn usage(msg: impl Into<String>) -> Self {
-        CliError::Usage(msg.into())
-    }
-
-    /// A data error.
-    pub fn data(msg: impl Into<String>) -> Self {
-        CliError::Data(msg.into())
-    }
-}
-
-/// Interim (moves into the CLI with [`CliError`]): which file errors are the user's mistake.
-/// A missing input file and a wrong device string are usage errors (exit 2: something names a
-/// file that is not there, or a device option that does not exist, like an unknown built-in
-/// name); I/O errors keep their path and source (exit 1); everything else is bad data (exit 1).
-/// The message is kept.
-impl From<Error> for CliError {
-    fn from(e: Error) -> Self {
-        match e {
-            Error::Io { path, source } => CliError::Io { path, source },
-            Error::Missing { .. }
-            | Error::DeviceArgument { .. }
-            | Error::DeviceOption { .. }
-            | Error::UnknownDeviceOption { .. } => CliError::Usage(e.to_string()),
-            Error::NotRegular { .. }
-            | Error::TooLarge { .. }
-            | Error::NotUtf8 { .. }
-            | Error::OutputIsFolder { .. }
-            | Error::TooManyLinks { .. }
-            | Error::Csv { .. }
-            | Error::Cgats { .. }
-            | Error::CgatsNumber { .. }
-            | Error::Toml { .. }
-            | Error::Ti3Write { .. }
-            | Error::Json(_) => CliError::Data(e.to_string()),
-        }
-    }
-}
-
-/// The interim result type of the host crates that return [`CliError`] (this crate's own
-/// functions return [`crate::Result`]).
-pub type Result<T, E = CliError> = std::result::Result<T, E>;
+/// The result type of this crate's functions.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn positions_and_interim_exit_codes() {
+    fn positions() {
         let csv = |line, column| Error::Csv {
             file: "t.csv".into(),
             line,
@@ -300,9 +212,5 @@ mod tests {
         assert_eq!(csv(Some(3), Some(2)).to_string(), "t.csv:3:2: bad");
         let missing = Error::missing("nosuch.csv");
         assert_eq!(missing.to_string(), "nosuch.csv: no such file");
-        assert_eq!(CliError::from(missing).exit_code(), 2);
-        assert_eq!(CliError::from(csv(None, None)).exit_code(), 1);
-        let io = Error::io("f", std::io::Error::other("denied"));
-        assert!(matches!(CliError::from(io), CliError::Io { ref path, .. } if path == "f"));
     }
 }

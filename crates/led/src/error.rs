@@ -1,10 +1,22 @@
-//! Errors talking to the LED controller.
+//! The crate's errors: the link's and the controller's, and those of the lines built for it
+//! (checked by the controller's own parser before anything is sent).
 
 use specpoly_protocol::Fault;
 
-/// A failure of the link or of the controller.
+/// The crate's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// `--primaries: …` for a fault of the `cal` line: the failing number named by its position.
+fn primaries_fault(f: &Fault) -> String {
+    match f.at {
+        Some(n) => format!("{} (number {n})", f.code.name()),
+        None => f.to_string(),
+    }
+}
+
+/// A failure of the link or of the controller, or a line that cannot be built.
 #[derive(Debug, thiserror::Error)]
-pub enum LedError {
+pub enum Error {
     /// The serial port could not be opened.
     #[error("{port}: cannot open the serial port: {source}")]
     Open {
@@ -76,4 +88,70 @@ pub enum LedError {
         /// The limit.
         max: usize,
     },
+    /// A `--primaries` value that is not a number.
+    #[error("--primaries: `{token}` is not a number")]
+    PrimariesNotANumber {
+        /// The text.
+        token: String,
+    },
+    /// `--primaries` with other than nine numbers.
+    #[error("--primaries takes 9 numbers (xr,yr,Yr,xg,yg,Yg,xb,yb,Yb), got {got}")]
+    PrimariesCount {
+        /// How many were given.
+        got: usize,
+    },
+    /// `--primaries` the controller's parser rejects.
+    #[error("--primaries: {}", primaries_fault(fault))]
+    PrimariesRejected {
+        /// The parser's answer.
+        fault: Fault,
+    },
+    /// A calibration file's transfer curve longer than one protocol line.
+    #[error("{name}: a curve does not fit one protocol line")]
+    CurveTooLong {
+        /// The calibration's name.
+        name: String,
+    },
+    /// A calibration file's line the controller's parser rejects.
+    #[error("{name}: not a usable LED calibration: {fault}")]
+    NotLedCalibration {
+        /// The calibration's name.
+        name: String,
+        /// The parser's answer.
+        fault: Fault,
+    },
+    /// A calibration file whose primaries are degenerate.
+    #[error("{name}: the primaries span no colour space")]
+    NoColourSpace {
+        /// The calibration's name.
+        name: String,
+    },
+    /// A `refl` line with too few or too many reflectances.
+    #[error("refl takes 1 to {max} reflectances, got {got}")]
+    ReflectanceCount {
+        /// How many were named.
+        got: usize,
+        /// The protocol's limit.
+        max: usize,
+    },
+    /// A reflectance the preset cannot fit.
+    #[error("{name}: cannot fit: {source}")]
+    CannotFit {
+        /// The reflectance.
+        name: String,
+        /// Why.
+        source: specpoly_core::Error,
+    },
+    /// The `refl` line could not be written.
+    #[error("cannot write the refl command")]
+    ReflLine,
+    /// Files and their formats (`specpoly-formats`).
+    #[error(transparent)]
+    Formats(#[from] specpoly_formats::Error),
+    /// Named spectra (`specpoly-spectra`).
+    #[error(transparent)]
+    Spectra(#[from] specpoly_spectra::Error),
+    /// Calibration files and ICC profiles (`specpoly-display`).
+    #[error(transparent)]
+    Display(#[from] specpoly_display::Error),
 }

@@ -15,7 +15,7 @@ pub mod model;
 pub mod table;
 
 pub use check::Oracle;
-pub use error::LedError;
+pub use error::{Error, Result};
 pub use link::Link;
 pub use model::{MixModel, Model};
 pub use table::DriveTable;

@@ -2,10 +2,10 @@
 //! own parser before anything is sent: settings (`cal`, `trc`) from the command line or a
 //! calibration file, and `refl` lines for named reflectances fitted on the host.
 
+use crate::error::{Error, Result};
 use crate::table::{Correction, DEFAULT_GRID};
 use specpoly_core::{DefaultSpectrum, Illuminant, PaperSpectrum};
 use specpoly_display::spec::DisplaySpec;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_protocol::number::parse_f32;
 use specpoly_protocol::{
     write_reflect, write_reflect_hex, Channels, Command, Reflectance, Reply, MAX_FACTORS,
@@ -13,10 +13,9 @@ use specpoly_protocol::{
 use specpoly_spectra::spectrum_names;
 
 /// The spectrum presets the controller takes in a `refl` line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Preset {
     /// 8 uniform cubic spans (32 coefficients), the project default.
-    #[value(alias = "default")]
     Poly,
     /// The paper's 2 cubic spans split at 550 nm.
     Paper,
@@ -42,25 +41,20 @@ pub fn primaries(s: &str) -> Result<Command> {
     let v: Vec<f32> = s
         .split(',')
         .map(|t| {
-            parse_f32(t.trim())
-                .map_err(|_| CliError::usage(format!("--primaries: `{t}` is not a number")))
+            parse_f32(t.trim()).map_err(|_| Error::PrimariesNotANumber {
+                token: t.to_string(),
+            })
         })
         .collect::<Result<_>>()?;
     if v.len() != 9 {
-        return Err(CliError::usage(format!(
-            "--primaries takes 9 numbers (xr,yr,Yr,xg,yg,Yg,xb,yb,Yb), got {}",
-            v.len()
-        )));
+        return Err(Error::PrimariesCount { got: v.len() });
     }
     let c = Command::Calibrate {
         xy: [[v[0], v[1]], [v[3], v[4]], [v[6], v[7]]],
         luminance: [v[2], v[5], v[8]],
     };
     // the controller's own checks, before anything is sent
-    Command::parse(&line(&c)).map_err(|f| match f.at {
-        Some(n) => CliError::usage(format!("--primaries: {} (number {n})", f.code.name())),
-        None => CliError::usage(format!("--primaries: {f}")),
-    })
+    Command::parse(&line(&c)).map_err(|fault| Error::PrimariesRejected { fault })
 }
 
 /// The `cal` and three `trc` lines of a calibration file.
@@ -80,16 +74,11 @@ pub fn calibration(spec: &DisplaySpec) -> Result<Vec<String>> {
     for l in &lines {
         // the controller's own checks (ranges, line length), before anything is sent
         if l.len() > specpoly_protocol::MAX_LINE {
-            return Err(CliError::data(format!(
-                "{}: a curve does not fit one protocol line",
-                spec.name()
-            )));
+            return Err(Error::CurveTooLong { name: spec.name() });
         }
-        Command::parse(l).map_err(|f| {
-            CliError::data(format!(
-                "{}: not a usable LED calibration: {f}",
-                spec.name()
-            ))
+        Command::parse(l).map_err(|fault| Error::NotLedCalibration {
+            name: spec.name(),
+            fault,
         })?;
     }
     Ok(lines)
@@ -105,12 +94,7 @@ pub fn calibration_table(spec: &DisplaySpec) -> Result<Option<Correction>> {
     };
     Correction::new(model, DEFAULT_GRID)
         .map(Some)
-        .ok_or_else(|| {
-            CliError::data(format!(
-                "{}: the primaries span no colour space",
-                spec.name()
-            ))
-        })
+        .ok_or_else(|| Error::NoColourSpace { name: spec.name() })
 }
 
 /// The `refl` line for named reflectances (names as in `specpoly xyz`; several are multiplied),
@@ -134,15 +118,18 @@ fn refl_form(
 ) -> Result<String> {
     let named = spectrum_names::resolve_all(names)?;
     if named.is_empty() || named.len() > MAX_FACTORS {
-        return Err(CliError::usage(format!(
-            "refl takes 1 to {MAX_FACTORS} reflectances, got {}",
-            named.len()
-        )));
+        return Err(Error::ReflectanceCount {
+            got: named.len(),
+            max: MAX_FACTORS,
+        });
     }
     let mut factors = Vec::new();
     for n in &named {
         let t = n.tabulated();
-        let fit_err = |e| CliError::data(format!("{}: cannot fit: {e}", n.short()));
+        let fit_err = |source| Error::CannotFit {
+            name: n.short().to_string(),
+            source,
+        };
         factors.push(match preset {
             Preset::Paper => Reflectance::Paper(PaperSpectrum::fit(&t).map_err(fit_err)?),
             Preset::Poly => Reflectance::Default(DefaultSpectrum::fit(&t).map_err(fit_err)?),
@@ -154,6 +141,6 @@ fn refl_form(
     } else {
         write_reflect(&mut line, illuminant, &factors)
     }
-    .map_err(|_| CliError::usage("cannot write the refl command"))?;
+    .map_err(|_| Error::ReflLine)?;
     Ok(line)
 }

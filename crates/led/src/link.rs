@@ -1,7 +1,7 @@
 //! A line-protocol link to the controller over any byte stream (a serial port, or a
 //! pseudo-terminal in tests): one command line out, one reply line back.
 
-use crate::LedError;
+use crate::Error;
 use specpoly_protocol::{Reply, MAX_LINE, MAX_REPLY, PROTOCOL_VERSION};
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
@@ -16,11 +16,11 @@ pub struct Link<P> {
 
 impl Link<Box<dyn serialport::SerialPort>> {
     /// Opens a serial port (115200 8N1; a pseudo-terminal ignores the rate).
-    pub fn open(path: &str, timeout: Duration) -> Result<Self, LedError> {
+    pub fn open(path: &str, timeout: Duration) -> Result<Self, Error> {
         let port = serialport::new(path, 115_200)
             .timeout(Duration::from_millis(20))
             .open()
-            .map_err(|source| LedError::Open {
+            .map_err(|source| Error::Open {
                 port: path.to_owned(),
                 source,
             })?;
@@ -56,16 +56,16 @@ impl<P: Read + Write> Link<P> {
     }
 
     /// Sends one command line and returns the controller's reply; an `err` reply is
-    /// [`LedError::Rejected`].
-    pub fn send(&mut self, command: &str) -> Result<Reply, LedError> {
+    /// [`Error::Rejected`].
+    pub fn send(&mut self, command: &str) -> Result<Reply, Error> {
         let line = self.exchange(command)?;
         match Reply::parse(&line) {
-            Ok(Reply::Error(fault)) => Err(LedError::Rejected {
+            Ok(Reply::Error(fault)) => Err(Error::Rejected {
                 command: clip(command, 40),
                 fault,
             }),
             Ok(r) => Ok(r),
-            Err(_) => Err(LedError::BadReply {
+            Err(_) => Err(Error::BadReply {
                 port: self.name.clone(),
                 command: clip(command, 40),
                 reply: clip(&line, 80),
@@ -74,15 +74,15 @@ impl<P: Read + Write> Link<P> {
     }
 
     /// `hello`, checking the protocol version; returns the full-scale duty.
-    pub fn hello(&mut self) -> Result<u16, LedError> {
+    pub fn hello(&mut self) -> Result<u16, Error> {
         match self.send("hello")? {
             Reply::Hello { protocol, max, .. } if protocol == PROTOCOL_VERSION => Ok(max),
-            Reply::Hello { protocol, .. } => Err(LedError::Version {
+            Reply::Hello { protocol, .. } => Err(Error::Version {
                 port: self.name.clone(),
                 found: protocol,
                 expected: PROTOCOL_VERSION,
             }),
-            other => Err(LedError::BadReply {
+            other => Err(Error::BadReply {
                 port: self.name.clone(),
                 command: "hello".into(),
                 reply: clip(&crate::lines::reply_line(&other), 80),
@@ -90,13 +90,13 @@ impl<P: Read + Write> Link<P> {
         }
     }
 
-    fn io_error(&self, source: std::io::Error) -> LedError {
+    fn io_error(&self, source: std::io::Error) -> Error {
         if is_hang_up(&source) {
-            LedError::Closed {
+            Error::Closed {
                 port: self.name.clone(),
             }
         } else {
-            LedError::Io {
+            Error::Io {
                 port: self.name.clone(),
                 source,
             }
@@ -104,9 +104,9 @@ impl<P: Read + Write> Link<P> {
     }
 
     /// Writes `command` and a newline, and reads the reply line (without its newline).
-    pub fn exchange(&mut self, command: &str) -> Result<String, LedError> {
+    pub fn exchange(&mut self, command: &str) -> Result<String, Error> {
         if command.len() > MAX_LINE {
-            return Err(LedError::TooLong {
+            return Err(Error::TooLong {
                 len: command.len(),
                 max: MAX_LINE,
             });
@@ -116,7 +116,7 @@ impl<P: Read + Write> Link<P> {
 
     /// As [`Self::exchange`] without the host's length check, to test the controller's own
     /// limits.
-    pub fn exchange_unchecked(&mut self, command: &str) -> Result<String, LedError> {
+    pub fn exchange_unchecked(&mut self, command: &str) -> Result<String, Error> {
         let mut out = Vec::with_capacity(command.len() + 1);
         out.extend_from_slice(command.as_bytes());
         out.push(b'\n');
@@ -134,14 +134,14 @@ impl<P: Read + Write> Link<P> {
                 return Ok(text.trim_end_matches('\r').to_owned());
             }
             if self.pending.len() > 4 * MAX_REPLY {
-                return Err(LedError::BadReply {
+                return Err(Error::BadReply {
                     port: self.name.clone(),
                     command: clip(command, 40),
                     reply: clip(&String::from_utf8_lossy(&self.pending), 80),
                 });
             }
             if Instant::now() >= deadline {
-                return Err(LedError::Timeout {
+                return Err(Error::Timeout {
                     port: self.name.clone(),
                     command: clip(command, 40),
                     ms: self.timeout.as_millis(),
@@ -149,7 +149,7 @@ impl<P: Read + Write> Link<P> {
             }
             match self.port.read(&mut chunk) {
                 Ok(0) => {
-                    return Err(LedError::Closed {
+                    return Err(Error::Closed {
                         port: self.name.clone(),
                     })
                 }

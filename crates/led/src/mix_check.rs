@@ -93,7 +93,7 @@ pub fn bound(q: MixQuantity) -> f64 {
 }
 
 /// What the freedom of a fourth to sixth channel is spent on (the weights uploaded).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Weight {
     /// Least total drive `Σ dᵢ` (weights 1).
     Power,

@@ -48,21 +48,3 @@ impl Error {
 
 /// The result type of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-/// Interim, until the CLI owns [`specpoly_formats::error::CliError`] (then this mapping moves to
-/// the CLI's `error/paper.rs`): the wrong number of spectra is a usage error (exit 2), a
-/// refused fit exit 1; the spectra's and the plot's errors map as theirs do. The message is
-/// kept.
-impl From<Error> for specpoly_formats::error::CliError {
-    fn from(e: Error) -> Self {
-        use specpoly_formats::error::CliError;
-        match e {
-            Error::Spectra(e) => e.into(),
-            Error::Plot(e) => e.into(),
-            Error::ProductNeedsTwo { .. } | Error::NotOneSpectrum { .. } => {
-                CliError::Usage(e.to_string())
-            }
-            Error::Fit { .. } => CliError::Data(e.to_string()),
-        }
-    }
-}

@@ -52,18 +52,3 @@ pub enum Error {
 
 /// The result type of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-/// Interim, until the CLI owns [`specpoly_formats::error::CliError`] (then this mapping moves to
-/// the CLI's `error/plot.rs`): a wrong `--size` or one too small for the legend is a usage
-/// error (exit 2); a failed drawing or encoding is exit 1. The message is kept.
-impl From<Error> for specpoly_formats::error::CliError {
-    fn from(e: Error) -> Self {
-        use specpoly_formats::error::CliError;
-        match e {
-            Error::BadSize { .. } | Error::SizeOutOfRange { .. } | Error::LegendTooBig { .. } => {
-                CliError::Usage(e.to_string())
-            }
-            Error::Draw(_) | Error::Text(_) | Error::Png(_) => CliError::Data(e.to_string()),
-        }
-    }
-}

@@ -53,7 +53,7 @@ pub enum Error {
         what: String,
         /// Why, from the spectra crate.
         #[source]
-        error: specpoly_spectra::Error,
+        error: Box<specpoly_spectra::Error>,
     },
     /// `render.max_depth` above [`crate::budget::MAX_DEPTH`].
     #[error("{file}: render.max_depth {depth} is above the limit {limit}")]
@@ -129,9 +129,6 @@ pub enum Error {
     /// Text drawn into comparison images (`specpoly-plot`).
     #[error(transparent)]
     Plot(#[from] specpoly_plot::Error),
-    /// An error of a specpoly crate whose errors are not typed yet.
-    #[error(transparent)]
-    Lower(#[from] specpoly_formats::error::CliError),
 }
 
 /// A result with the renderer's [`Error`].

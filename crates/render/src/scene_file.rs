@@ -201,7 +201,10 @@ impl SceneFile {
                         n,
                         specpoly_spectra::plausible::Given::Scene,
                     )
-                    .map_err(|error| Error::Spectrum { what: w(f), error })?;
+                    .map_err(|error| Error::Spectrum {
+                        what: w(f),
+                        error: Box::new(error),
+                    })?;
                 }
                 Ok(n)
             };

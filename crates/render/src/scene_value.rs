@@ -53,7 +53,7 @@ pub fn rebase(name: &str, base: Option<&Path>) -> String {
 pub fn resolve_spectrum_in(spec: &SpectrumSpec, what: &str, base: Option<&Path>) -> Result<Named> {
     let data = |error| Error::Spectrum {
         what: what.to_string(),
-        error,
+        error: Box::new(error),
     };
     let finite = |v: f32, field: &str| {
         if v.is_finite() {

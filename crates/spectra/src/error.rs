@@ -140,37 +140,3 @@ pub enum Error {
 
 /// The result type of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
-
-/// Interim, until the CLI owns [`specpoly_formats::error::CliError`] (then this mapping moves to
-/// the CLI's `error/spectra.rs`): names that resolve to nothing, bad `--scale`, `--repr`,
-/// channel and mix arguments are usage errors (exit 2); data that cannot be used is exit 1.
-/// The message is kept.
-impl From<Error> for specpoly_formats::error::CliError {
-    fn from(e: Error) -> Self {
-        use specpoly_formats::error::CliError;
-        match e {
-            Error::Formats(e) => e.into(),
-            Error::UnknownTable { .. }
-            | Error::ColumnNeeded { .. }
-            | Error::UnknownColumn { .. }
-            | Error::UnknownLight(_)
-            | Error::NotOneLight { .. }
-            | Error::BadChannel { .. }
-            | Error::BadScale(_)
-            | Error::UnknownRepr(_)
-            | Error::UnsupportedRepr { .. }
-            | Error::NotPolynomial { .. }
-            | Error::UnlistedLayout(_)
-            | Error::Mix(LightError::Channels(_) | LightError::BadTarget) => {
-                CliError::Usage(e.to_string())
-            }
-            Error::Samples { .. }
-            | Error::NotReflectance { .. }
-            | Error::Overflow { .. }
-            | Error::ImageOverflow { .. }
-            | Error::Light { .. }
-            | Error::OutOfGamut { .. }
-            | Error::Mix(_) => CliError::Data(e.to_string()),
-        }
-    }
-}

@@ -10,9 +10,9 @@
 //! built on them). The dropped patches and why are in the fit report.
 
 use super::{fit_model, is_anchor, select, FitOptions};
+use crate::error::Result;
 use crate::verify;
 use specpoly_display::calibration::{Calibration, Outlier};
-use specpoly_formats::error::Result;
 use specpoly_formats::measurement::Measurement;
 
 /// How many robust standard deviations above the median a patch's ΔE00 must be.

@@ -9,9 +9,9 @@
 //! simplest candidate within [`TIE`] of the best is chosen.
 
 use super::{fit_model, is_anchor, model_name, FitOptions, InteractionChoice};
+use crate::error::Result;
 use crate::verify;
 use specpoly_display::calibration::Candidate;
-use specpoly_formats::error::Result;
 use specpoly_formats::measurement::Measurement;
 
 /// Folds of the cross-validation.

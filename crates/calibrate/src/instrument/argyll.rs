@@ -44,9 +44,9 @@
 //! | `timeout=SECS` | — | longest silence of `dispread` before it is stopped (default 30) |
 //! | `arg=A` | `A` | any other `dispread` argument, one word per `arg=` |
 
+use crate::error::{Error, InstrumentError, Result};
 use crate::interrupt;
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::{cgats, ti1};
 use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
@@ -91,10 +91,8 @@ impl DisplayOptions {
     /// one device-spec parser, [`DeviceSpec`]).
     pub fn parse(text: &str) -> Result<Self> {
         let spec = DeviceSpec::parse(text);
-        let usage = || {
-            CliError::usage(format!(
-                "--display `{text}`: with --instrument argyll, ArgyllCMS shows the patches: `argyll[:N]` (its window on display N), `argyll:web[:PORT]`, `argyll:fake[:PROFILE.icc]` or `argyll:dummy`, options `scale=S`, `fill`"
-            ))
+        let usage = || Error::ArgyllDisplay {
+            spec: text.to_string(),
         };
         if spec.kind != "argyll" {
             return Err(usage());
@@ -110,10 +108,10 @@ impl DisplayOptions {
             Some(r) if r.starts_with("fake:") => {
                 let p = PathBuf::from(&r[5..]);
                 if !p.is_file() {
-                    return Err(CliError::data(format!(
-                        "--display {text}: no profile {}",
-                        p.display()
-                    )));
+                    return Err(Error::NoProfile {
+                        spec: text.to_string(),
+                        file: p,
+                    });
                 }
                 ArgyllDisplay::Fake(Some(p))
             }
@@ -134,12 +132,12 @@ impl DisplayOptions {
                 "scale" => {
                     let x = spec.number(k, v)?;
                     if !(x > 0.0 && x <= 100.0) {
-                        return Err(spec.bad(k, v, "expected a scale in (0, 100]"));
+                        return Err(spec.bad(k, v, "expected a scale in (0, 100]").into());
                     }
                     o.scale = Some(x);
                 }
                 "fill" if v.is_empty() => o.fill = true,
-                _ => return Err(spec.unknown(k, "scale=S, fill")),
+                _ => return Err(spec.unknown(k, "scale=S, fill").into()),
             }
         }
         Ok(o)
@@ -181,9 +179,9 @@ impl ArgyllOptions {
     pub fn parse(text: &str) -> Result<Self> {
         let spec = DeviceSpec::parse(text);
         if spec.kind != "argyll" {
-            return Err(CliError::usage(format!(
-                "--instrument `{text}`: expected `argyll[:options]`"
-            )));
+            return Err(Error::ArgyllInstrument {
+                spec: text.to_string(),
+            });
         }
         let mut options: Vec<(&str, &str)> = Vec::new();
         if let Some(first) = spec.arg.filter(|a| !a.is_empty()) {
@@ -198,7 +196,7 @@ impl ArgyllOptions {
         for (k, v) in options {
             let word = |v: &str| {
                 if v.is_empty() || v.contains(char::is_whitespace) {
-                    Err(spec.bad::<CliError>(k, v, "expected one word"))
+                    Err(spec.bad(k, v, "expected one word"))
                 } else {
                     Ok(v.to_string())
                 }
@@ -207,7 +205,7 @@ impl ArgyllOptions {
                 "c" => {
                     let n: u32 = spec.integer(k, v)?;
                     if n < 1 {
-                        return Err(spec.bad(k, v, "instruments are numbered from 1"));
+                        return Err(spec.bad(k, v, "instruments are numbered from 1").into());
                     }
                     o.args.extend(["-c".into(), n.to_string()]);
                 }
@@ -215,11 +213,12 @@ impl ArgyllOptions {
                 "x" => {
                     let f = Path::new(v);
                     if !f.is_file() {
-                        return Err(CliError::data(format!(
-                            "--instrument {text}: correction file `{v}` not found"
-                        )));
+                        return Err(Error::NoCorrectionFile {
+                            spec: text.to_string(),
+                            file: v.to_string(),
+                        });
                     }
-                    let abs = std::fs::canonicalize(f).map_err(|e| CliError::io(f, e))?;
+                    let abs = std::fs::canonicalize(f).map_err(|e| Error::io(f, e))?;
                     o.args.extend(["-X".into(), abs.display().to_string()]);
                 }
                 "q" => o.args.extend(["-Q".into(), word(v)?]),
@@ -228,7 +227,7 @@ impl ArgyllOptions {
                 "rate" => {
                     let hz = spec.number(k, v)?;
                     if hz <= 0.0 {
-                        return Err(spec.bad(k, v, "expected a refresh rate in Hz"));
+                        return Err(spec.bad(k, v, "expected a refresh rate in Hz").into());
                     }
                     o.args.extend(["-Y".into(), format!("R:{hz}")]);
                 }
@@ -238,13 +237,13 @@ impl ArgyllOptions {
                 "batch" => {
                     o.batch = spec.integer(k, v)?;
                     if !(1..=1000).contains(&o.batch) {
-                        return Err(spec.bad(k, v, "expected 1–1000 patches"));
+                        return Err(spec.bad(k, v, "expected 1–1000 patches").into());
                     }
                 }
                 "timeout" => {
                     o.timeout = spec.seconds(k, v)?;
                     if o.timeout > Duration::from_secs(3600) {
-                        return Err(spec.bad(k, v, "at most 3600 s"));
+                        return Err(spec.bad(k, v, "at most 3600 s").into());
                     }
                 }
                 "arg" => o.args.push(word(v)?),
@@ -252,7 +251,7 @@ impl ArgyllOptions {
                     return Err(spec.unknown(
                         k,
                         "c=N, y=X, x=FILE, q=OBS, fixed, rate=HZ, hires, drift=b|w|bw, batch=N, timeout=SECS, arg=A",
-                    ))
+                    ).into())
                 }
             }
         }
@@ -266,13 +265,6 @@ pub fn find_program(name: &str) -> Option<PathBuf> {
     std::env::split_paths(&path)
         .map(|d| d.join(name))
         .find(|p| p.is_file())
-}
-
-/// The error when ArgyllCMS is not installed.
-fn not_installed() -> CliError {
-    CliError::data(format!(
-        "ArgyllCMS is not installed (no `dispread` on PATH): install the Debian/Ubuntu package `{PACKAGE}` (apt install {PACKAGE})"
-    ))
 }
 
 /// `dispread` measuring batches of patches.
@@ -310,7 +302,7 @@ impl Dispread {
     ) -> Result<Self> {
         let options = ArgyllOptions::parse(instrument)?;
         let display = DisplayOptions::parse(display)?;
-        let program = find_program("dispread").ok_or_else(not_installed)?;
+        let program = find_program("dispread").ok_or(InstrumentError::NotInstalled)?;
         let parent = match ti3.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
@@ -320,7 +312,7 @@ impl Dispread {
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_else(|| "cal.ti3".into());
         let dir = parent.join(format!(".{name}.argyll{}", std::process::id()));
-        std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
+        std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
         if let ArgyllDisplay::Fake(Some(icc)) = &display.display {
             // ArgyllCMS looks for `fake.icc` on Unix and macOS, `fake.icm` on Windows
             let to = dir.join(if cfg!(windows) {
@@ -328,7 +320,7 @@ impl Dispread {
             } else {
                 "fake.icc"
             });
-            std::fs::copy(icc, &to).map_err(|e| CliError::io(icc, e))?;
+            std::fs::copy(icc, &to).map_err(|e| Error::io(icc, e))?;
         }
         Ok(Self {
             program,
@@ -384,7 +376,7 @@ impl Dispread {
     /// Measures `devices` (each in `[0, 1]`) in one `dispread` run: XYZ in cd/m², in order.
     pub fn measure(&mut self, devices: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
         if interrupt::requested() {
-            return Err(CliError::data(interrupt::MESSAGE));
+            return Err(InstrumentError::Interrupted.into());
         }
         let ti1_path = self.dir.join("batch.ti1");
         let ti3_path = self.dir.join("batch.ti3");
@@ -393,7 +385,7 @@ impl Dispread {
             &ti1_path,
             ti1::write_ti1(devices, "specpoly calibrate run batch"),
         )
-        .map_err(|e| CliError::io(&ti1_path, e))?;
+        .map_err(|e| Error::io(&ti1_path, e))?;
         let mut cmd = Command::new(&self.program);
         cmd.current_dir(&self.dir)
             .arg("-v")
@@ -417,11 +409,14 @@ impl Dispread {
                 s.as_millis().to_string(),
             );
         }
-        let mut child = Reaper(cmd.spawn().map_err(|e| {
-            if e.kind() == std::io::ErrorKind::NotFound {
-                not_installed()
+        let mut child = Reaper(cmd.spawn().map_err(|source| {
+            if source.kind() == std::io::ErrorKind::NotFound {
+                InstrumentError::NotInstalled
             } else {
-                CliError::data(format!("cannot start {}: {e}", self.program.display()))
+                InstrumentError::Start {
+                    program: self.program.clone(),
+                    source,
+                }
             }
         })?);
         self.runs += 1;
@@ -494,7 +489,7 @@ impl Dispread {
                     }
                     std::thread::sleep(Duration::from_millis(50));
                 }
-                return Err(CliError::data(interrupt::MESSAGE));
+                return Err(InstrumentError::Interrupted.into());
             }
             match child.0.try_wait() {
                 Ok(Some(st)) if !open => break st,
@@ -505,48 +500,46 @@ impl Dispread {
                     }
                 }
                 Ok(None) => {}
-                Err(e) => return Err(CliError::data(format!("dispread: {e}"))),
+                Err(e) => return Err(InstrumentError::Wait(e).into()),
             }
             if !open {
                 std::thread::sleep(Duration::from_millis(20));
             }
             if last.elapsed() > self.options.timeout {
-                return Err(CliError::data(format!(
-                    "ArgyllCMS dispread said nothing for {:.0} s and was stopped: no instrument found, or one that does not answer (is it plugged in? `spotread -?` lists what ArgyllCMS sees; raise timeout= for long prompts)",
-                    self.options.timeout.as_secs_f64()
-                )));
+                return Err(InstrumentError::Silent {
+                    seconds: self.options.timeout.as_secs_f64(),
+                }
+                .into());
             }
         };
         if !status.success() || !ti3_path.is_file() {
-            return Err(CliError::data(argyll_error(&errors, status.code())));
+            return Err(dispread_failed(&errors, status.code()).into());
         }
-        let text = std::fs::read_to_string(&ti3_path).map_err(|e| CliError::io(&ti3_path, e))?;
+        let text = std::fs::read_to_string(&ti3_path).map_err(|e| Error::io(&ti3_path, e))?;
         let t = cgats::read_ti3(&text, "dispread's batch.ti3")?;
         if self.instrument_name.is_none() {
             self.instrument_name = t.keyword("TARGET_INSTRUMENT").map(str::to_string);
         }
         let (m, absolute) = t.best_units();
         if !absolute {
-            return Err(CliError::data(
-                "dispread's .ti3 is normalised and gives no absolute luminance",
-            ));
+            return Err(InstrumentError::Relative.into());
         }
         if m.len() != devices.len() {
-            return Err(CliError::data(format!(
-                "dispread measured {} patches of {}",
-                m.len(),
-                devices.len()
-            )));
+            return Err(InstrumentError::Count {
+                got: m.len(),
+                asked: devices.len(),
+            }
+            .into());
         }
         for (k, (m, d)) in m.iter().zip(devices).enumerate() {
             // dispread writes the device values with about five significant digits
             if (0..3).any(|c| (m.device[c] - d[c]).abs() > 1e-4) {
-                return Err(CliError::data(format!(
-                    "dispread's patch {} is RGB {:?}, not the {:?} asked for",
-                    k + 1,
-                    m.device,
-                    d
-                )));
+                return Err(InstrumentError::WrongPatch {
+                    number: k + 1,
+                    got: m.device,
+                    asked: *d,
+                }
+                .into());
             }
         }
         Ok(m.into_iter().map(|m| m.xyz).collect())
@@ -582,6 +575,11 @@ pub fn strip_noise(text: &str) -> String {
 /// One line from `dispread`'s stderr: its last `Error - …` message, with a hint for the
 /// common ones.
 pub fn argyll_error(stderr: &str, code: Option<i32>) -> String {
+    dispread_failed(stderr, code).to_string()
+}
+
+/// The error of a failed `dispread` run from its stderr and exit code ([`argyll_error`]).
+pub fn dispread_failed(stderr: &str, code: Option<i32>) -> InstrumentError {
     let cleaned = strip_noise(stderr);
     let msg = cleaned
         .lines()
@@ -603,7 +601,7 @@ pub fn argyll_error(stderr: &str, code: Option<i32>) -> String {
     } else {
         ""
     };
-    format!("ArgyllCMS dispread failed: {msg}{hint}")
+    InstrumentError::DispreadFailed { said: msg, hint }
 }
 
 #[cfg(test)]

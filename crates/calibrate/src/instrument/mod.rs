@@ -8,10 +8,10 @@
 //! | `sim:SPD[,options]` | a simulated display that mirrors whatever `--display` shows (web, manual), read by [`sim::SimInstrument`] |
 //! | `argyll[:options]` | [`argyll::Dispread`]: any instrument ArgyllCMS drives, measuring batches of patches with `dispread` (not an [`Instrument`]: `dispread` shows the patches itself) |
 
+use crate::error::{Error, InstrumentError, Result};
 use crate::patch_display::{Mirrored, PatchDisplay};
 use crate::sim::{SimHandle, SimModel};
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 
 pub mod argyll;
 pub mod serial;
@@ -23,7 +23,7 @@ pub trait Instrument {
     fn describe(&self) -> String;
 
     /// Measures the patch on screen: CIE 1931 XYZ in cd/m².
-    fn measure(&mut self) -> Result<[f64; 3]>;
+    fn measure(&mut self) -> Result<[f64; 3], InstrumentError>;
 }
 
 /// Opens the instrument named by `spec`; a `sim:SPD` instrument wraps `display` so the
@@ -35,18 +35,12 @@ pub fn open(
     let d = DeviceSpec::parse(spec);
     match (d.kind, d.arg) {
         ("sim", None) if d.options.is_empty() => {
-            let h = display.simulation().ok_or_else(|| {
-                CliError::usage(
-                    "--instrument sim reads a simulated display: use it with --display sim:SPD, or name the spectra (--instrument sim:crt) to simulate what --display shows",
-                )
-            })?;
+            let h = display.simulation().ok_or(Error::SimNeedsSimDisplay)?;
             return Ok((display, Box::new(sim::SimInstrument::new(h))));
         }
         ("sim", Some(_)) => {
             if display.simulation().is_some() {
-                return Err(CliError::usage(
-                    "--display is already simulated: use --instrument sim to read it",
-                ));
+                return Err(Error::AlreadySimulated);
             }
             let h = SimHandle::new(SimModel::from_spec(&d)?);
             let m: Box<dyn PatchDisplay> = Box::new(Mirrored::new(display, h.clone()));
@@ -56,11 +50,9 @@ pub fn open(
         _ => {}
     }
     if argyll::is_argyll(spec) {
-        return Err(CliError::usage(
-            "--instrument argyll measures with ArgyllCMS's dispread, which shows the patches itself: use it with --display argyll[:N]",
-        ));
+        return Err(Error::ArgyllNeedsArgyllDisplay);
     }
-    Err(CliError::usage(format!(
-        "--instrument `{spec}`: expected `serial:PORT[,options]`, `argyll[:options]`, `sim` or `sim:SPD[,options]`"
-    )))
+    Err(Error::UnknownInstrument {
+        spec: spec.to_string(),
+    })
 }

@@ -32,17 +32,17 @@
 //! deadline passes with nothing but noise does the exchange fail (and get retried). Ctrl-C
 //! stops a wait within 100 ms; dropping the driver sends `Q` (back to local mode).
 
+use crate::error::{InstrumentError, Result};
 use crate::instrument::Instrument;
 use crate::interrupt;
 use serialport::{ClearBuffer, SerialPort};
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
 
-/// Why one exchange failed.
+/// Why one exchange with the instrument failed.
 #[derive(Debug)]
-enum Fail {
+pub enum Failure {
     /// No complete reply before the deadline.
     Timeout(&'static str, Duration),
     /// A reply that is not what the command returns.
@@ -55,21 +55,23 @@ enum Fail {
     Interrupted,
 }
 
-impl std::fmt::Display for Fail {
+impl std::fmt::Display for Failure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Fail::Timeout(c, d) => write!(f, "no reply to `{c}` within {:.1} s", d.as_secs_f64()),
-            Fail::Garbled(c, r) => write!(f, "garbled reply to `{c}`: `{r}`"),
-            Fail::Status(c, s) => write!(
+            Failure::Timeout(c, d) => {
+                write!(f, "no reply to `{c}` within {:.1} s", d.as_secs_f64())
+            }
+            Failure::Garbled(c, r) => write!(f, "garbled reply to `{c}`: `{r}`"),
+            Failure::Status(c, s) => write!(
                 f,
                 "`{c}` failed with instrument error {s:04}{}",
                 status_meaning(*s)
             ),
-            Fail::Gone(e) => write!(
+            Failure::Gone(e) => write!(
                 f,
                 "the serial port failed ({e}); was the instrument unplugged?"
             ),
-            Fail::Interrupted => write!(f, "{}", interrupt::MESSAGE),
+            Failure::Interrupted => write!(f, "{}", interrupt::MESSAGE),
         }
     }
 }
@@ -178,18 +180,25 @@ impl Pr6xx {
                 "timeout" => o.timeout = spec.seconds(k, v)?,
                 "measure-timeout" => o.measure_timeout = spec.seconds(k, v)?,
                 "retries" => o.retries = spec.integer(k, v)?,
-                _ => return Err(spec.unknown(k, "baud, timeout, measure-timeout, retries")),
+                _ => {
+                    return Err(spec
+                        .unknown(k, "baud, timeout, measure-timeout, retries")
+                        .into())
+                }
             }
         }
-        Self::open(path, o)
+        Ok(Self::open(path, o)?)
     }
 
     /// Opens `path` and enters remote mode.
-    pub fn open(path: &str, options: SerialOptions) -> Result<Self> {
+    pub fn open(path: &str, options: SerialOptions) -> Result<Self, InstrumentError> {
         let port = serialport::new(path, options.baud)
             .timeout(Duration::from_millis(100))
             .open()
-            .map_err(|e| CliError::data(format!("cannot open serial port {path}: {e}")))?;
+            .map_err(|source| InstrumentError::OpenPort {
+                port: path.to_string(),
+                source,
+            })?;
         let mut me = Self {
             port,
             name: path.to_string(),
@@ -200,13 +209,17 @@ impl Pr6xx {
         Ok(me)
     }
 
-    fn err(&self, f: Fail) -> CliError {
-        CliError::data(format!("instrument on {}: {f}", self.name))
+    fn err(&self, f: Failure) -> InstrumentError {
+        InstrumentError::Serial {
+            port: self.name.clone(),
+            failure: f,
+            attempts: None,
+        }
     }
 
-    fn send(&mut self, cmd: &str) -> std::result::Result<(), Fail> {
-        self.port.write_all(cmd.as_bytes()).map_err(Fail::Gone)?;
-        self.port.flush().map_err(Fail::Gone)
+    fn send(&mut self, cmd: &str) -> std::result::Result<(), Failure> {
+        self.port.write_all(cmd.as_bytes()).map_err(Failure::Gone)?;
+        self.port.flush().map_err(Failure::Gone)
     }
 
     /// Reads one non-empty line (CR, LF or CR LF ended) before `timeout` runs out.
@@ -214,7 +227,7 @@ impl Pr6xx {
         &mut self,
         cmd: &'static str,
         timeout: Duration,
-    ) -> std::result::Result<String, Fail> {
+    ) -> std::result::Result<String, Failure> {
         let deadline = Instant::now() + timeout;
         loop {
             while let Some(i) = self.pending.iter().position(|b| *b == b'\n' || *b == b'\r') {
@@ -225,20 +238,20 @@ impl Pr6xx {
                 }
             }
             if interrupt::requested() {
-                return Err(Fail::Interrupted);
+                return Err(Failure::Interrupted);
             }
             let now = Instant::now();
             if now >= deadline {
-                return Err(Fail::Timeout(cmd, timeout));
+                return Err(Failure::Timeout(cmd, timeout));
             }
             let wait = (deadline - now).min(Duration::from_millis(100));
             self.port
                 .set_timeout(wait.max(Duration::from_millis(1)))
-                .map_err(|e| Fail::Gone(e.into()))?;
+                .map_err(|e| Failure::Gone(e.into()))?;
             let mut buf = [0u8; 256];
             match self.port.read(&mut buf) {
                 Ok(0) => {
-                    return Err(Fail::Gone(std::io::Error::new(
+                    return Err(Failure::Gone(std::io::Error::new(
                         ErrorKind::UnexpectedEof,
                         "end of file",
                     )))
@@ -248,27 +261,27 @@ impl Pr6xx {
                     if self.pending.len() > 4096 {
                         let s = String::from_utf8_lossy(&self.pending[..64]).to_string();
                         self.pending.clear();
-                        return Err(Fail::Garbled(cmd, format!("{s}… (no line end)")));
+                        return Err(Failure::Garbled(cmd, format!("{s}… (no line end)")));
                     }
                 }
                 Err(e) if e.kind() == ErrorKind::TimedOut || e.kind() == ErrorKind::Interrupted => {
                 }
-                Err(e) => return Err(Fail::Gone(e)),
+                Err(e) => return Err(Failure::Gone(e)),
             }
         }
     }
 
     /// Discards pending input (after a failed exchange, so a late reply is not taken for the
     /// next one).
-    fn drain(&mut self) -> std::result::Result<(), Fail> {
+    fn drain(&mut self) -> std::result::Result<(), Failure> {
         self.pending.clear();
         std::thread::sleep(Duration::from_millis(50));
         self.port
             .clear(ClearBuffer::Input)
-            .map_err(|e| Fail::Gone(e.into()))
+            .map_err(|e| Failure::Gone(e.into()))
     }
 
-    fn try_remote_mode(&mut self) -> std::result::Result<(), Fail> {
+    fn try_remote_mode(&mut self) -> std::result::Result<(), Failure> {
         self.send("PHOTO")?;
         let timeout = self.options.timeout;
         let deadline = Instant::now() + timeout;
@@ -279,10 +292,10 @@ impl Pr6xx {
                 Ok(line) if line.to_ascii_uppercase().contains("REMOTE MODE") => return Ok(()),
                 // an echo of the command or noise: keep reading until the deadline
                 Ok(line) => noise = Some(line),
-                Err(Fail::Timeout(..)) => {
+                Err(Failure::Timeout(..)) => {
                     return Err(match noise {
-                        Some(n) => Fail::Garbled("PHOTO", n),
-                        None => Fail::Timeout("PHOTO", timeout),
+                        Some(n) => Failure::Garbled("PHOTO", n),
+                        None => Failure::Timeout("PHOTO", timeout),
                     })
                 }
                 Err(f) => return Err(f),
@@ -290,12 +303,12 @@ impl Pr6xx {
         }
     }
 
-    fn remote_mode(&mut self) -> Result<()> {
+    fn remote_mode(&mut self) -> Result<(), InstrumentError> {
         let mut last = None;
         for _ in 0..=self.options.retries {
             match self.try_remote_mode() {
                 Ok(()) => return Ok(()),
-                Err(f @ (Fail::Gone(_) | Fail::Interrupted)) => return Err(self.err(f)),
+                Err(f @ (Failure::Gone(_) | Failure::Interrupted)) => return Err(self.err(f)),
                 Err(f) => {
                     last = Some(f);
                     self.drain().map_err(|f| self.err(f))?;
@@ -303,14 +316,15 @@ impl Pr6xx {
             }
         }
         match last {
-            Some(Fail::Timeout(..)) => Err(CliError::data(format!(
-                "no instrument answered on {}: sent `PHOTO`, no `REMOTE MODE` within {:.1} s ({} attempts; is a PR-655/670 connected and switched on?)",
-                self.name,
-                self.options.timeout.as_secs_f64(),
-                self.options.retries + 1
-            ))),
+            Some(Failure::Timeout(..)) => Err(InstrumentError::NoAnswer {
+                port: self.name.clone(),
+                seconds: self.options.timeout.as_secs_f64(),
+                attempts: self.options.retries + 1,
+            }),
             Some(f) => Err(self.err(f)),
-            None => Err(CliError::data(format!("{}: no attempt made", self.name))),
+            None => Err(InstrumentError::NoAttempt {
+                port: self.name.clone(),
+            }),
         }
     }
 
@@ -318,7 +332,7 @@ impl Pr6xx {
         &mut self,
         cmd: &'static str,
         timeout: Duration,
-    ) -> std::result::Result<[f64; 3], Fail> {
+    ) -> std::result::Result<[f64; 3], Failure> {
         self.send(cmd)?;
         self.send("\r")?;
         let deadline = Instant::now() + timeout;
@@ -327,10 +341,10 @@ impl Pr6xx {
             let left = deadline.saturating_duration_since(Instant::now());
             let line = match self.read_line(cmd, left) {
                 Ok(l) => l,
-                Err(Fail::Timeout(..)) => {
+                Err(Failure::Timeout(..)) => {
                     return Err(match noise {
-                        Some(n) => Fail::Garbled(cmd, n),
-                        None => Fail::Timeout(cmd, timeout),
+                        Some(n) => Failure::Garbled(cmd, n),
+                        None => Failure::Timeout(cmd, timeout),
                     })
                 }
                 Err(f) => return Err(f),
@@ -342,19 +356,19 @@ impl Pr6xx {
                 continue;
             }
             match find_reply(&line) {
-                Some(r) if r.status != 0 => return Err(Fail::Status(cmd, r.status)),
+                Some(r) if r.status != 0 => return Err(Failure::Status(cmd, r.status)),
                 Some(r) => return Ok(r.values),
                 None => noise = Some(line),
             }
         }
     }
 
-    fn try_measure(&mut self) -> std::result::Result<[f64; 3], Fail> {
+    fn try_measure(&mut self) -> std::result::Result<[f64; 3], Failure> {
         let yxy = self.exchange("M1", self.options.measure_timeout)?;
         let xyz = self.exchange("D2", self.options.timeout)?;
         let (y1, y2) = (yxy[0], xyz[1]);
         if (y1 - y2).abs() > 5e-3 * y1.abs().max(y2.abs()) + 1e-6 {
-            return Err(Fail::Garbled(
+            return Err(Failure::Garbled(
                 "D2",
                 format!("Y = {y2} but `M1` measured Y = {y1}"),
             ));
@@ -368,13 +382,13 @@ impl Instrument for Pr6xx {
         format!("PR-655/670 (remote mode) on {}", self.name)
     }
 
-    fn measure(&mut self) -> Result<[f64; 3]> {
+    fn measure(&mut self) -> Result<[f64; 3], InstrumentError> {
         let mut last = None;
         let attempts = self.options.retries + 1;
         for _ in 0..attempts {
             match self.try_measure() {
                 Ok(x) => return Ok(x),
-                Err(f @ (Fail::Gone(_) | Fail::Interrupted)) => return Err(self.err(f)),
+                Err(f @ (Failure::Gone(_) | Failure::Interrupted)) => return Err(self.err(f)),
                 Err(f) => {
                     last = Some(f);
                     self.drain().map_err(|f| self.err(f))?;
@@ -382,11 +396,14 @@ impl Instrument for Pr6xx {
             }
         }
         match last {
-            Some(f) => Err(CliError::data(format!(
-                "instrument on {}: {f} ({attempts} attempts)",
-                self.name
-            ))),
-            None => Err(CliError::data(format!("{}: no attempt made", self.name))),
+            Some(failure) => Err(InstrumentError::Serial {
+                port: self.name.clone(),
+                failure,
+                attempts: Some(attempts),
+            }),
+            None => Err(InstrumentError::NoAttempt {
+                port: self.name.clone(),
+            }),
         }
     }
 }

@@ -1,8 +1,8 @@
 //! `--instrument sim`: reads a simulated display (its truth plus its measurement noise).
 
+use crate::error::InstrumentError;
 use crate::instrument::Instrument;
 use crate::sim::SimHandle;
-use specpoly_formats::error::Result;
 
 /// Reads a simulated display.
 pub struct SimInstrument {
@@ -24,7 +24,7 @@ impl Instrument for SimInstrument {
         )
     }
 
-    fn measure(&mut self) -> Result<[f64; 3]> {
+    fn measure(&mut self) -> Result<[f64; 3], InstrumentError> {
         Ok(self.handle.read())
     }
 }

@@ -10,12 +10,12 @@
 //! `round(rgb · max)` within one tick. The controller keeps the neutral calibration afterwards:
 //! load the fitted one with `specpoly led` when done.
 
+use crate::error::{PatchDisplayError, Result};
 use crate::patch_display::PatchDisplay;
 use specpoly_core::{Display, GamutMap, Transfer, Xyz};
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_led::lines::line;
-use specpoly_led::{LedError, Link};
+use specpoly_led::Link;
 use specpoly_protocol::{Channels, Command, Reply};
 use std::time::Duration;
 
@@ -31,10 +31,6 @@ pub struct LedControllerDisplay {
     neutral: Display,
 }
 
-fn dev(e: LedError) -> CliError {
-    CliError::data(format!("LED display: {e}"))
-}
-
 impl LedControllerDisplay {
     /// Opens the controller of `led:PORT[,timeout=SECS]`.
     pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
@@ -43,19 +39,19 @@ impl LedControllerDisplay {
         for &(k, v) in &spec.options {
             match k {
                 "timeout" => timeout = spec.seconds(k, v)?,
-                _ => return Err(spec.unknown(k, "timeout")),
+                _ => return Err(spec.unknown(k, "timeout").into()),
             }
         }
-        Self::open(path, timeout)
+        Ok(Self::open(path, timeout)?)
     }
 
     /// Opens the controller on `path`, checks the protocol and loads the neutral calibration.
-    pub fn open(path: &str, timeout: Duration) -> Result<Self> {
-        let mut link = Link::open(path, timeout).map_err(dev)?;
-        let max = link.hello().map_err(dev)?;
+    pub fn open(path: &str, timeout: Duration) -> Result<Self, PatchDisplayError> {
+        let mut link = Link::open(path, timeout)?;
+        let max = link.hello()?;
         let linear = [Transfer::Linear, Transfer::Linear, Transfer::Linear];
         let neutral = Display::from_primaries(XY, LUM, Xyz::default(), linear)
-            .map_err(|e| CliError::data(format!("LED display: {e}")))?;
+            .map_err(PatchDisplayError::LedModel)?;
         for c in [
             Command::Calibrate {
                 xy: XY,
@@ -67,7 +63,7 @@ impl LedControllerDisplay {
             },
             Command::Map(GamutMap::Clip),
         ] {
-            link.send(&line(&c)).map_err(dev)?;
+            link.send(&line(&c))?;
         }
         Ok(Self {
             link,
@@ -86,29 +82,27 @@ impl PatchDisplay for LedControllerDisplay {
         )
     }
 
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError> {
         let xyz = self
             .neutral
             .device_to_xyz(rgb.map(|v| v as f32))
             .scale(100.0);
-        let reply = self.link.send(&line(&Command::Xyz(xyz))).map_err(dev)?;
+        let reply = self.link.send(&line(&Command::Xyz(xyz)))?;
         let Reply::Colour(c) = reply else {
-            return Err(CliError::data(format!(
-                "LED display: {}: unexpected reply to `xyz`: `{}`",
-                self.name,
-                specpoly_led::lines::reply_line(&reply)
-            )));
+            return Err(PatchDisplayError::LedReply {
+                port: self.name.clone(),
+                reply: specpoly_led::lines::reply_line(&reply),
+            });
         };
         let want = rgb.map(|v| (v * self.max as f64).round() as i64);
         if (0..3).any(|k| (c.duty[k] as i64 - want[k]).abs() > 1) {
-            return Err(CliError::data(format!(
-                "LED display: {}: drove duties {} for device {}, expected {} (of {})",
-                self.name,
-                specpoly_formats::stdout::values(&c.duty),
-                specpoly_formats::stdout::values(&rgb),
-                specpoly_formats::stdout::values(&want),
-                self.max
-            )));
+            return Err(PatchDisplayError::LedDuty {
+                port: self.name.clone(),
+                duty: specpoly_formats::stdout::values(&c.duty),
+                device: specpoly_formats::stdout::values(&rgb),
+                expected: specpoly_formats::stdout::values(&want),
+                max: self.max,
+            });
         }
         Ok(())
     }

@@ -1,9 +1,9 @@
 //! `--display manual`: prints the RGB to set (8-bit and percent) and waits for Enter, for
 //! displays the program cannot drive (a projector menu, another computer). Typing `q` stops.
 
+use crate::error::PatchDisplayError;
 use crate::patch_display::PatchDisplay;
 use specpoly_core::quantize8;
-use specpoly_formats::error::{CliError, Result};
 use std::io::{BufRead, Write};
 use std::time::Duration;
 
@@ -51,7 +51,7 @@ impl<R: BufRead, W: Write> PatchDisplay for ManualDisplay<R, W> {
         "manual display: set each patch by hand and press Enter".to_string()
     }
 
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError> {
         self.count += 1;
         let _ = writeln!(self.prompt, "{}", prompt_text(self.count, rgb));
         let _ = self.prompt.flush();
@@ -59,14 +59,12 @@ impl<R: BufRead, W: Write> PatchDisplay for ManualDisplay<R, W> {
         let n = self
             .input
             .read_line(&mut line)
-            .map_err(|e| CliError::data(format!("manual display: reading stdin: {e}")))?;
+            .map_err(PatchDisplayError::Stdin)?;
         if n == 0 {
-            return Err(CliError::data(
-                "manual display: stdin closed before the patch was confirmed",
-            ));
+            return Err(PatchDisplayError::StdinClosed);
         }
         if line.trim().eq_ignore_ascii_case("q") {
-            return Err(CliError::data("manual display: stopped by the user"));
+            return Err(PatchDisplayError::StoppedByUser);
         }
         Ok(())
     }

@@ -7,9 +7,9 @@
 //! | `manual` | [`manual::ManualDisplay`]: prints the RGB to set and waits for Enter |
 //! | `sim:SPD[,options]` | [`sim::SimDisplay`]: a simulated display (see [`crate::sim`]) |
 
+use crate::error::{Error, PatchDisplayError, Result};
 use crate::sim::{SimHandle, SimModel};
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use std::time::Duration;
 
 pub mod led_controller;
@@ -25,7 +25,7 @@ pub trait PatchDisplay {
 
     /// Shows `rgb` (device values in `[0, 1]`, on the 8-bit grid) and returns once it is on
     /// screen.
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()>;
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError>;
 
     /// How long to wait after [`Self::show`] before measuring unless `--settle` says otherwise.
     fn default_settle(&self) -> Duration;
@@ -49,9 +49,9 @@ pub fn open(spec: &str) -> Result<Box<dyn PatchDisplay>> {
         "sim" => Ok(Box::new(sim::SimDisplay::new(SimHandle::new(
             SimModel::from_spec(&d)?,
         )))),
-        _ => Err(CliError::usage(format!(
-            "--display `{spec}`: expected `web[:PORT]`, `led:PORT`, `manual` or `sim:SPD[,options]`"
-        ))),
+        _ => Err(Error::UnknownDisplay {
+            spec: spec.to_string(),
+        }),
     }
 }
 
@@ -74,7 +74,7 @@ impl PatchDisplay for Mirrored {
         self.inner.describe()
     }
 
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError> {
         self.inner.show(rgb)?;
         self.sim.set(rgb);
         Ok(())

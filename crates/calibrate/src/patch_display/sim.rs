@@ -1,8 +1,8 @@
 //! `--display sim:SPD[,options]`: patches go to a simulated display (no screen, no waiting).
 
+use crate::error::PatchDisplayError;
 use crate::patch_display::PatchDisplay;
 use crate::sim::SimHandle;
-use specpoly_formats::error::Result;
 use std::time::Duration;
 
 /// A simulated display.
@@ -22,7 +22,7 @@ impl PatchDisplay for SimDisplay {
         self.handle.model().describe()
     }
 
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError> {
         self.handle.set(rgb);
         Ok(())
     }

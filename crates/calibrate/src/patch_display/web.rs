@@ -26,10 +26,10 @@
 //! (default 1: all of it; `0.1` is the "10 % window" OLED and local-dimming panels are
 //! measured with), `background` the grey level around it (default 0) — see [`Window`].
 
+use crate::error::{Error, PatchDisplayError, Result};
 use crate::patch_display::PatchDisplay;
 use specpoly_core::quantize8;
 use specpoly_formats::device_spec::DeviceSpec;
-use specpoly_formats::error::{CliError, Result};
 use std::io::{Read, Write};
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -110,15 +110,10 @@ pub fn css(rgb: [f64; 3]) -> String {
 
 impl WebDisplay {
     /// Starts serving on `127.0.0.1:port` (`0`: an ephemeral port), showing black.
-    pub fn start(port: u16) -> Result<Self> {
-        let listener = TcpListener::bind(("127.0.0.1", port)).map_err(|e| {
-            CliError::data(format!(
-                "web display: cannot listen on 127.0.0.1:{port}: {e}"
-            ))
-        })?;
-        let addr = listener
-            .local_addr()
-            .map_err(|e| CliError::data(format!("web display: {e}")))?;
+    pub fn start(port: u16) -> Result<Self, PatchDisplayError> {
+        let listener = TcpListener::bind(("127.0.0.1", port))
+            .map_err(|source| PatchDisplayError::Listen { port, source })?;
+        let addr = listener.local_addr().map_err(PatchDisplayError::Socket)?;
         let shared = Arc::new(Shared {
             port: addr.port(),
             token: new_token(),
@@ -128,7 +123,7 @@ impl WebDisplay {
         let server = std::thread::Builder::new()
             .name("web-display".into())
             .spawn(move || serve(listener, s))
-            .map_err(|e| CliError::data(format!("web display: cannot start the server: {e}")))?;
+            .map_err(PatchDisplayError::Server)?;
         Ok(Self {
             addr,
             shared,
@@ -143,11 +138,8 @@ impl WebDisplay {
     pub fn from_spec(spec: &DeviceSpec<'_>) -> Result<Self> {
         let port = match spec.arg {
             None => 0,
-            Some(p) => p.parse::<u16>().map_err(|_| {
-                CliError::usage(format!(
-                    "--display `{}`: expected `web` or `web:PORT`",
-                    spec.text
-                ))
+            Some(p) => p.parse::<u16>().map_err(|_| Error::WebPort {
+                spec: spec.text.to_string(),
             })?,
         };
         let mut first_wait = Duration::from_secs(300);
@@ -160,16 +152,18 @@ impl WebDisplay {
                 "size" => {
                     window.size = spec.number(k, v)?;
                     if !(window.size > 0.0 && window.size <= 1.0) {
-                        return Err(spec.bad(k, v, "expected a fraction of the area in (0, 1]"));
+                        return Err(spec
+                            .bad(k, v, "expected a fraction of the area in (0, 1]")
+                            .into());
                     }
                 }
                 "background" => {
                     window.background = spec.number(k, v)?;
                     if !(0.0..=1.0).contains(&window.background) {
-                        return Err(spec.bad(k, v, "expected a grey level in [0, 1]"));
+                        return Err(spec.bad(k, v, "expected a grey level in [0, 1]").into());
                     }
                 }
-                _ => return Err(spec.unknown(k, "wait, timeout, size, background")),
+                _ => return Err(spec.unknown(k, "wait, timeout, size, background").into()),
             }
         }
         let mut d = Self::start(port)?;
@@ -241,7 +235,7 @@ impl PatchDisplay for WebDisplay {
         )
     }
 
-    fn show(&mut self, rgb: [f64; 3]) -> Result<()> {
+    fn show(&mut self, rgb: [f64; 3]) -> Result<(), PatchDisplayError> {
         let seq = self.post(rgb);
         let wait = if seq == 1 {
             self.first_wait
@@ -249,12 +243,12 @@ impl PatchDisplay for WebDisplay {
             self.timeout
         };
         if !self.wait_shown(seq, wait) {
-            return Err(CliError::data(format!(
-                "web display: no browser showed patch {seq} ({}) within {:.0} s — is {} open and visible?",
-                css(rgb),
-                wait.as_secs_f64(),
-                self.url()
-            )));
+            return Err(PatchDisplayError::NotShown {
+                seq,
+                css: css(rgb),
+                seconds: wait.as_secs_f64(),
+                url: self.url(),
+            });
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! `specpoly accuracy`: writes the accuracy report ([`specpoly_paper::accuracy::report`]) to
 //! `docs/accuracy.md` (atomically).
 
-use specpoly_formats::error::{CliError, Result};
+use crate::error::{CliError, Result};
 use std::path::PathBuf;
 
 /// Arguments of `specpoly accuracy`.

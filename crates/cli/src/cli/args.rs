@@ -12,8 +12,8 @@
 //! | `--size` | [`specpoly_plot::size::Size`] | its `FromStr` |
 //! | `--trc` (`led`) | [`Curve`] | [`transfer`] |
 
+use crate::error::{CliError, Result};
 use specpoly_core::{GamutMap, Illuminant, Observer, Transfer};
-use specpoly_formats::error::{CliError, Result};
 use specpoly_protocol::number::parse_f32;
 
 /// The light and the observer a colour is computed for.

@@ -1,12 +1,12 @@
 //! `specpoly calibrate`: fit Cowan's model to measurements, show, predict, verify, export ICC,
 //! and (`run`) measure a display. See docs/calibration.md.
 
-use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice, MatrixFit};
+use crate::error::{CliError, Result};
+use specpoly_calibrate::fit::{self, FitOptions, InteractionChoice};
 use specpoly_core::chromaticity;
 use specpoly_display::calibration::{self, Calibration};
 use specpoly_display::{export, icc};
 use specpoly_formats::cgats;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::{print, print_json};
 use std::path::PathBuf;
 
@@ -14,7 +14,9 @@ pub mod common;
 pub mod values;
 
 use common::fit_json;
-use values::{BitsValue, FormatValue, IccVersionValue, SourceValue, TransferValue, WhiteValue};
+use values::{
+    BitsValue, FormatValue, IccVersionValue, MatrixFitArg, SourceValue, TransferValue, WhiteValue,
+};
 
 /// `specpoly calibrate` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -68,8 +70,8 @@ pub struct FitArgs {
     #[arg(long, value_enum, default_value_t = TransferValue::Table)]
     pub transfer: TransferValue,
     /// How the matrix is found.
-    #[arg(long, value_enum, default_value_t = MatrixFit::LeastSquares)]
-    pub matrix: MatrixFit,
+    #[arg(long, value_enum, default_value_t = MatrixFitArg::LeastSquares)]
+    pub matrix: MatrixFitArg,
     /// Points of each transfer table (2–64).
     #[arg(long, default_value_t = 64)]
     pub table_points: usize,
@@ -178,7 +180,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     };
     let opts = FitOptions {
         transfer: a.transfer.into(),
-        matrix: a.matrix,
+        matrix: a.matrix.into(),
         table_points: a.table_points,
         absolute,
         interaction: a.interaction,

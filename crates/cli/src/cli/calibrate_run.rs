@@ -12,6 +12,7 @@
 use crate::cli::calibrate::common::{
     fit_json, line, native_ti3_path, print_fit, set_json, RunArgs,
 };
+use crate::error::{CliError, Result};
 use specpoly_calibrate::interrupt;
 use specpoly_calibrate::run::{
     fit_and_save, measure_session, patch_set, raw_primaries, ti3_path, Devices,
@@ -19,7 +20,6 @@ use specpoly_calibrate::run::{
 use specpoly_calibrate::session::{Existing, Session};
 use specpoly_display::calibration;
 use specpoly_formats::cgats::Ti3Info;
-use specpoly_formats::error::{CliError, Result};
 
 /// The chromaticity ([`specpoly_core::chromaticity`]; a black reading shows the equal-energy
 /// point) and luminance of an XYZ.
@@ -87,23 +87,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         };
         return crate::cli::calibrate_target::run(&ctx, &mut session);
     }
-    let truth =
-        measure_session(&devices, &set, &mut session, &head, &mut |s| line(s)).map_err(|e| {
-            let n = session.taken();
-            let kept = if n == 0 {
-                "no readings taken".to_string()
-            } else {
-                format!(
-                    "{n} readings kept in {} (run again with --resume to measure the other {})",
-                    ti3.display(),
-                    set.len() - n
-                )
-            };
-            match e {
-                CliError::Usage(m) => CliError::usage(format!("{m}; {kept}")),
-                e => CliError::data(format!("{e}; {kept}")),
-            }
-        })?;
+    let truth = measure_session(&devices, &set, &mut session, &head, &mut |s| line(s))?;
     let taken = session.measurements();
     line(&format!(
         "measured {} patches → {}",
@@ -123,8 +107,14 @@ pub fn run(a: &RunArgs) -> Result<()> {
             ))?;
         }
     }
-    let (cal, [n_fit, n_verify]) =
-        fit_and_save(&a.output, &ti3, session.info(), a.matrix, &set, &taken)?;
+    let (cal, [n_fit, n_verify]) = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix.into(),
+        &set,
+        &taken,
+    )?;
     eprintln!(
         "wrote {}",
         specpoly_formats::escape::one_line(&a.output.display().to_string())

@@ -9,14 +9,13 @@
 //! `[video_lut]`).
 
 use crate::cli::calibrate::common::{cal_path, line, print_fit, RunArgs};
+use crate::error::Result;
 use specpoly_calibrate::fit::{self, FitOptions};
 use specpoly_calibrate::patches::Patch;
 use specpoly_calibrate::run::{fit_and_save, record_session, split, ti3_path, Devices, Rig};
 use specpoly_calibrate::session::{Existing, Session};
 use specpoly_display::target::{self, Score, Target};
 use specpoly_formats::cgats::Ti3Info;
-use specpoly_formats::error::{CliError, Result};
-use std::path::Path;
 
 /// What `calibrate run` hands over.
 pub struct Context<'a> {
@@ -54,25 +53,10 @@ fn score_line(s: &Score) -> String {
 /// Runs the calibration; `native` is the open session of the native readings.
 pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     let a = c.args;
-    let kept = |s: &Session, file: &Path, e: CliError| {
-        let n = s.taken();
-        let msg = if n == 0 {
-            format!("{e}; no readings taken")
-        } else {
-            format!(
-                "{e}; {n} readings kept in {} (run again with --resume)",
-                file.display()
-            )
-        };
-        match e {
-            CliError::Usage(_) => CliError::usage(msg),
-            _ => CliError::data(msg),
-        }
-    };
     let mut rig = Rig::open(c.devices, &mut |s| line(s))?;
     line(c.head)?;
     line(&format!("target: {}", c.target))?;
-    record_session(&mut rig, c.set, native).map_err(|e| kept(native, c.devices.ti3, e))?;
+    record_session(&mut rig, c.set, native)?;
     let taken = native.measurements();
     line(&format!(
         "measured {} patches → {} (native, no LUT)",
@@ -81,7 +65,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     ))?;
     let (fit_set, verify_set) = split(c.set, &taken);
     let opts = FitOptions {
-        matrix: a.matrix,
+        matrix: a.matrix.into(),
         ..FitOptions::default()
     };
     let model = fit::fit_and_verify(&fit_set, &verify_set, &opts)?;
@@ -133,7 +117,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
     if let Some(n) = note {
         eprintln!("{n}");
     }
-    record_session(&mut rig, c.set, &mut session).map_err(|e| kept(&session, &ti3, e))?;
+    record_session(&mut rig, c.set, &mut session)?;
     // the LUT as the readings' CAL table (as `dispread -k` writes it)
     let text = specpoly_formats::read::text(&ti3)?;
     let with_cal = format!(
@@ -150,7 +134,14 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
-    let (mut cal, _) = fit_and_save(&a.output, &ti3, session.info(), a.matrix, c.set, &taken)?;
+    let (mut cal, _) = fit_and_save(
+        &a.output,
+        &ti3,
+        session.info(),
+        a.matrix.into(),
+        c.set,
+        &taken,
+    )?;
     cal.set_video_lut(Some(outcome.lut.clone()))?;
     cal.report_mut().1.notes.push(format!(
         "calibrated to {} with a video LUT ({}): the model holds while it is loaded",

@@ -14,13 +14,13 @@
 //! before it. JSON keys: docs/calibration.md.
 
 use crate::cli::args::{self, Curve};
+use crate::error::{CliError, Result};
 use serde_json::json;
 use specpoly_calibrate::criteria::{self, Level, Outcome};
 use specpoly_calibrate::report_html::{self, ReportInfo};
 use specpoly_calibrate::verify::{self, Verification};
 use specpoly_display::calibration::{self, Calibration};
 use specpoly_formats::cgats;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stats::{percentile, Stats};
 use specpoly_formats::stdout::{print, print_json};
 use std::fmt::Write as _;
@@ -38,6 +38,25 @@ pub struct PredictArgs {
     pub json: bool,
 }
 
+/// `--require`: [`Level`] as the command line spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum LevelArg {
+    /// DisplayCAL's nominal tolerances (and ISO 14861).
+    #[default]
+    Nominal,
+    /// DisplayCAL's recommended tolerances (and ISO 14861).
+    Recommended,
+}
+
+impl From<LevelArg> for Level {
+    fn from(l: LevelArg) -> Level {
+        match l {
+            LevelArg::Nominal => Level::Nominal,
+            LevelArg::Recommended => Level::Recommended,
+        }
+    }
+}
+
 /// `calibrate verify`.
 #[derive(Debug, clap::Args)]
 pub struct VerifyArgs {
@@ -49,8 +68,8 @@ pub struct VerifyArgs {
     pub ti3: PathBuf,
     /// The level every criterion must meet for exit code 0: DisplayCAL's `nominal` or
     /// `recommended` tolerances (ISO 14861's one level counts at both).
-    #[arg(long, value_enum, default_value_t = Level::Nominal)]
-    pub require: Level,
+    #[arg(long, value_enum, default_value_t = LevelArg::Nominal)]
+    pub require: LevelArg,
     /// Also write the report as one self-contained HTML page (gamut, ΔE00 per patch, tone
     /// curves, the criteria).
     #[arg(long, value_name = "REPORT.html")]
@@ -143,7 +162,7 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
             calibration: &a.calibration.display().to_string(),
             measurements: &a.ti3.display().to_string(),
             tone_target: (curve.into(), name),
-            level: a.require,
+            level: a.require.into(),
         };
         let html = report_html::page(&v, &cal, &info);
         specpoly_formats::atomic::write(path, html.as_bytes())?;
@@ -157,7 +176,7 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
     } else {
         print(&verification_text(&v, &cal, a))?;
     }
-    match criteria::failures(&v.outcomes, a.require) {
+    match criteria::failures(&v.outcomes, a.require.into()) {
         None => Ok(()),
         Some(f) => Err(CliError::data(format!(
             "{}: verification failed: {f}",
@@ -238,9 +257,9 @@ pub fn verification_json(v: &Verification, a: &VerifyArgs) -> serde_json::Value 
             "max": number(s.max),
         },
         "worst": worst,
-        "level": a.require,
-        "pass": criteria::failures(&v.outcomes, a.require).is_none(),
-        "criteria": outcomes_json(&v.outcomes, a.require),
+        "level": Level::from(a.require),
+        "pass": criteria::failures(&v.outcomes, a.require.into()).is_none(),
+        "criteria": outcomes_json(&v.outcomes, a.require.into()),
         "report": a.report.as_ref().map(|p| p.display().to_string()),
         "patch_results": patches,
     })
@@ -282,7 +301,7 @@ fn verification_text(v: &Verification, cal: &Calibration, a: &VerifyArgs) -> Str
     );
     for o in &v.outcomes {
         let c = &o.criterion;
-        let result = match (o.value, o.fails(a.require)) {
+        let result = match (o.value, o.fails(a.require.into())) {
             (None, _) => "n/a (no such patch)".to_string(),
             (Some(_), true) => "FAIL".to_string(),
             (Some(_), false) if c.recommended.is_none() => "pass".into(),

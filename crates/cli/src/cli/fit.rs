@@ -2,7 +2,7 @@
 //! ([`specpoly_paper::fit_report`]): coefficients, per-span errors and the fit's ΔE00.
 
 use crate::cli::args::Colorimetry;
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_formats::stdout::print_json;
 use specpoly_paper::fit_report::fit_one;
 use specpoly_spectra::repr::Repr;

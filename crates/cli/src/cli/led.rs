@@ -9,11 +9,11 @@
 //! offset, an LED's black being zero) or from the command line (`--primaries`, `--trc`).
 
 use crate::cli::args::{self, Curve, Gamut};
+use crate::error::{CliError, Result};
 use specpoly_core::light::channels::{Curve as ChannelCurve, Goal};
 use specpoly_core::light::Source;
 use specpoly_core::{Illuminant, Observer, Transfer};
 use specpoly_display::spec::DisplaySpec;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::{print, print_json};
 use specpoly_led::lines::{self, line, reply_line, Preset};
 use specpoly_led::mix_check::{MixOracle, Weight};
@@ -58,7 +58,7 @@ pub struct LedArgs {
     /// With more than three channels: what the device spends the freedom on (the weights
     /// uploaded with the channels): least total drive, or greatest luminous efficacy.
     #[arg(long, value_enum, default_value = "power")]
-    pub optimize: Weight,
+    pub optimize: WeightArg,
     /// Fade time for new `xy`/`cct` targets, ms (0 to 600000).
     #[arg(long, value_name = "MS", value_parser = clap::value_parser!(u32).range(0..=600_000))]
     pub fade: Option<u32>,
@@ -75,6 +75,43 @@ pub struct LedArgs {
     /// What to show or ask.
     #[command(subcommand)]
     pub action: LedAction,
+}
+
+/// `--optimize`: [`Weight`] as the command line spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum WeightArg {
+    /// Least total drive `Σ dᵢ` (weights 1).
+    Power,
+    /// Greatest luminous efficacy of radiation (weights: each channel's radiant power).
+    Efficacy,
+}
+
+impl From<WeightArg> for Weight {
+    fn from(w: WeightArg) -> Weight {
+        match w {
+            WeightArg::Power => Weight::Power,
+            WeightArg::Efficacy => Weight::Efficacy,
+        }
+    }
+}
+
+/// `refl --repr`: [`Preset`] as the command line spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PresetArg {
+    /// 8 uniform cubic spans (32 coefficients), the project default.
+    #[value(alias = "default")]
+    Poly,
+    /// The paper's 2 cubic spans split at 550 nm.
+    Paper,
+}
+
+impl From<PresetArg> for Preset {
+    fn from(p: PresetArg) -> Preset {
+        match p {
+            PresetArg::Poly => Preset::Poly,
+            PresetArg::Paper => Preset::Paper,
+        }
+    }
 }
 
 /// What `specpoly led` does after the settings.
@@ -102,8 +139,8 @@ pub enum LedAction {
     /// Show the colour of a reflectance (or the product of up to 4) under a built-in light.
     Refl {
         /// Representation sent: `poly` (8 cubic spans, 32 coefficients) or `paper` (2 spans).
-        #[arg(long, value_enum, default_value_t = Preset::Poly)]
-        repr: Preset,
+        #[arg(long, value_enum, default_value_t = PresetArg::Poly)]
+        repr: PresetArg,
         /// Built-in illuminant: A D50 D65 E FL2 FL7 FL11.
         #[arg(long, default_value = "D65", value_parser = args::builtin_illuminant)]
         illuminant: Illuminant,
@@ -165,8 +202,7 @@ fn check(
         Reply::Mix(r) => return check_mix(sent, r, mix).map(Some),
         _ => return Ok(None),
     };
-    let dev_err = |e: specpoly_led::LedError| CliError::data(e.to_string());
-    let state = match link.send("state").map_err(dev_err)? {
+    let state = match link.send("state")? {
         Reply::State(s) => s,
         other => {
             return Err(CliError::data(format!(
@@ -305,7 +341,7 @@ pub fn run(args: &LedArgs) -> Result<()> {
     let mix = if args.channels.is_empty() {
         None
     } else {
-        let oracle = mix_oracle(&args.channels, args.optimize)?;
+        let oracle = mix_oracle(&args.channels, args.optimize.into())?;
         settings.extend(oracle.commands().iter().map(line));
         Some(oracle)
     };
@@ -328,13 +364,13 @@ pub fn run(args: &LedArgs) -> Result<()> {
             illuminant,
             spectra,
             hex: false,
-        } => lines::refl(*repr, *illuminant, spectra)?,
+        } => lines::refl((*repr).into(), *illuminant, spectra)?,
         LedAction::Refl {
             repr,
             illuminant,
             spectra,
             hex: true,
-        } => lines::refl_hex(*repr, *illuminant, spectra)?,
+        } => lines::refl_hex((*repr).into(), *illuminant, spectra)?,
         LedAction::Xy { x, y, lum } => goal(Goal::Xy {
             xy: [*x, *y],
             lum: *lum,
@@ -349,14 +385,12 @@ pub fn run(args: &LedArgs) -> Result<()> {
         LedAction::Raw { line } => line.clone(),
     };
 
-    let dev_err = |e: specpoly_led::LedError| CliError::data(e.to_string());
-    let mut link =
-        Link::open(&args.port, Duration::from_millis(args.timeout_ms)).map_err(dev_err)?;
-    link.hello().map_err(dev_err)?;
+    let mut link = Link::open(&args.port, Duration::from_millis(args.timeout_ms))?;
+    link.hello()?;
     for s in &settings {
-        link.send(s).map_err(dev_err)?;
+        link.send(s)?;
     }
-    let reply = link.send(&action).map_err(dev_err)?;
+    let reply = link.send(&action)?;
     if !args.json {
         print(&format!("{}\n", reply_line(&reply)))?;
     }

@@ -1,7 +1,7 @@
 //! `specpoly light`: colorimetry and colour rendering of a light source's SPD
 //! (computations in [`specpoly_spectra::light`] and `specpoly_core::light`).
 
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{report, LightReport};
 use specpoly_spectra::spectrum_names;

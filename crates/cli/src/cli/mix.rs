@@ -3,8 +3,8 @@
 
 use crate::cli::args::{transfer, Curve};
 use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
+use crate::error::{CliError, Result};
 use specpoly_core::light::Target;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{self, describe, load_channel, parse_target};
 use std::fmt::Write as _;

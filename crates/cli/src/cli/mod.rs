@@ -1,8 +1,8 @@
 //! Command-line interface: one file per command (parse, call, print), dispatched here;
 //! arguments several commands share are parsed once in [`args`].
 
+use crate::error::Result;
 use clap::{Parser, Subcommand};
-use specpoly_formats::error::Result;
 
 pub mod accuracy;
 pub mod args;

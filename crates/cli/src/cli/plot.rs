@@ -4,7 +4,7 @@
 //! The representation defaults to `paper` (2 cubic spans split at 550 nm), as in the figures.
 //! Output: SVG or PNG by the file's extension, written atomically.
 
-use specpoly_formats::error::{CliError, Result};
+use crate::error::{CliError, Result};
 use specpoly_paper::figures;
 use specpoly_plot::size::Size;
 use specpoly_plot::Figure;

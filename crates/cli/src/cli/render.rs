@@ -11,10 +11,9 @@
 use crate::cli::args::Gamut;
 use crate::cli::render_equal_time;
 use crate::cli::render_report::{report, Report, Target};
-use crate::error::from_render;
+use crate::error::Result;
 use specpoly_calibrate::progress;
 use specpoly_display::spec::DisplaySpec;
-use specpoly_formats::error::Result;
 use specpoly_formats::stdout::{print, print_json};
 use specpoly_plot::size::Size;
 use specpoly_render::image_file::{self as image_out, ExrSpace};
@@ -90,11 +89,11 @@ fn render_help() -> String {
 /// Runs `specpoly render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mode = a.mode;
-    let format = image_out::format_for(&a.output, a.bits).map_err(from_render)?;
-    let space: ExrSpace = a.exr_space.parse().map_err(from_render)?;
+    let format = image_out::format_for(&a.output, a.bits)?;
+    let space: ExrSpace = a.exr_space.parse()?;
     let spec = DisplaySpec::open(&a.display)?;
-    let tag = image_out::colour_tag(&spec).map_err(from_render)?;
-    let mut scene = render::load(&a.scene).map_err(from_render)?;
+    let tag = image_out::colour_tag(&spec)?;
+    let mut scene = render::load(&a.scene)?;
     if let Some(size) = a.size {
         scene.render.width = size.width;
         scene.render.height = size.height;
@@ -127,11 +126,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let pb = progress::bar(h as u64, &mode.to_string(), "rows");
     let tick = |n: usize| pb.set_position(n as u64);
     let t0 = Instant::now();
-    let img = render::render(&scene, mode, Some(&tick)).map_err(from_render)?;
+    let img = render::render(&scene, mode, Some(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     pb.finish_and_clear();
     specpoly_spectra::plausible::image(&a.scene, &img.xyz)?;
-    image_out::write(&a.output, &img, &out, format, &tag, space).map_err(from_render)?;
+    image_out::write(&a.output, &img, &out, format, &tag, space)?;
     let paths = render::paths_per_pixel(&scene);
     if a.json {
         print_json(&serde_json::json!({
@@ -171,7 +170,7 @@ fn run_compare(a: &RenderArgs, scene: &render::scene::Scene, out: &Output) -> Re
         "compare",
         "renders",
     );
-    let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1)).map_err(from_render)?;
+    let c = render::compare(scene, &modes, a.rounds, &|| pb.inc(1))?;
     pb.finish_and_clear();
     specpoly_spectra::plausible::image(&a.scene, &c.reference.xyz)?;
     for m in &c.modes {

@@ -5,9 +5,8 @@
 //! reference) above their ΔE00 heat maps.
 
 use crate::cli::render_report::{report, Report, Target};
-use crate::error::from_render;
+use crate::error::{CliError, Result};
 use specpoly_calibrate::progress;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_render::equal_time::equal_time;
 use specpoly_render::scene::Scene;
 use specpoly_render::sections::Integrator;
@@ -35,8 +34,7 @@ pub fn run(a: &Target<'_>, reference_spp: u32, scene: &Scene, out: &Output) -> R
     let (w, h) = (scene.render.width, scene.render.height);
     let modes = modes();
     let pb = progress::bar(2 + modes.len() as u64, "equal time", "renders");
-    let c = equal_time(scene, Repr::DEFAULT, &modes, reference_spp, &|| pb.inc(1))
-        .map_err(from_render)?;
+    let c = equal_time(scene, Repr::DEFAULT, &modes, reference_spp, &|| pb.inc(1))?;
     pb.finish_and_clear();
     report(
         a,

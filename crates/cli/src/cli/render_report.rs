@@ -3,8 +3,7 @@
 //! of modes (`--json`: as JSON). Shared by [`super::render`] and [`super::render_equal_time`],
 //! and depending on neither.
 
-use crate::error::from_render;
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_formats::stdout::{print, print_json};
 use specpoly_render::{self as render, Output};
 use std::fmt::Write as _;
@@ -35,9 +34,8 @@ pub struct Report<'a> {
 /// labelled, over the colour bar) and prints its table of modes (`--json`: as JSON).
 pub fn report(a: &Target<'_>, out: &Output, r: Report<'_>) -> Result<()> {
     use render::compare_image::{comparison_panels, compose};
-    let (cw, ch, px) =
-        compose(&comparison_panels(&r.shown, r.reference, out)).map_err(from_render)?;
-    render::write_png(a.output, cw, ch, &px).map_err(from_render)?;
+    let (cw, ch, px) = compose(&comparison_panels(&r.shown, r.reference, out))?;
+    render::write_png(a.output, cw, ch, &px)?;
     let names: Vec<String> = r.shown.iter().map(|m| m.repr.to_string()).collect();
     let written = format!(
         "wrote {} ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \

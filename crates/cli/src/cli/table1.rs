@@ -1,6 +1,6 @@
 //! `specpoly table1`: prints the paper's Table 1 on our data ([`specpoly_paper::table1`]).
 
-use specpoly_formats::error::Result;
+use crate::error::Result;
 use specpoly_formats::stdout::print_json;
 use specpoly_paper::table1::compute;
 use std::fmt::Write as _;

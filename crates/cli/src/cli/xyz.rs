@@ -5,8 +5,8 @@
 //! [`specpoly_spectra::repr::dispatch`]); CIELAB is against the light's exact white (`Y = 100`).
 
 use crate::cli::args::Colorimetry;
+use crate::error::{CliError, Result};
 use specpoly_core::Tabulated;
-use specpoly_formats::error::{CliError, Result};
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::colour::{self, Colour};
 use specpoly_spectra::repr::Repr;

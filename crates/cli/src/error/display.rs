@@ -4,10 +4,55 @@
 //! an error about a named file takes the class of its cause; errors of the lower crates
 //! (reading files, CGATS) pass through. The message is the display crate's.
 //!
-//! The `From` impl itself is beside the error in `specpoly-display` (`error.rs`): Rust's
-//! orphan rule does not let this crate implement `From<specpoly_display::Error>` for
-//! `CliError` (both foreign here), and `specpoly-calibrate`, not converted yet, needs the same
-//! `?`. These tests pin the mapping the CLI relies on.
+//! A meter's failure during a calibration to a target is the calibrate crate's error, mapped
+//! as such.
+
+use super::CliError;
+use specpoly_display::Error;
+
+impl From<Error> for CliError {
+    fn from(e: Error) -> Self {
+        let e = match e {
+            Error::Formats(e) => return e.into(),
+            Error::Meter(e) => {
+                return match e.downcast::<specpoly_calibrate::Error>() {
+                    Ok(e) => CliError::from(*e),
+                    Err(e) => CliError::Data(e.to_string()),
+                }
+            }
+            e => e,
+        };
+        if is_usage(&e) {
+            CliError::Usage(e.to_string())
+        } else {
+            CliError::Data(e.to_string())
+        }
+    }
+}
+
+/// Whether the error is about the command line (an argument), not a file's contents.
+fn is_usage(e: &Error) -> bool {
+    match e {
+        Error::NoSuchDisplay { .. } | Error::TargetValue { .. } | Error::TargetKey { .. } => true,
+        Error::In { error, .. } => is_usage(error),
+        Error::Formats(_) | Error::Meter(_) => false,
+        Error::Toml { .. }
+        | Error::WrongFormat { .. }
+        | Error::NotACalibration { .. }
+        | Error::Version { .. }
+        | Error::NoVersion
+        | Error::NotFinite { .. }
+        | Error::BadValue { .. }
+        | Error::Invalid { .. }
+        | Error::NotANumber { .. }
+        | Error::Model { .. }
+        | Error::Core(_)
+        | Error::Write { .. }
+        | Error::Profile { .. }
+        | Error::Unprofilable(_)
+        | Error::ExportNeedsClip => false,
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -36,7 +81,7 @@ mod tests {
             "a.toml: no version"
         );
         assert_eq!(code(Error::ExportNeedsClip), 1);
-        let lower = CliError::usage("lower");
-        assert_eq!(code(Error::Lower(lower)), 2);
+        let missing = specpoly_formats::Error::missing("nosuch.toml");
+        assert_eq!(code(Error::Formats(missing)), 2);
     }
 }

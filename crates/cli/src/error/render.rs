@@ -4,31 +4,31 @@
 //!
 //! A function, not `impl From<specpoly_render::Error> for CliError`: while `CliError` is
 //! `specpoly_formats`' type, the orphan rule forbids that impl here; call sites write
-//! `.map_err(from_render)?`.
+//! `?`.
 
 use super::CliError;
 use specpoly_render::Error;
 
-/// The CLI's error for a renderer's error: its exit code, the same message.
-pub fn from_render(e: Error) -> CliError {
-    match e {
-        Error::Lower(e) => e,
-        Error::Formats(e) => e.into(),
-        Error::Spectra(e) => e.into(),
-        Error::Display(e) => e.into(),
-        Error::Plot(e) => e.into(),
-        Error::UnknownScene { .. }
-        | Error::NoSuchSceneFile { .. }
-        | Error::NoSuchMeshFile { .. }
-        | Error::ExrSpace { .. }
-        | Error::PngBits { .. }
-        | Error::ImageFormat { .. } => CliError::usage(e.to_string()),
-        Error::Toml { .. }
-        | Error::Invalid { .. }
-        | Error::Spectrum { .. }
-        | Error::DepthLimit { .. }
-        | Error::RayTree { .. }
-        | Error::Mesh { .. }
-        | Error::Convert(_) => CliError::data(e.to_string()),
+impl From<Error> for CliError {
+    fn from(e: Error) -> CliError {
+        match e {
+            Error::Formats(e) => e.into(),
+            Error::Spectra(e) => e.into(),
+            Error::Display(e) => e.into(),
+            Error::Plot(e) => e.into(),
+            Error::UnknownScene { .. }
+            | Error::NoSuchSceneFile { .. }
+            | Error::NoSuchMeshFile { .. }
+            | Error::ExrSpace { .. }
+            | Error::PngBits { .. }
+            | Error::ImageFormat { .. } => CliError::usage(e.to_string()),
+            Error::Toml { .. }
+            | Error::Invalid { .. }
+            | Error::Spectrum { .. }
+            | Error::DepthLimit { .. }
+            | Error::RayTree { .. }
+            | Error::Mesh { .. }
+            | Error::Convert(_) => CliError::data(e.to_string()),
+        }
     }
 }

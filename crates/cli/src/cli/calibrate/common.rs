@@ -3,9 +3,9 @@
 //! files beside a calibration. The command files (`calibrate.rs`, `calibrate_run.rs`,
 //! `calibrate_target.rs`, `calibrate_verify.rs`) depend on this module and downward only.
 
-use specpoly_calibrate::fit::MatrixFit;
+use super::values::MatrixFitArg;
+use crate::error::Result;
 use specpoly_display::calibration::Calibration;
-use specpoly_formats::error::Result;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `specpoly calibrate run`.
@@ -38,8 +38,8 @@ pub struct RunArgs {
     pub settle: Option<u64>,
     /// How the fit finds the primaries' matrix: `cowan` (full-drive primaries minus black,
     /// Cowan 1983: what this patch set is made for) or `least-squares` (over every fit patch).
-    #[arg(long, value_enum, default_value_t = MatrixFit::Cowan)]
-    pub matrix: MatrixFit,
+    #[arg(long, value_enum, default_value_t = MatrixFitArg::Cowan)]
+    pub matrix: MatrixFitArg,
     /// Measure this patch set (an ArgyllCMS `.ti1`, e.g. from `targen -d3`, or from
     /// `calibrate patches`) instead of the ramps; every patch is fitted.
     #[arg(long, value_name = "SET.ti1")]
@@ -62,12 +62,12 @@ pub struct RunArgs {
 }
 
 /// Prints one line of progress: on stdout, or on stderr when stdout carries `--json`.
-pub(crate) fn line(s: &str) -> Result<()> {
+pub(crate) fn line(s: &str) -> specpoly_formats::Result<()> {
     if JSON.load(std::sync::atomic::Ordering::Relaxed) {
         eprintln!("{}", specpoly_formats::escape::one_line(s));
         return Ok(());
     }
-    Ok(specpoly_formats::stdout::print(&format!("{s}\n"))?)
+    specpoly_formats::stdout::print(&format!("{s}\n"))
 }
 
 /// Whether this run prints JSON (set once at the start of `calibrate run`, [`set_json`]).

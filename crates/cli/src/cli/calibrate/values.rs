@@ -2,6 +2,7 @@
 //! `--help` texts of the options), each converted to the display crate's type with `From`
 //! (`specpoly-display` has no clap).
 
+use specpoly_calibrate::fit::MatrixFit;
 use specpoly_display::calibration::TransferKind;
 use specpoly_display::export::{Bits, Format, SourceArg, WhiteArg};
 use specpoly_display::icc::IccVersion;
@@ -97,3 +98,23 @@ both_ways!(SourceValue, SourceArg, Srgb => Srgb, P3 => P3, Linear => Linear);
 both_ways!(FormatValue, Format, CTable => CTable, Rust => Rust);
 both_ways!(BitsValue, Bits, Rgb565 => Rgb565, Rgb666 => Rgb666, Rgb888 => Rgb888);
 both_ways!(WhiteValue, WhiteArg, Adapt => Adapt, Absolute => Absolute);
+
+/// `--matrix`: [`MatrixFit`] as the command line spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum MatrixFitArg {
+    /// Cowan: the full-drive primaries minus black.
+    Cowan,
+    /// Weighted linear least squares over every fit patch (needs mixtures among them).
+    #[default]
+    #[value(name = "least-squares")]
+    LeastSquares,
+}
+
+impl From<MatrixFitArg> for MatrixFit {
+    fn from(m: MatrixFitArg) -> MatrixFit {
+        match m {
+            MatrixFitArg::Cowan => MatrixFit::Cowan,
+            MatrixFitArg::LeastSquares => MatrixFit::LeastSquares,
+        }
+    }
+}
