@@ -9,43 +9,14 @@
 //! at once, `fade K/N duty [..] stack=BYTES` for every fade step.
 
 use crate::board::Board;
+use crate::memory::Memory;
 use core::fmt;
-use core::mem::MaybeUninit;
 #[cfg(feature = "mixing")]
 use specpoly_device::fade::Pacer;
 #[cfg(feature = "settings")]
 use specpoly_device::store::{self, Blocking, Buffer, LoadError, Store};
 use specpoly_device::{Controller, Duties, LedError, Output};
-use specpoly_protocol::{Fault, LineReader, Reply, MAX_LINE};
-
-/// The loop's large state, in a static of the board's sized by the types: the line being read,
-/// the controller (its calibrated display) and the store's work buffer. `MaybeUninit` keeps
-/// them in `.bss`: a reader's `None` fault and a controller's niche would otherwise put their
-/// whole initial images in `.data`, i.e. in flash too (2 KiB).
-pub struct Memory {
-    lines: MaybeUninit<LineReader<MAX_LINE>>,
-    controller: MaybeUninit<Controller>,
-    #[cfg(feature = "settings")]
-    buffer: Buffer,
-}
-
-impl Memory {
-    /// Uninitialised (zeroed) memory, for a static.
-    pub const fn new() -> Self {
-        Self {
-            lines: MaybeUninit::uninit(),
-            controller: MaybeUninit::uninit(),
-            #[cfg(feature = "settings")]
-            buffer: Buffer::new(),
-        }
-    }
-}
-
-impl Default for Memory {
-    fn default() -> Self {
-        Self::new()
-    }
-}
+use specpoly_protocol::{Fault, LineReader, Reply};
 
 /// The settings store on the board's flash (feature `settings`); nothing without it.
 struct Storage<B: Board> {

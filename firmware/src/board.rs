@@ -3,7 +3,7 @@
 //! state. One implementation per board in [`crate::boards`], where all the board's set-up and
 //! `unsafe` live; the loop itself is the same on every board.
 
-use crate::app::Memory;
+use crate::memory::Memory;
 use specpoly_device::LedError;
 
 /// A board the controller runs on.

@@ -15,7 +15,7 @@ use core::sync::atomic::{AtomicBool, Ordering};
 /// A static holding one `T`, lent out once as `&'static mut T` (the loop's [`Memory`] and
 /// the drive table's flash handle).
 ///
-/// [`Memory`]: crate::app::Memory
+/// [`Memory`]: crate::memory::Memory
 pub struct Slot<T> {
     value: UnsafeCell<MaybeUninit<T>>,
     /// Whether `value` was left uninitialised by [`Slot::empty`] (`false` for a full slot,

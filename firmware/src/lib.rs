@@ -24,6 +24,8 @@ pub mod board;
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 #[allow(unsafe_code)]
 pub mod boards;
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub mod memory;
 
 #[cfg(all(
     target_arch = "arm",

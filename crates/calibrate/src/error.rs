@@ -3,7 +3,7 @@
 //! `dispread`) and [`PatchDisplayError`] (what shows them: the web page, the manual prompt,
 //! the LED controller).
 
-use crate::instrument::serial::Failure;
+use crate::instrument::serial_failure::Failure;
 use crate::interrupt;
 use std::path::PathBuf;
 
@@ -44,13 +44,15 @@ pub enum Error {
         xyz[0],
         xyz[1],
         xyz[2],
-        crate::fit::MAX_READING
+        max
     )]
     BeyondRange {
         /// Which, 1-based.
         index: usize,
         /// Its XYZ.
         xyz: [f64; 3],
+        /// The limit ([`crate::fit::MAX_READING`]).
+        max: f64,
     },
     /// No reading of device black.
     #[error("no black patch (device 0 0 0): Cowan's model needs the black level")]
@@ -277,11 +279,13 @@ pub enum Error {
     #[error(
         "cannot resume {}: it has no {} (not written by `calibrate run`): use --force to start over, or another -o",
         file.display(),
-        crate::session::PATCH_SET_KEYWORD
+        keyword
     )]
     ResumeNoPatchSet {
         /// The readings file.
         file: PathBuf,
+        /// The keyword `calibrate run` writes ([`crate::session::PATCH_SET_KEYWORD`]).
+        keyword: &'static str,
     },
     /// `--resume` of normalised readings.
     #[error(
@@ -400,9 +404,12 @@ pub enum InstrumentError {
     /// `dispread` is not on `PATH`.
     #[error(
         "ArgyllCMS is not installed (no `dispread` on PATH): install the Debian/Ubuntu package `{package}` (apt install {package})",
-        package = crate::instrument::argyll::PACKAGE
+        package = package
     )]
-    NotInstalled,
+    NotInstalled {
+        /// The package that installs it ([`crate::instrument::argyll::PACKAGE`]).
+        package: &'static str,
+    },
     /// `dispread` could not be started.
     #[error("cannot start {}: {source}", program.display())]
     Start {

@@ -395,6 +395,7 @@ fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
         return Err(Error::BeyondRange {
             index: i + 1,
             xyz: meas[i].xyz,
+            max: MAX_READING,
         });
     }
     Ok(())

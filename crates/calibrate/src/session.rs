@@ -131,7 +131,12 @@ impl Session {
                             expected: fp,
                         })
                     }
-                    None => return Err(Error::ResumeNoPatchSet { file: file() }),
+                    None => {
+                        return Err(Error::ResumeNoPatchSet {
+                            file: file(),
+                            keyword: PATCH_SET_KEYWORD,
+                        })
+                    }
                 }
                 let (m, absolute) = t.best_units();
                 if !absolute {

@@ -2,6 +2,10 @@
 //! profile, a video LUT or a `--target`/`--display` argument, with the data each message
 //! needs. The CLI maps them to exit codes (`crates/cli/src/error/display.rs`).
 
+/// A meter's failure during a calibration to a target: the measuring crate's own error,
+/// boxed (this crate does not know it; the caller can downcast it back).
+pub type MeterError = Box<dyn std::error::Error + Send + Sync>;
+
 /// Everything that can go wrong in `specpoly-display`.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -151,7 +155,7 @@ pub enum Error {
     /// The meter of a calibration to a target failed (its own error, boxed: see
     /// [`crate::target::Meter`]).
     #[error("{0}")]
-    Meter(crate::target::MeterError),
+    Meter(MeterError),
 }
 
 impl Error {

@@ -472,9 +472,7 @@ impl Score {
 }
 
 /// Measures device triples (a display and an instrument, or ArgyllCMS's `dispread`).
-/// A meter's failure: the measuring crate's own error, boxed (the display crate does not know
-/// it; the caller can downcast it back).
-pub type MeterError = Box<dyn std::error::Error + Send + Sync>;
+pub use crate::error::MeterError;
 
 /// Something that measures device colours.
 pub trait Meter {

@@ -22,8 +22,8 @@ pub mod vectors;
 use defmt_semihosting as _;
 
 use super::Slot;
-use crate::app::Memory;
 use crate::board::Board;
+use crate::memory::Memory;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 use cortex_m::peripheral::syst::SystClkSource;

@@ -26,8 +26,8 @@ pub mod flash;
 use defmt_rtt as _;
 
 use super::Slot;
-use crate::app::Memory;
 use crate::board::Board;
+use crate::memory::Memory;
 use core::panic::PanicInfo;
 use specpoly_device::led::CHANNELS;
 use specpoly_device::{Led, LedError};

@@ -302,7 +302,8 @@ impl Dispread {
     ) -> Result<Self> {
         let options = ArgyllOptions::parse(instrument)?;
         let display = DisplayOptions::parse(display)?;
-        let program = find_program("dispread").ok_or(InstrumentError::NotInstalled)?;
+        let program =
+            find_program("dispread").ok_or(InstrumentError::NotInstalled { package: PACKAGE })?;
         let parent = match ti3.parent() {
             Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
             _ => PathBuf::from("."),
@@ -411,7 +412,7 @@ impl Dispread {
         }
         let mut child = Reaper(cmd.spawn().map_err(|source| {
             if source.kind() == std::io::ErrorKind::NotFound {
-                InstrumentError::NotInstalled
+                InstrumentError::NotInstalled { package: PACKAGE }
             } else {
                 InstrumentError::Start {
                     program: self.program.clone(),

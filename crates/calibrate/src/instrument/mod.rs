@@ -15,6 +15,7 @@ use specpoly_formats::device_spec::DeviceSpec;
 
 pub mod argyll;
 pub mod serial;
+pub mod serial_failure;
 pub mod sim;
 
 /// A colorimeter or spectroradiometer.
