@@ -13,6 +13,12 @@
 //! | [`boards`] | `mps2` and `stm32f4`: board assembly, peripherals, defmt logger, panic handler; the only `unsafe` |
 //!
 //! No heap. `unsafe` is denied everywhere but in [`boards`].
+//!
+//! `duplicates` pairs kept: the `NorFlash` impls of `boards/mps2/flash.rs` and
+//! `boards/stm32f4/flash.rs` (the trait's shape over two memories); the two boards' `Board` impls
+//! (the trait's methods over different peripherals); the RGB565 and RGB888 kernels and the
+//! stages of `transform_asm.rs` (one instruction sequence per channel, unrolled for the M4's
+//! cycle budget); the bins' few lines (one per board and demo).
 #![no_std]
 #![deny(unsafe_code)]
 #![warn(missing_docs)]

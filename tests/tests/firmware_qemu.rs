@@ -273,40 +273,6 @@ fn budget(elf: &Path) -> (u64, u64) {
     (flash, ram)
 }
 
-/// The controller's unit tests (`specpoly-device`: controller, LED driver with
-/// embedded-hal-mock, light tables equal to the core's moments to the bit, the settings record,
-/// the store on `sequential-storage`'s mock flash with a power cut at every byte) as the 32 KiB
-/// build compiles the crate: without `settings`, `mixing` and `lut` (`cargo test --workspace`
-/// runs them with the default features, all three). Its own target dir: the workspace's is
-/// busy with this test's own build.
-#[test]
-fn device_unit_tests_pass_in_the_32_kib_configuration() {
-    let mut c = Process::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()));
-    c.current_dir(repo());
-    for v in ["CARGO_TARGET_DIR", "CARGO_BUILD_TARGET"] {
-        c.env_remove(v);
-    }
-    let out = c
-        .args(["test", "-p", "specpoly-device", "--no-default-features"])
-        .arg("--target-dir")
-        .arg(repo().join("target/device-small"))
-        .output()
-        .expect("cargo runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "device unit tests failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    // the tests ran (a filter or a missing harness would pass with none)
-    let passed: usize = stdout
-        .lines()
-        .filter_map(|l| l.strip_prefix("test result: ok. "))
-        .filter_map(|l| l.split(' ').next()?.parse::<usize>().ok())
-        .sum();
-    assert!(passed >= 10, "{passed} device tests ran:\n{stdout}");
-}
-
 #[test]
 fn selftest_passes_on_target_within_the_budgets() {
     let dir = default_build();
@@ -1700,7 +1666,7 @@ fn host_model_and_firmware_refuse_the_same_colours() {
 /// data/ti3, uploaded as `led --calibration` sends it. Every colour reply equals the host
 /// model's (`Model::answer_with`, the same core calls), and the full model at its duties shows
 /// the asked colour within `TABLE_DE` ΔE00 (the table's interpolation error against the exact
-/// inverse, measured in host/tests/led_table.rs); bad uploads are refused with one-line errors;
+/// inverse, measured in crates/cli/tests/led_table.rs); bad uploads are refused with one-line errors;
 /// `save` and a reset keep the table; the lut path stays within the RAM budget.
 #[test]
 fn the_drive_table_shows_the_full_model_on_the_device() {

@@ -1,6 +1,6 @@
 //! The full display model's inverse (`DisplayModel::inverse`, behind `Calibration::inverse`,
 //! `render --display` and `xyz --display`): time per colour over the 13³ device grid of
-//! `host/tests/display_inverse.rs` (dense near black), the prediction of each grid colour
+//! `crates/calibrate/tests/display_inverse.rs` (dense near black), the prediction of each grid colour
 //! inverted, on the shipped displays fitted with the default model (docs/calibration.md, "The
 //! full model's inverse"). `cargo bench -p specpoly --bench display_inverse`.
 //!

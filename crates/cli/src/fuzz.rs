@@ -8,7 +8,7 @@
 //! - no accepted value is non-finite;
 //! - errors are one line (messages end up on one stderr line).
 //!
-//! `fuzz/` (cargo-fuzz, nightly) runs them under libFuzzer; `host/tests/fuzz_corpora.rs`
+//! `fuzz/` (cargo-fuzz, nightly) runs them under libFuzzer; `crates/cli/tests/fuzz_corpora.rs`
 //! replays every saved corpus and an `arbitrary`-style random run on stable, in `cargo test`
 //! (docs/reliability.md, "Fuzzing"). The firmware's command handler has its own target in
 //! `firmware/src/fuzz.rs` (it is not a dependency of the host).

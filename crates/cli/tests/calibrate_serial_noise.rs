@@ -1,5 +1,5 @@
 //! `--instrument serial:PORT` on a line that is not clean: an independent PR-655 emulator
-//! (host/tests/common/pr655.rs) that echoes every command, or sends noise before every reply,
+//! (crates/cli/tests/common/pr655.rs) that echoes every command, or sends noise before every reply,
 //! must give the same readings as a clean line (a driver that stopped at patch 1 on either is
 //! what this guards against); and Ctrl-C during a run returns the instrument to local mode
 //! (`Q`) and keeps the readings.

@@ -1,4 +1,4 @@
-//! The reflectance checks of `xyz` (host/src/plausible.rs) in `fit`, `plot` and a scene's
+//! The reflectance checks of `xyz` (crates/spectra/src/plausible.rs) in `fit`, `plot` and a scene's
 //! materials (`render`): percent data, negative values, an illuminant given as a reflectance,
 //! overflow — each refused with one line naming the fix where the data was given, never a
 //! result with inf or NaN. Independent check: the hint's fix (`--scale 0.01`, `scale = 0.01`)

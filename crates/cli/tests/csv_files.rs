@@ -1,5 +1,5 @@
 //! Spectral CSV as spreadsheets export it, and CGATS in Latin-1 (issue 10): each file in
-//! `host/tests/data/spreadsheets/` holds the same two spectra as `plain.csv` (written plainly:
+//! `crates/cli/tests/data/spreadsheets/` holds the same two spectra as `plain.csv` (written plainly:
 //! `,`, decimal points, ASCII), shaped as LibreOffice Calc and Excel write them in a German
 //! locale — `;` separators, decimal commas, quoted headers with separators inside, a UTF-8
 //! byte-order mark, CRLF, Latin-1 bytes, trailing empty columns and rows, tabs — and must read

@@ -1,6 +1,6 @@
 //! `specpoly light` and `specpoly mix` through the real binary: the JSON keys of the issue, the
-//! figures against colour-science 0.4.7 (`core/tests/data/light_colour_science.csv`, same
-//! tolerances as `core/tests/light_colour_science.rs`), the mix's chromaticity against a 1 nm
+//! figures against colour-science 0.4.7 (`crates/core/tests/data/light_colour_science.csv`, same
+//! tolerances as `crates/core/tests/light_colour_science.rs`), the mix's chromaticity against a 1 nm
 //! f64 sum of the channel files done here, and clean failures on bad input.
 
 use crate::common::cli;

@@ -135,15 +135,7 @@ impl Real for f32 {
         // a power of two, so that `A/s` is exact
         let scale = f32::from_bits(top.to_bits() & 0x7f80_0000);
         let m = a.map(|r| r.map(|v| v / scale));
-        let c = |r0: usize, c0: usize, r1: usize, c1: usize| {
-            m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-        };
-        let cof = [
-            [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
-            [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
-            [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
-        ];
-        let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
+        let (cof, det) = cofactors(&m);
         let mut x = [[0.0f32; 3]; 3];
         let mut big = 0.0f32;
         for (i, row) in x.iter_mut().enumerate() {
@@ -205,20 +197,27 @@ impl Real for f64 {
     /// The adjugate over the determinant; singular when the determinant is not finite or
     /// `|det| < 10⁻³⁰⁰`.
     fn inverse3(m: &[[f64; 3]; 3]) -> Result<[[f64; 3]; 3], Error> {
-        let c = |r0: usize, c0: usize, r1: usize, c1: usize| {
-            m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-        };
-        let cof = [
-            [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
-            [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
-            [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
-        ];
-        let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
+        let (cof, det) = cofactors(m);
         if !det.is_finite() || det.abs() < 1e-300 {
             return Err(Error::Singular);
         }
         Ok([0, 1, 2].map(|i| [0, 1, 2].map(|j| cof[j][i] / det)))
     }
+}
+
+/// The cofactor matrix `C` of `m` (`Cᵢⱼ` the signed minor of row `i`, column `j`) and the
+/// determinant by expansion along the first row: `m⁻¹ = Cᵀ / det`.
+#[inline]
+fn cofactors<T: Real>(m: &[[T; 3]; 3]) -> ([[T; 3]; 3], T) {
+    let c =
+        |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+    let cof = [
+        [c(1, 1, 2, 2), -c(1, 0, 2, 2), c(1, 0, 2, 1)],
+        [-c(0, 1, 2, 2), c(0, 0, 2, 2), -c(0, 0, 2, 1)],
+        [c(0, 1, 1, 2), -c(0, 0, 1, 2), c(0, 0, 1, 1)],
+    ];
+    let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
+    (cof, det)
 }
 
 /// `a + b = s + e` exactly, `s` the rounded sum (Knuth's TwoSum).

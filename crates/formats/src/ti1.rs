@@ -4,7 +4,7 @@
 //! A display `.ti1` has the fields `SAMPLE_ID RGB_R RGB_G RGB_B` (device values 0–100; `targen`
 //! adds the expected `XYZ_X XYZ_Y XYZ_Z`, which are ignored here) and `COLOR_REP "RGB"`. The
 //! writer writes only the RGB fields: `dispread` needs no more (tested against the real
-//! binary in host/tests/calibrate_argyll.rs).
+//! binary in crates/cli/tests/calibrate_argyll.rs).
 
 use crate::cgats;
 use crate::{Error, Result};

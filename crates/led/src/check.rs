@@ -10,7 +10,7 @@
 //!   the observer ([`specpoly_core::exact_xyz`]), each span's Chebyshev series evaluated as
 //!   `Σ cₖ cos(k·arccos t)`, interior breakpoints shared half and half (the moments'
 //!   convention); the product's coefficients are the protocol's (the core's reduced multiply,
-//!   checked against the exact product in `core/tests/multiply_reduce.rs`);
+//!   checked against the exact product in `crates/core/tests/multiply_reduce.rs`);
 //! - Cowan's model: the primaries' XYZ `Yᵢ (xᵢ/yᵢ, 1, (1 − xᵢ − yᵢ)/yᵢ)` as the columns of `M`,
 //!   the target scaled to the white's luminance, `M x = XYZ` solved by Gaussian elimination
 //!   (the device inverts `M` in closed form and applies it in f32);

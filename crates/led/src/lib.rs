@@ -5,6 +5,7 @@
 //! independent f64 references with their tolerance tables ([`check`] for colours,
 //! [`mix_check`] for mixes, from the channels' spectra) that `specpoly led --check` and the
 //! QEMU tests verify a controller against.
+#![forbid(unsafe_code)]
 
 pub mod check;
 pub mod error;

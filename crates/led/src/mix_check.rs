@@ -57,7 +57,7 @@ pub const MIX_TOLERANCES: [MixTolerance; 5] = [
         bound: 3e-5,
         why: "the device's Planckian locus is a 25-node cubic Hermite table, within 2.4e-6 of \
               the 1 nm Planck integration, its normal within 2.8e-4 rad (2.1e-5 at |Duv| = \
-              0.05; core/src/light/locus.rs); f32 on top (a few 1e-8)",
+              0.05; crates/core/src/light/locus.rs); f32 on top (a few 1e-8)",
     },
     MixTolerance {
         quantity: MixQuantity::Chromaticity,

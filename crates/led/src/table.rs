@@ -19,7 +19,7 @@ use specpoly_protocol::{Command, LutCommand};
 pub const DEFAULT_GRID: usize = 13;
 
 /// The table's interpolation error against the exact inverse, ΔE00 of the worst colour (a dense
-/// sample off the nodes, every shipped display, `host/tests/led_table.rs`): measured 1.69 on the
+/// sample off the nodes, every shipped display, `crates/cli/tests/led_table.rs`): measured 1.69 on the
 /// Surface at [`DEFAULT_GRID`], held at 2.0. `led --check` and the QEMU test bound each
 /// colour's emission by it.
 pub const TABLE_DE: f64 = 2.0;

@@ -549,7 +549,7 @@ fn tuning_and_validation(w: &mut String, r: &Results) -> Result<()> {
          **validation set**, which shares no spectrum and no light with the tuning set:\n\
          patches 13–24 (blue … black) under\n\
          FL2, FL7, FL11 and D50. Target for the default on the validation set: mean ≤ {TARGET_MEAN},\n\
-         max ≤ {TARGET_MAX} ΔE00 (asserted in `host/tests/cli_accuracy.rs`).\n\n\
+         max ≤ {TARGET_MAX} ΔE00 (asserted in `crates/cli/tests/cli_accuracy.rs`).\n\n\
          | representation | values | multiply-adds per product | observer | tuning mean | tuning max | validation mean | validation p95 | validation max |\n\
          |---|---:|---:|---|---:|---:|---:|---:|---:|",
         TARGET_MAX / 10.0

@@ -1,6 +1,6 @@
 //! Line plots through `plotters`, one drawing routine for both outputs: SVG (plotters' SVG
 //! backend) and PNG (its bitmap backend into an RGB buffer, encoded by `png`). Text in PNGs is
-//! DejaVu Sans, embedded in the binary (`host/assets/fonts/`, with its licence) and rasterised
+//! DejaVu Sans, embedded in the binary (`crates/plot/assets/fonts/`, with its licence) and rasterised
 //! by `ab_glyph`, so no system font or fontconfig is needed and names in any Latin, Greek or
 //! Cyrillic script are drawn. Enough for spectra: line series (solid, dashed, dotted) and point
 //! series, dashed vertical markers, axes with ticks and a legend beside or below the plot.
@@ -8,6 +8,10 @@
 //! Readable at every size `plot` allows: type is never smaller than [`MIN_TEXT_PX`]; the
 //! legend takes as many columns as it needs beside the plot, or rows below it, and a figure
 //! too small to hold it at that size is refused with the size that holds it.
+//!
+//! `duplicates` pairs kept: the two legend placements of the layout (beside and below the
+//! plot: the same fields, different arithmetic).
+#![forbid(unsafe_code)]
 
 pub mod error;
 pub mod size;
@@ -21,7 +25,7 @@ use plotters::style::FontStyle;
 /// The smallest text drawn (pixels): 9 px DejaVu Sans is still legible.
 pub const MIN_TEXT_PX: f64 = 9.0;
 
-/// DejaVu Sans (Bitstream Vera licence, `host/assets/fonts/LICENSE-DejaVu.txt`).
+/// DejaVu Sans (Bitstream Vera licence, `crates/plot/assets/fonts/LICENSE-DejaVu.txt`).
 const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// The family name text is drawn in (registered with plotters once).

@@ -539,7 +539,7 @@ fn replies_parse_and_reject() {
 }
 
 /// Finite factors whose reduced product overflows f32 are refused (`not-finite`), so every
-/// accepted `refl` writes back as numbers (found by `host/tests/fuzz_corpora.rs`).
+/// accepted `refl` writes back as numbers (found by `crates/cli/tests/fuzz_corpora.rs`).
 #[test]
 fn an_overflowing_product_is_not_finite() {
     let line = "refl paper A 0.5 0 3.4e38 0 0.5 0 0 0 * 0.9 0 0 0 0.9 0 0 0";

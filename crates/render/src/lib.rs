@@ -29,6 +29,12 @@
 //! 7. **Image files and comparisons**, on the root's images: [`output`] (XYZ to display RGB),
 //!    [`image_file`] (PNG and EXR files), [`compare_image`] (the comparison panels),
 //!    [`equal_time`] (the path tracer's representations at equal time).
+//!
+//! `duplicates` pairs kept: the serde structs of the scene file's sections ([`sections`], one
+//! per TOML table) and the documented fields of [`scene::Scene`] (one doc line each); the point-
+//! and area-light weight queries of [`compiled`] (one per kind of light); the `#[from]` variants
+//! of [`Error`] for the crates it calls (like `specpoly-led`'s).
+#![forbid(unsafe_code)]
 
 // leaves
 pub mod builtin;

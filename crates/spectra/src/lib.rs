@@ -5,6 +5,11 @@
 //! ([`plausible`]), the representations a user picks and the dispatch from that runtime choice
 //! to monomorphised code ([`repr`], [`hero`]), the colours of chains of reflectances
 //! ([`colour`]) and the light-metric and LED-mixing reports ([`light`]).
+//!
+//! `duplicates` pairs kept: the `light` and `mix` reports ([`light::LightReport`],
+//! [`light::MixReport`]): different key sets in a different order, which a shared flattened
+//! struct would reorder; their documented fields (one doc line each, like `specpoly-render`'s
+//! `Scene`); the `match` arms of [`repr`]'s parser (one per representation).
 #![forbid(unsafe_code)]
 
 pub mod colour;

@@ -1,6 +1,6 @@
 //! An emulated Photo Research PR-655 in remote mode on a pseudo-terminal, for the tests of
 //! `--instrument serial:PORT`. It speaks the subset the driver uses (`PHOTO`, `M1`, `D2`,
-//! `Q`, see host/src/calibrate/instrument/serial.rs) and measures whatever `source` returns
+//! `Q`, see crates/calibrate/src/instrument/serial.rs) and measures whatever `source` returns
 //! (the XYZ of the patch on screen). Faults make it misbehave on given measurements.
 #![allow(dead_code)]
 

@@ -1,4 +1,4 @@
-//! Reading the light tests' reference tables (`core/tests/data/`, `data/leds/`): CSV with `#`
+//! Reading the light tests' reference tables (`crates/core/tests/data/`, `data/leds/`): CSV with `#`
 //! comment lines, and spectral tables of a wavelength column and named value columns. Include
 //! it with `#[path = "common/light_data.rs"] mod light_data;`.
 #![allow(dead_code)]

@@ -1,8 +1,8 @@
 //! The independent 1 nm reference's data: the project's CSV files in `data/` read directly (no
 //! library code), linearly interpolated to 1 nm over 380–780 nm with the end values held. Shared
-//! by the reference tests of both crates: include it with
-//! `#[path = "common/reference_1nm.rs"] mod reference_1nm;` (from `host/tests/`:
-//! `"../../core/tests/common/reference_1nm.rs"`).
+//! by the reference tests of several crates: `core`'s test binary has it as `common`, the
+//! others include it with `#[path = "../../core/tests/common/reference_1nm.rs"] mod
+//! reference_1nm;` in their `tests/main.rs`.
 #![allow(dead_code)]
 
 /// The header and numeric rows of `data/PATH` (blank and `#` lines skipped).
