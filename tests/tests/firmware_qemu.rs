@@ -1388,7 +1388,16 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
         Reply::Mix(r) => r,
         other => panic!("{other:?}"),
     };
-    let mix_ccr = registers(&mut |l, u| ask(&mut monitor, l, u));
+    // the board answers, then drives the channels: read until they settle (bounded)
+    let mixed_duty: Vec<u32> = mixed.duty().iter().map(|d| u32::from(*d)).collect();
+    let mut mix_ccr = registers(&mut |l, u| ask(&mut monitor, l, u));
+    for _ in 0..100 {
+        if mix_ccr == mixed_duty {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+        mix_ccr = registers(&mut |l, u| ask(&mut monitor, l, u));
+    }
     // a long fade (QEMU's timers count faster than the board's), sampled while it runs
     let to = Goal::Cct {
         cct: 6500.0,
@@ -1458,7 +1467,6 @@ fn board_build_drives_the_timer_registers_on_netduinoplus2() {
     }
 
     // the mix: the registers hold the reply's duties (equal to the host's controller's, above)
-    let mixed_duty: Vec<u32> = mixed.duty().iter().map(|d| u32::from(*d)).collect();
     assert_eq!(mixed.n, 6);
     assert_eq!(mix_ccr, mixed_duty, "TIM3 CCR1–4, TIM4 CCR1–2 hold the mix");
     check_mix_registers(mix_oracle, &from, &mix_ccr, max);
