@@ -13,8 +13,7 @@
 //! Errors are one line: TOML's (`specpoly_formats::toml_error`) are folded to one.
 //!
 //! The library crates return their own error enums; [`CliError`] is where their variants
-//! become these codes (for now [`CliError`] and those mappings live beside the library crates'
-//! errors, as `From` impls, until [`CliError`] itself moves here).
+//! become these codes: one `From` impl per crate, in the submodules of this module.
 
 use std::path::Path;
 

@@ -480,7 +480,7 @@ pub struct Ti3Info {
     pub descriptor: String,
     /// `TARGET_INSTRUMENT`, if known.
     pub instrument: Option<String>,
-    /// `CREATED` (any text; [`specpoly_display::calibration::now_utc`] gives an ISO 8601 time).
+    /// `CREATED` (any text; `specpoly_display::calibration::now_utc` gives an ISO 8601 time).
     pub created: Option<String>,
     /// Whether the measurements are in cd/m². If so and a white patch (device 1,1,1) is among
     /// them, the file is written as ArgyllCMS does: normalised to the white's `Y = 100`, the

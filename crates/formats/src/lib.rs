@@ -9,8 +9,7 @@
 //!
 //! Its functions return [`Error`] ([`error`]): what went wrong with which file, and where
 //! (`FILE:LINE[:COLUMN]: …`), as data; which errors are usage errors and which exit codes they
-//! give is the CLI's decision. [`error::CliError`], the interim error the other host crates
-//! still share, lives in [`error`] until it moves into the CLI.
+//! give is the CLI's decision (`crates/cli/src/error/formats.rs`).
 //!
 //! Hand-written where a crate exists: the `KIND:ARG,key=value` device strings (clap parses one
 //! value, not sub-options, and no small crate reads this grammar) and the CGATS reader (the

@@ -1,10 +1,6 @@
 //! The renderer's errors as the CLI's: a scene or mesh file that does not exist and refused
 //! output options are usage errors (exit 2); scene files, values, meshes and spectra that are
 //! refused are data errors (exit 1). The message is the renderer's.
-//!
-//! A function, not `impl From<specpoly_render::Error> for CliError`: while `CliError` is
-//! `specpoly_formats`' type, the orphan rule forbids that impl here; call sites write
-//! `?`.
 
 use super::CliError;
 use specpoly_render::Error;
