@@ -86,6 +86,26 @@ fn main() {
         }
         out.push_str("];\n");
     }
+    // The CIE 224:2017 samples at 1 nm, one row of 401 values per sample (metrics of 1 nm lights).
+    let p = data.join("reflectances/cie224_2017_ces99_1nm.csv");
+    println!("cargo:rerun-if-changed={}", p.display());
+    let rows = read_csv(&p);
+    assert_eq!(
+        rows.len(),
+        401,
+        "cie224_2017_ces99_1nm.csv: 380-780 nm at 1 nm"
+    );
+    out.push_str("pub(crate) static CES99_1NM: [[f32; 401]; 99] = [\n");
+    for c in 1..=99 {
+        out.push_str("    [");
+        for (i, r) in rows.iter().enumerate() {
+            assert_eq!(r[0] as usize, 380 + i, "cie224_2017_ces99_1nm.csv: row {i}");
+            assert_eq!(r.len(), 100, "cie224_2017_ces99_1nm.csv: row {i}");
+            let _ = write!(out, "{:e}, ", r[c]);
+        }
+        out.push_str("],\n");
+    }
+    out.push_str("];\n");
     let dest = PathBuf::from(env::var("OUT_DIR").unwrap()).join("tables.rs");
     fs::write(dest, out).expect("write tables.rs");
 }

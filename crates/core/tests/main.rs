@@ -7,6 +7,7 @@ mod common;
 mod light_colour_science;
 mod light_mix_leds;
 mod light_published;
+mod light_references;
 mod moments_1nm;
 mod multiply_reduce;
 mod paper_eq6;

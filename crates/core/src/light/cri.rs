@@ -11,8 +11,16 @@
 //! difference).
 
 use super::{
-    cct, cct::Cct, reference::cri_reference, samples::Samples, source::Source, LightError,
+    cct,
+    cct::Cct,
+    reference::{cri_reference, cri_reference_spd},
+    samples::Samples,
+    source::Source,
+    spd::Spd,
+    sprague, LightError,
 };
+use crate::observer::TCS14;
+use crate::Observer;
 
 /// The CIE 13.3 indices of a light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,18 +50,75 @@ fn uvw(y: f64, uv: [f64; 2], white: [f64; 2]) -> [f64; 3] {
     ]
 }
 
-/// The CIE 13.3 indices of `light` with the test colour samples `tcs`.
+/// The CIE 13.3 indices of `light` with the test colour samples `tcs` (the light's moments
+/// and the fitted samples: the fast form, for the mixing optimiser).
 pub fn cri(light: &Source, tcs: &Samples<14>) -> Result<Cri, LightError> {
     let uv_k = light.uv();
     let c = cct::cct_duv(uv_k)?;
     let reference = cri_reference(c.cct)?;
-    let uv_r = reference.uv();
+    let r = indices(
+        uv_k,
+        reference.uv(),
+        |i| to64(light.m2.xyz(&tcs.spectra[i]).to_array()),
+        |i| to64(reference.m2.xyz(&tcs.spectra[i]).to_array()),
+    );
+    Ok(Cri {
+        ra: r[..8].iter().sum::<f64>() / 8.0,
+        r,
+        cct: c,
+    })
+}
+
+/// The CIE 13.3 indices of `light` by 1 nm sums with the tabulated test colour samples: a
+/// 5 nm light and the 5 nm samples are first taken to 1 nm by [`sprague`] interpolation
+/// (CIE 167:2005; colour-science does the same; summing the 5 nm data directly differs by up to
+/// 0.14 in Rᵢ on line spectra such as mercury and low-pressure sodium lamps). The standard's
+/// computation, for reports; the CCT that chooses the reference is the 1 nm light's.
+pub fn cri_spd(light: &Spd) -> Result<Cri, LightError> {
+    let fine;
+    let light = if light.step() == 5 {
+        let v: [f64; 81] = core::array::from_fn(|k| light.values()[k]);
+        let v1 = sprague::to_1nm(&v);
+        fine = Spd::from_fn(1, |nm| v1[(nm - 380.0) as usize])?;
+        &fine
+    } else {
+        light
+    };
+    let uv_k = light.uv();
+    let c = cct::cct_duv(uv_k)?;
+    let reference = cri_reference_spd(c.cct, 1)?;
+    let tcs: [[f64; 401]; 14] =
+        core::array::from_fn(|i| sprague::to_1nm(&TCS14[i].map(|v| v as f64)));
+    let xyz = |s: &Spd, i: usize| {
+        let y = s.sums(Observer::Cie1931)[1];
+        s.sums_with(Observer::Cie1931, |k| tcs[i][k])
+            .map(|v| 100.0 * v / y)
+    };
+    let r = indices(
+        uv_k,
+        reference.uv(),
+        |i| xyz(light, i),
+        |i| xyz(&reference, i),
+    );
+    Ok(Cri {
+        ra: r[..8].iter().sum::<f64>() / 8.0,
+        r,
+        cct: c,
+    })
+}
+
+/// `Rᵢ` of the 14 samples from the test light's and the reference's chromaticities and the
+/// samples' XYZ under each (white `Y = 100`).
+fn indices(
+    uv_k: [f64; 2],
+    uv_r: [f64; 2],
+    xyz_k: impl Fn(usize) -> [f64; 3],
+    xyz_r: impl Fn(usize) -> [f64; 3],
+) -> [f64; 14] {
     let (ck, dk) = cd(uv_k);
     let (cr, dr) = cd(uv_r);
-    let mut r = [0.0; 14];
-    for (ri, s) in r.iter_mut().zip(tcs.spectra.iter()) {
-        let xyz_r = to64(reference.m2.xyz(s).to_array());
-        let xyz_k = to64(light.m2.xyz(s).to_array());
+    core::array::from_fn(|i| {
+        let (xyz_r, xyz_k) = (xyz_r(i), xyz_k(i));
         let ref_uvw = uvw(xyz_r[1], cct::uv_1960(xyz_r), uv_r);
         let (cki, dki) = cd(cct::uv_1960(xyz_k));
         let (cc, dd) = (cr / ck * cki, dr / dk * dki);
@@ -65,12 +130,7 @@ pub fn cri(light: &Source, tcs: &Samples<14>) -> Result<Cri, LightError> {
                 .map(|k| (test_uvw[k] - ref_uvw[k]) * (test_uvw[k] - ref_uvw[k]))
                 .sum::<f64>(),
         );
-        *ri = 100.0 - 4.6 * de;
-    }
-    Ok(Cri {
-        ra: r[..8].iter().sum::<f64>() / 8.0,
-        r,
-        cct: c,
+        100.0 - 4.6 * de
     })
 }
 

@@ -10,6 +10,8 @@
 //! - [`cct`]: CIE 1960 UCS, correlated colour temperature and Duv (nearest point on the
 //!   Planckian locus, found directly; CIE 015:2018 §9.5);
 //! - [`reference`](mod@reference): Planckian radiators and CIE daylight, the reference illuminants;
+//! - [`spd`]: a light on its own 1 nm or 5 nm grid over 380–780 nm, as the standards sum it
+//!   (the metrics of one measured light; [`sprague`] takes the 5 nm test samples to 1 nm);
 //! - [`cri`]: CIE 13.3-1995 general colour rendering index Ra and the special indices (R9);
 //! - [`cam02`]: CIECAM02 and CAM02-UCS (CIE 159:2004; Luo, Cui & Li 2006);
 //! - [`tm30`]: CIE 224:2017 / ANSI-IES TM-30 fidelity Rf and gamut index Rg;
@@ -29,6 +31,8 @@ pub mod mix;
 pub mod reference;
 pub mod samples;
 pub mod source;
+pub mod spd;
+pub mod sprague;
 pub mod tm30;
 
 pub use cct::Cct;
@@ -36,6 +40,7 @@ pub use cri::Cri;
 pub use mix::{Driven, Mix, Objective, Target};
 pub use samples::Samples;
 pub use source::Source;
+pub use spd::Spd;
 pub use tm30::Tm30;
 
 use core::fmt;
@@ -59,6 +64,13 @@ pub enum LightError {
     Channels(usize),
     /// A target outside its domain (chromaticity, CCT, Duv or luminance), or non-finite.
     BadTarget,
+    /// The light is tabulated over less than 380–780 nm, the range the metrics sum over.
+    Range {
+        /// First tabulated wavelength, nm.
+        lo: f64,
+        /// Last tabulated wavelength, nm.
+        hi: f64,
+    },
     /// An error from the core (mismatched breakpoints, singular matrices).
     Core(crate::Error),
 }
@@ -83,6 +95,11 @@ impl fmt::Display for LightError {
             }
             LightError::Channels(n) => write!(f, "{n} channels: a mix takes 3 to 6"),
             LightError::BadTarget => write!(f, "target outside its domain"),
+            LightError::Range { lo, hi } => write!(
+                f,
+                "the light is tabulated over {lo}-{hi} nm; the colour metrics need 380-780 nm \
+                 (or the end values held, as CIE 015:2018 allows)"
+            ),
             LightError::Core(e) => write!(f, "{e}"),
         }
     }

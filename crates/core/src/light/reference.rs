@@ -13,8 +13,9 @@
 //!   `(1 − m)·P/Y_P + m·D/Y_D`, `m = (T − 4000)/1000`, each normalised to its luminance
 //!   (CIE 1931 ȳ, as colour-science does).
 
-use super::{source::Source, LightError};
+use super::{source::Source, spd::Spd, LightError};
 use crate::observer::DAYLIGHT_S012;
+use crate::Observer;
 
 /// Second radiation constant, m·K (CIE 015:2018).
 pub const C2: f64 = 1.4388e-2;
@@ -84,6 +85,35 @@ pub fn tm30_reference(t: f64) -> Result<Source, LightError> {
             (m / d.luminous_sum(), &d),
         ])
     }
+}
+
+/// The CIE 13.3-1995 reference illuminant for CCT `t`, on the `step` nm grid of [`Spd`].
+pub fn cri_reference_spd(t: f64, step: usize) -> Result<Spd, LightError> {
+    if t < 5000.0 {
+        Spd::from_fn(step, |nm| planck(nm, t))
+    } else {
+        let xy = daylight_xy(t);
+        Spd::from_fn(step, |nm| daylight(nm, xy))
+    }
+}
+
+/// The CIE 224:2017 reference illuminant for CCT `t`, on the `step` nm grid of [`Spd`]; in
+/// 4000–5000 K the two parts are normalised by their sums `Σ S ȳ` on that grid.
+pub fn tm30_reference_spd(t: f64, step: usize) -> Result<Spd, LightError> {
+    if t < 4000.0 {
+        return Spd::from_fn(step, |nm| planck(nm, t));
+    }
+    let xy = daylight_xy(t);
+    if t > 5000.0 {
+        return Spd::from_fn(step, |nm| daylight(nm, xy));
+    }
+    let p = Spd::from_fn(step, |nm| planck(nm, t))?;
+    let d = Spd::from_fn(step, |nm| daylight(nm, xy))?;
+    let (yp, yd) = (p.sums(Observer::Cie1931)[1], d.sums(Observer::Cie1931)[1]);
+    let m = (t - 4000.0) / 1000.0;
+    Spd::from_fn(step, |nm| {
+        (1.0 - m) * planck(nm, t) / yp + m * daylight(nm, xy) / yd
+    })
 }
 
 #[cfg(test)]

@@ -7,17 +7,27 @@
 //! `ΔE′ᵢ` is the J′a′b′ distance, `Rf = 10·ln(exp((100 − 6.73·mean ΔE′)/10) + 1)` (and `Rf,i` per
 //! sample). For Rg the samples are put in 16 hue bins of 22.5° by their hue under the reference;
 //! the mean a′, b′ of each bin under the test and the reference light are the vertices of two
-//! polygons, and `Rg = 100·A_test / A_ref` (shoelace areas).
+//! polygons, and `Rg = 100·A_test / A_ref` (shoelace areas). Per bin `j` (centre
+//! `θⱼ = 22.5°·j + 11.25°`, mean shift `Δa′, Δb′`, reference mean radius `r`): `Rf,hj` from the
+//! bin's mean ΔE′, chroma shift `Rcs,hj = (Δa′ cos θⱼ + Δb′ sin θⱼ)/r`, hue shift
+//! `Rhs,hj = (−Δa′ sin θⱼ + Δb′ cos θⱼ)/r` (ANSI/IES TM-30-18 §4.3).
+//!
+//! Two forms: [`tm30`] from a [`Source`]'s moments and the fitted samples (fast, linear in a
+//! mix: the optimiser's), and [`tm30_spd`] from an [`Spd`] on its own 1 nm or 5 nm grid with
+//! the tabulated samples, the standard's computation (reports, `specpoly light`).
 
 use super::{
     cam02::{Cam02, Ucs, AVERAGE},
     cct::Cct,
     cri::to64,
-    reference::tm30_reference,
+    reference::{tm30_reference, tm30_reference_spd},
     samples::Samples,
     source::Source,
+    spd::Spd,
     LightError,
 };
+use crate::observer::{CES99, CES99_1NM};
+use crate::Observer;
 
 /// Adapting luminance, cd/m² (CIE 224:2017).
 pub const L_A: f64 = 100.0;
@@ -35,6 +45,12 @@ pub struct Tm30 {
     pub rg: f64,
     /// Per-sample fidelity Rf,i (CES01–CES99).
     pub rf_i: [f64; 99],
+    /// Hue-bin fidelity Rf,hj (bins 1–16).
+    pub rf_h: [f64; 16],
+    /// Hue-bin chroma shift Rcs,hj, a fraction (TM-30 prints it ×100 as %).
+    pub rcs_h: [f64; 16],
+    /// Hue-bin hue shift Rhs,hj.
+    pub rhs_h: [f64; 16],
     /// CCT and Duv of the light (CIE 1931 observer).
     pub cct: Cct,
 }
@@ -44,21 +60,59 @@ pub fn rf_of(delta_e: f64) -> f64 {
     10.0 * libm::log1p(libm::exp((100.0 - C_F * delta_e) / 10.0))
 }
 
-fn ucs_all(light: &Source, ces: &Samples<99>) -> [Ucs; 99] {
-    let cam = Cam02::new(to64(light.m10.white().to_array()), L_A, Y_B, AVERAGE);
-    core::array::from_fn(|i| cam.ucs(to64(light.m10.xyz(&ces.spectra[i]).to_array())))
+fn ucs_all(white: [f64; 3], xyz: impl Fn(usize) -> [f64; 3]) -> [Ucs; 99] {
+    let cam = Cam02::new(white, L_A, Y_B, AVERAGE);
+    core::array::from_fn(|i| cam.ucs(xyz(i)))
 }
 
-/// Rf and Rg of `light` with the colour evaluation samples `ces`.
+fn ucs_moments(light: &Source, ces: &Samples<99>) -> [Ucs; 99] {
+    ucs_all(to64(light.m10.white().to_array()), |i| {
+        to64(light.m10.xyz(&ces.spectra[i]).to_array())
+    })
+}
+
+/// Rf and Rg of `light` with the colour evaluation samples `ces` (the light's moments and the
+/// fitted samples: the fast form, for the mixing optimiser).
 pub fn tm30(light: &Source, ces: &Samples<99>) -> Result<Tm30, LightError> {
     let c = light.cct()?;
     let reference = tm30_reference(c.cct)?;
-    let test = ucs_all(light, ces);
-    let refs = ucs_all(&reference, ces);
+    Ok(indices(
+        &ucs_moments(light, ces),
+        &ucs_moments(&reference, ces),
+        c,
+    ))
+}
+
+/// Rf, Rg and the hue bins of `light` by sums on its own grid with the tabulated colour
+/// evaluation samples at the same interval (CIE 224:2017's 1 nm or 5 nm tables): the
+/// standard's computation, for reports.
+pub fn tm30_spd(light: &Spd) -> Result<Tm30, LightError> {
+    let c = light.cct()?;
+    let reference = tm30_reference_spd(c.cct, light.step())?;
+    let step = light.step();
+    let ces = |i: usize, k: usize| -> f64 {
+        if step == 5 {
+            CES99[i][k] as f64
+        } else {
+            CES99_1NM[i][k] as f64
+        }
+    };
+    let ucs = |s: &Spd| {
+        let w = s.sums(Observer::Cie1964);
+        let k = 100.0 / w[1];
+        ucs_all(w.map(|v| v * k), |i| {
+            s.sums_with(Observer::Cie1964, |j| ces(i, j)).map(|v| v * k)
+        })
+    };
+    Ok(indices(&ucs(light), &ucs(&reference), c))
+}
+
+/// The indices from the samples' CAM02-UCS coordinates under the test light and the reference.
+fn indices(test: &[Ucs; 99], refs: &[Ucs; 99], cct: Cct) -> Tm30 {
     let mut rf_i = [0.0; 99];
     let mut sum = 0.0;
-    // bins: Σa′, Σb′ (test), Σa′, Σb′ (reference), count
-    let mut bins = [[0.0f64; 5]; 16];
+    // bins: Σa′, Σb′ (test), Σa′, Σb′ (reference), ΣΔE′, count
+    let mut bins = [[0.0f64; 6]; 16];
     for i in 0..99 {
         let de = test[i].delta_e(&refs[i]);
         rf_i[i] = rf_of(de);
@@ -68,14 +122,15 @@ pub fn tm30(light: &Source, ces: &Samples<99>) -> Result<Tm30, LightError> {
         bins[b][1] += test[i].b;
         bins[b][2] += refs[i].a;
         bins[b][3] += refs[i].b;
-        bins[b][4] += 1.0;
+        bins[b][4] += de;
+        bins[b][5] += 1.0;
     }
     let area = |o: usize| {
         let mut a = 0.0;
         let mut pts = bins
             .iter()
-            .filter(|b| b[4] > 0.0)
-            .map(|b| (b[o] / b[4], b[o + 1] / b[4]));
+            .filter(|b| b[5] > 0.0)
+            .map(|b| (b[o] / b[5], b[o + 1] / b[5]));
         if let Some(first) = pts.next() {
             let mut prev = first;
             for p in pts {
@@ -86,10 +141,27 @@ pub fn tm30(light: &Source, ces: &Samples<99>) -> Result<Tm30, LightError> {
         }
         0.5 * a
     };
-    Ok(Tm30 {
+    let (mut rf_h, mut rcs_h, mut rhs_h) = ([f64::NAN; 16], [f64::NAN; 16], [f64::NAN; 16]);
+    for (j, b) in bins.iter().enumerate() {
+        if b[5] == 0.0 {
+            continue;
+        }
+        let n = b[5];
+        let (da, db) = ((b[0] - b[2]) / n, (b[1] - b[3]) / n);
+        let norm = libm::hypot(b[2] / n, b[3] / n);
+        let theta = (22.5 * j as f64 + 11.25).to_radians();
+        let (s, co) = (libm::sin(theta), libm::cos(theta));
+        rf_h[j] = rf_of(b[4] / n);
+        rcs_h[j] = (da * co + db * s) / norm;
+        rhs_h[j] = (-da * s + db * co) / norm;
+    }
+    Tm30 {
         rf: rf_of(sum / 99.0),
         rg: 100.0 * area(0) / area(2),
         rf_i,
-        cct: c,
-    })
+        rf_h,
+        rcs_h,
+        rhs_h,
+        cct,
+    }
 }
