@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
 # target, QEMU for the firmware, Chromium for the web patch display, ArgyllCMS for the
-# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints,
-# all tests (host, core, cross-crate, firmware under QEMU) and the microcontroller build of the
-# core. Stops with a clear message if something cannot be installed; never skips a test.
+# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints
+# (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
+# firmware under QEMU). Stops with a clear message if something cannot be installed; never
+# skips a test.
 set -euo pipefail
 cd "$(dirname "$0")"
 say() { printf '\n== %s (%d s)\n' "$*" "$SECONDS"; }
@@ -43,24 +44,38 @@ say "cargo fmt --check"
 cargo fmt --all --check
 (cd firmware && cargo fmt --check)
 
-say "cargo clippy -D warnings"
-cargo clippy --workspace --all-targets -- -D warnings
+# Lints: clippy's driver compiles every workspace crate (and the firmware) in the builds below,
+# with warnings as errors (see .ci/clippy-deny-warnings): one build both lints and tests.
+export RUSTC_WORKSPACE_WRAPPER="$PWD/.ci/clippy-deny-warnings"
+
+say "build and lint every target (clippy -D warnings)"
+cargo test --workspace --all-targets --no-run
 # the controller logic as the 32 KiB build compiles it (no settings, mixing, lut)
-cargo clippy -p specpoly-device --no-default-features --all-targets -- -D warnings
-(cd firmware && cargo clippy --release -- -D warnings)
-# the STM32F4 board build (stm32f4xx-hal); firmware_qemu builds it and runs it on netduinoplus2
-(cd firmware && cargo clippy --release --no-default-features --features stm32f4,full --bin stm32f4 \
-  --target-dir target/stm32f4 -- -D warnings)
-# the 32 KiB build (no settings store, no mixing); firmware_qemu builds it and runs it
-(cd firmware && cargo clippy --profile small --no-default-features --features mps2 --bins \
-  --target-dir target/small -- -D warnings)
+cargo test -p specpoly-device --no-default-features --all-targets --no-run
+
+say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
+# the same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops
+(cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
+# the STM32F4 board build (stm32f4xx-hal), run on netduinoplus2
+(cd firmware && cargo build --release --no-default-features --features stm32f4,full --bin stm32f4 \
+  --target thumbv7em-none-eabihf --target-dir target/stm32f4)
+# the 32 KiB build (no settings store, no mixing)
+(cd firmware && cargo build --profile small --bins --target thumbv7em-none-eabihf \
+  --no-default-features --features mps2 --target-dir target/small)
 
 say "specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)"
 cargo build -p specpoly-core -p specpoly-graphics -p specpoly-device --target thumbv7em-none-eabihf
 cargo build -p specpoly-device --no-default-features --target thumbv7em-none-eabihf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
-cargo test --workspace --no-fail-fast
+if cargo nextest --version >/dev/null 2>&1; then
+  # all test binaries at once, longest tests first (.config/nextest.toml)
+  cargo nextest run --workspace --no-fail-fast
+  cargo test --workspace --doc
+else
+  echo "(cargo-nextest is not installed: cargo test runs the same tests, one binary at a time)"
+  cargo test --workspace --no-fail-fast
+fi
 # the controller's unit tests as the 32 KiB build compiles it (no settings, mixing, lut)
 cargo test -p specpoly-device --no-default-features --lib
 
