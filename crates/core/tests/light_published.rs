@@ -6,33 +6,35 @@
 use crate::common::light_data;
 
 use light_data::{csv, lamp_spds};
-use specpoly_core::light::{cri::cri, tm30::tm30, Samples, Source};
+use specpoly_core::light::{cri::cri_spd, tm30::tm30_spd, Spd};
 use specpoly_core::Tabulated;
 
 /// Published Ra are integers: ours must round to them, give or take this much more.
 const RA_TOL: f64 = 0.5 + 0.3;
 /// Nominal CCTs are rounded by the CIE to about 10 K.
 const CCT_NOMINAL_TOL: f64 = 10.0;
-/// Published Rf to 0.1 (and Rg to 1): the rounding plus the polynomial fit of the samples.
-const RF_TOL: f64 = 0.05 + 0.25;
-const RG_TOL: f64 = 0.5 + 0.25;
-/// TM-30 CCT to 1 K, Duv to 0.0001 (its calculator integrates at 5 nm; we at 1 nm).
-const CCT_TOL: f64 = 1.5;
-const DUV_TOL: f64 = 0.00015;
+/// Published Rf to 0.1 and Rg to 1: the rounding, plus 0.02 (CCT search, arithmetic).
+const RF_TOL: f64 = 0.05 + 0.02;
+const RG_TOL: f64 = 0.5 + 0.02;
+/// TM-30 CCT to 1 K, Duv to 0.0001: the rounding, plus 1 K (Ohno 2013's cascade, which the
+/// calculator uses, against the exact minimum).
+const CCT_TOL: f64 = 0.5 + 1.0;
+/// The FL2 Duv of 0.0019 is what colour-science's test asserts with `assert_almost_equal(…, 4)`,
+/// i.e. within 1.5e-4 (its own value is 0.00179, ours 0.00178): that tolerance, not a rounding.
+const DUV_TOL: f64 = 1.5e-4;
 
 #[test]
 fn published_ra_rf_rg_cct() {
     let (nm, lights) = lamp_spds();
     let (head, rows) = csv(include_str!("data/light_published.csv"));
-    let tcs = Samples::cie13_3();
-    let ces = Samples::cie224();
     let mut checked = 0;
     for row in rows {
         let name = &row[0];
         let values = &lights.iter().find(|(n, _)| n == name).unwrap().1;
-        let source = Source::new(&Tabulated::new(&nm, values).unwrap()).unwrap();
-        let c = cri(&source, &tcs).unwrap();
-        let t = tm30(&source, &ces).unwrap();
+        // the standard's computation: sums at the lamps' own 5 nm
+        let light = Spd::new(&Tabulated::new(&nm, values).unwrap()).unwrap();
+        let c = cri_spd(&light).unwrap();
+        let t = tm30_spd(&light).unwrap();
         println!(
             "{name:14} Ra {:7.3} CCT {:8.2} Duv {:+.5} Rf {:7.3} Rg {:7.3}",
             c.ra, t.cct.cct, t.cct.duv, t.rf, t.rg

@@ -124,6 +124,19 @@ pub enum Error {
         /// What the core says.
         source: LightError,
     },
+    /// A light tabulated over less than the 380–780 nm the metrics sum over.
+    #[error(
+        "{name}: tabulated over {lo}-{hi} nm; the metrics need 380-780 nm \
+         (--extrapolate holds the end values, as CIE 015:2018 allows)"
+    )]
+    ShortLight {
+        /// The light's name.
+        name: String,
+        /// First tabulated wavelength, nm.
+        lo: f64,
+        /// Last tabulated wavelength, nm.
+        hi: f64,
+    },
     /// A mix target outside the gamut of the channels.
     #[error("target {target} is outside the gamut of the channels {channels}")]
     OutOfGamut {

@@ -7,12 +7,13 @@ use crate::{Error, Result};
 use serde::Serialize;
 use specpoly_core::light::{
     cct::Cct,
-    cri::cri,
+    cri::cri_spd,
     mix::{solve_mix, Mix, Objective, Target},
-    tm30::tm30,
-    LightError, Samples, Source,
+    spd,
+    tm30::tm30_spd,
+    LightError, Samples, Source, Spd,
 };
-use specpoly_core::Transfer;
+use specpoly_core::{Tabulated, Transfer};
 
 /// Rounds for printing: far below any visible difference, without f64 noise in the output.
 fn r6(v: f64) -> f64 {
@@ -58,20 +59,50 @@ pub struct LightReport {
     pub rf: Option<f64>,
     /// TM-30 Rg.
     pub rg: Option<f64>,
+    /// The tabulated range `[first, last]` nm when the end values were held to reach
+    /// 380–780 nm (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extrapolated_from_nm: Option<[f64; 2]>,
 }
 
-/// The metrics of one light.
-pub fn report(light: &Named) -> Result<LightReport> {
-    let s = source(light)?;
-    Ok(report_of(&s, &Samples::cie13_3(), &Samples::cie224()))
+/// The metrics of one light, summed as the standards do on its own 1 nm or 5 nm grid
+/// ([`Spd`]). A light tabulated over less than 380–780 nm is an error unless `extrapolate`,
+/// which holds its end values (CIE 015:2018) and says so in the report.
+pub fn report(light: &Named, extrapolate: bool) -> Result<LightReport> {
+    let t = light.tabulated();
+    let err = |source| Error::Light {
+        name: light.name.clone(),
+        source,
+    };
+    let s = if extrapolate {
+        Spd::extrapolated(&t)
+    } else {
+        Spd::new(&t)
+    }
+    .map_err(|e| match e {
+        LightError::Range { lo, hi } => Error::ShortLight {
+            name: light.name.clone(),
+            lo,
+            hi,
+        },
+        e => err(e),
+    })?;
+    let w = light.wavelengths.as_slice();
+    Ok(LightReport {
+        extrapolated_from_nm: s
+            .is_extrapolated()
+            .then(|| [w[0] as f64, w[w.len() - 1] as f64]),
+        ..metrics(&s)
+    })
 }
 
-fn report_of(s: &Source, tcs: &Samples<14>, ces: &Samples<99>) -> LightReport {
+/// Colorimetry, CCT/Duv, CIE 13.3 and CIE 224/TM-30 of a light on the standards' grid.
+fn metrics(s: &Spd) -> LightReport {
     let [big_x, big_y, big_z] = s.xyz();
     let [x, y] = s.xy();
-    let [u, v] = s.uv_prime();
-    let c = cri(s, tcs).ok();
-    let t = tm30(s, ces).ok();
+    let [u, v] = s.uv();
+    let c = cri_spd(s).ok();
+    let t = tm30_spd(s).ok();
     LightReport {
         big_x: r6(big_x),
         big_y: r6(big_y),
@@ -79,14 +110,66 @@ fn report_of(s: &Source, tcs: &Samples<14>, ces: &Samples<99>) -> LightReport {
         x: r6(x),
         y: r6(y),
         u_prime: r6(u),
-        v_prime: r6(v),
+        v_prime: r6(1.5 * v),
         cct: t.map(|t| (t.cct.cct * 100.0).round() / 100.0),
         duv: t.map(|t| r6(t.cct.duv)),
         ra: c.map(|c| r6(c.ra)),
         r9: c.map(|c| r6(c.r[8])),
         rf: t.map(|t| r6(t.rf)),
         rg: t.map(|t| r6(t.rg)),
+        extrapolated_from_nm: None,
     }
+}
+
+/// The light `Σ fᵢ·Sᵢ` of channels driven at light fractions `fᵢ`, on the standards' grid: on
+/// the channels' own wavelengths when they share them, else linearly at 1 nm. A channel
+/// tabulated over less than 380–780 nm is refused, as `light` refuses it.
+fn mixed_spd(channels: &[Channel], fractions: &[f64]) -> Result<Spd> {
+    for c in channels {
+        let w = &c.spd.wavelengths;
+        let (lo, hi) = (w[0] as f64, w[w.len() - 1] as f64);
+        if lo > spd::START || hi < spd::END {
+            return Err(Error::ShortLight {
+                name: c.spd.name.clone(),
+                lo,
+                hi,
+            });
+        }
+    }
+    let shared = channels
+        .iter()
+        .all(|c| c.spd.wavelengths == channels[0].spd.wavelengths);
+    let (nm, values): (Vec<f32>, Vec<f32>) = if shared {
+        let nm = channels[0].spd.wavelengths.clone();
+        let values = (0..nm.len())
+            .map(|i| {
+                channels
+                    .iter()
+                    .zip(fractions)
+                    .map(|(c, f)| f * c.spd.values[i] as f64)
+                    .sum::<f64>() as f32
+            })
+            .collect();
+        (nm, values)
+    } else {
+        let tabs: Vec<_> = channels.iter().map(|c| c.spd.tabulated()).collect();
+        (spd::START as u32..=spd::END as u32)
+            .map(|nm| {
+                let v: f64 = tabs
+                    .iter()
+                    .zip(fractions)
+                    .map(|(t, f)| f * t.at(nm as f64))
+                    .sum();
+                (nm as f32, v as f32)
+            })
+            .unzip()
+    };
+    let name = "mix".to_string();
+    let t = Tabulated::new(&nm, &values).map_err(|source| Error::Light {
+        name: name.clone(),
+        source: LightError::from(source),
+    })?;
+    Spd::new(&t).map_err(|source| Error::Light { name, source })
 }
 
 /// Parses a mix target: `xy:X,Y` or `cct:K` / `cct:K,duv:D` (also `duv=D`).
@@ -240,7 +323,9 @@ pub fn mix(
     };
     let m: Mix = solve_mix(&sources, target, luminance, objective).map_err(err)?;
     let driven = m.drive(&sources, transfer, bits).map_err(err)?;
-    let r = report_of(&driven.mix.light, &tcs, &ces);
+    // the solve works on the polynomial moments; what the driven mix gives is reported by
+    // the standards' sums, as `light` reports it
+    let r = metrics(&mixed_spd(channels, driven.mix.duties())?);
     Ok(MixReport {
         channels: channels.iter().map(|c| c.name.clone()).collect(),
         duties: driven.drive().iter().map(|d| r6(*d)).collect(),

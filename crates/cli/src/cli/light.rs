@@ -14,9 +14,14 @@ pub struct LightArgs {
     /// illuminant (A, D50, D65, E, FL2, FL7, FL11).
     #[arg(value_name = "SPD")]
     pub spd: String,
-    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg}.
+    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg} (and
+    /// extrapolated_from_nm when --extrapolate was needed).
     #[arg(long)]
     pub json: bool,
+    /// A light tabulated over less than 380-780 nm: hold its end values to that range (CIE
+    /// 015:2018's extrapolation) instead of refusing it; the output says so.
+    #[arg(long)]
+    pub extrapolate: bool,
 }
 
 /// `v` to `prec` decimals, `-` for none.
@@ -45,6 +50,13 @@ pub(crate) fn chromaticity_cells(xyuv: [f64; 4], cct: Option<f64>, duv: Option<f
 /// Formats the text output.
 pub fn text(name: &str, r: &LightReport) -> String {
     let mut o = String::new();
+    if let Some([lo, hi]) = r.extrapolated_from_nm {
+        let _ = writeln!(
+            o,
+            "# {name}: tabulated over {lo}-{hi} nm, extrapolated to 380-780 nm by holding the \
+             end values (CIE 015:2018)"
+        );
+    }
     let _ = writeln!(
         o,
         "# {name}: XYZ = Km·ΣS·x̄Δλ (CIE 1931; lm for Y when the SPD is in W/nm); CCT, Duv; CIE 13.3 \
@@ -80,7 +92,7 @@ pub fn text(name: &str, r: &LightReport) -> String {
 /// Runs `specpoly light`.
 pub fn run(a: &LightArgs) -> Result<()> {
     let named = spectrum_names::light(&a.spd)?;
-    let r = report(&named)?;
+    let r = report(&named, a.extrapolate)?;
     if a.json {
         return Ok(print_json(&r)?);
     }

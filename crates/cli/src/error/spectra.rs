@@ -27,6 +27,7 @@ impl From<Error> for CliError {
             | Error::Overflow { .. }
             | Error::ImageOverflow { .. }
             | Error::Light { .. }
+            | Error::ShortLight { .. }
             | Error::OutOfGamut { .. }
             | Error::Mix(_) => CliError::Data(e.to_string()),
         }

@@ -31,6 +31,10 @@ pub fn to_1nm(y5: &[f64; 81]) -> [f64; 401] {
     p[83] = dot(&LEFT[1], tail);
     let mut out = [0.0f64; 401];
     for (k, o) in out.iter_mut().enumerate() {
+        if k % 5 == 0 {
+            *o = y5[k / 5];
+            continue;
+        }
         let i = (k / 5).min(79);
         let x = (k - 5 * i) as f64 / 5.0;
         let q = &p[i..i + 6];
@@ -54,9 +58,11 @@ pub fn to_1nm(y5: &[f64; 81]) -> [f64; 401] {
 mod tests {
     use super::*;
 
+    /// Inside (390–770 nm, six real points) Sprague's interpolant reproduces polynomials up to
+    /// degree 5; in the end intervals the CIE 167 boundary points govern, checked against
+    /// colour-science 0.4.7's `SpragueInterpolator` on the same cubic.
     #[test]
-    fn passes_through_the_nodes_and_keeps_a_quintic() {
-        // Sprague's interpolant reproduces polynomials up to degree 5 inside the data
+    fn keeps_a_cubic_and_matches_colour_science_at_the_ends() {
         let f = |nm: f64| {
             let t = (nm - 580.0) / 200.0;
             0.5 + 0.3 * t - 0.2 * t * t + 0.1 * t * t * t
@@ -64,11 +70,31 @@ mod tests {
         let y5: [f64; 81] = core::array::from_fn(|i| f(380.0 + 5.0 * i as f64));
         let y1 = to_1nm(&y5);
         for (k, v) in y1.iter().enumerate() {
-            let nm = 380.0 + k as f64;
             if k % 5 == 0 {
                 assert_eq!(*v, y5[k / 5]);
             }
-            assert!((v - f(nm)).abs() < 1e-12, "{nm}: {v} vs {}", f(nm));
+            if (10..=390).contains(&k) {
+                let nm = 380.0 + k as f64;
+                assert!((v - f(nm)).abs() < 1e-12, "{nm}: {v} vs {}", f(nm));
+            }
+        }
+        let colour_science = [
+            (1, -0.095037433433014),
+            (2, -0.090080210765550),
+            (3, -0.085135202930622),
+            (4, -0.080210240430622),
+            (396, 0.696041398325359),
+            (397, 0.697026760825359),
+            (398, 0.698015958133971),
+            (399, 0.699007475538278),
+        ];
+        for (k, want) in colour_science {
+            assert!(
+                (y1[k] - want).abs() < 1e-12,
+                "{}: {} vs {want}",
+                380 + k,
+                y1[k]
+            );
         }
     }
 }
