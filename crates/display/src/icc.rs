@@ -678,6 +678,9 @@ fn b2a_check(cal: &Calibration, b2a: &B2a) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// A measured `A2B0`: its worst ΔE00, input curves, grid side and table.
+type A2bCandidate = (f64, [Vec<u16>; 3], usize, Vec<[u16; 3]>);
+
 /// `A2B0` and `B2A0` sampled from the model, each on the smallest grid of [`GRIDS`] whose check
 /// passes (`A2B0`: within [`A2B_CHECK_DE`] of the model on [`check_colours`]; `B2A0`: those
 /// colours' model PCS back within [`B2A_CHECK_DE`]). See [`a2b0`] and [`b2a0`]: both tables
@@ -689,7 +692,7 @@ pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
     let check = check_colours();
     let want: Vec<[f64; 3]> = check.iter().map(|c| predict_pcs(cal, *c)).collect();
     // A2B0: the first (grid, input-curve power) that passes, else the best measured
-    let mut a: Option<(f64, [Vec<u16>; 3], usize, Vec<[u16; 3]>)> = None;
+    let mut a: Option<A2bCandidate> = None;
     'a: for grid in GRIDS {
         for power in A2B_POWERS {
             let (inputs, clut) = a2b0(cal, &curves, grid, power);
