@@ -222,18 +222,52 @@ fn u16_xyz(v: f64) -> u16 {
     (v * 32768.0).round().clamp(0.0, 65535.0) as u16
 }
 
-/// Grid points per input of the `A2B0`/`B2A0` tables.
-pub const GRID: usize = 17;
-/// Entries of the tables' input curves.
+/// Grid sides tried for the `A2B0`/`B2A0` tables, smallest first: each table takes the first
+/// whose check ([`A2B_CHECK_DE`], [`B2A_CHECK_DE`]) passes, else the last.
+pub const GRIDS: [usize; 4] = [17, 25, 33, 45];
+/// Grid sides tried for `B2A0` (its error is set by the model's folds at the cube's faces more
+/// than by the grid: measured on the shipped displays, docs/calibration.md).
+pub const B2A_GRIDS: [usize; 2] = [17, 33];
+/// Powers `p` of `A2B0`'s input curves `light^(1/p)` tried on each grid: 1 samples evenly in
+/// light (exact for a model without interaction), 2 puts more nodes in the dark, where the
+/// interaction lattice's cells are.
+pub const A2B_POWERS: [f64; 2] = [1.0, 2.0];
+/// `A2B0` is good enough when the table, evaluated as a CMM does, is within this ΔE00 of the
+/// model at every colour of [`check_colours`].
+pub const A2B_CHECK_DE: f64 = 0.05;
+/// `B2A0` is good enough when the model's colour of every [`check_colours`] colour, through the
+/// table and the model again, is within this ΔE00 of itself.
+pub const B2A_CHECK_DE: f64 = 0.05;
+/// `B2A0`'s table holds device values `D ∈ [−B2A_OUT_OFFSET, B2A_OUT_SPAN − B2A_OUT_OFFSET]`
+/// (beyond the cube, so that the table stays smooth across the gamut's boundary) as
+/// `(D + B2A_OUT_OFFSET) / B2A_OUT_SPAN`; its output curves clip to `[0, 1]`.
+pub const B2A_OUT_OFFSET: f64 = 0.5;
+/// See [`B2A_OUT_OFFSET`].
+pub const B2A_OUT_SPAN: f64 = 2.0;
+/// How far beyond `[0, 1]` (in the matrix/TRC model's device values) `B2A0`'s table reaches:
+/// the model's colours at the cube's faces lie that far out when its channels interact.
+pub const B2A_MARGIN: f64 = 0.3;
+/// Entries of `A2B0`'s input curves.
 pub const LUT_CURVE: usize = 1024;
-/// `B2A0`'s grid holds linear drive `l` as `(l + B2A_OFFSET) / B2A_SPAN` (so `l ∈ [−1, 2]`,
-/// beyond the gamut, stays linear in XYZ and interpolates exactly up to the boundary); its
-/// output curves (`B2A_CURVE` entries, the most `lut16Type` allows) clip and encode.
-pub const B2A_OFFSET: f64 = 1.0;
-/// See [`B2A_OFFSET`].
-pub const B2A_SPAN: f64 = 3.0;
-/// Entries of `B2A0`'s output curves.
+/// Entries of `B2A0`'s input and output curves (the most `lut16Type` allows).
 pub const B2A_CURVE: usize = 4096;
+
+/// 8-bit levels of the check colours, dense in the dark, none on a table's grid.
+const CHECK_LEVELS: [u8; 15] = [0, 1, 2, 4, 7, 12, 20, 33, 50, 77, 110, 150, 190, 230, 255];
+
+/// The colours the tables are checked on: every combination of [`CHECK_LEVELS`] (device values).
+pub fn check_colours() -> Vec<[f64; 3]> {
+    let l = CHECK_LEVELS.map(|v| v as f64 / 255.0);
+    let mut out = Vec::with_capacity(l.len().pow(3));
+    for r in l {
+        for g in l {
+            for b in l {
+                out.push([r, g, b]);
+            }
+        }
+    }
+    out
+}
 
 /// A channel's normalised linear light: the luminance the model predicts for the channel alone
 /// at `v`, black subtracted, over its luminance at full drive (a monotone curve sampled at
@@ -265,13 +299,20 @@ fn curve_inverse(t: &[f32], l: f64) -> f64 {
     specpoly_core::display::table_inverse(t, l as f32) as f64
 }
 
-/// A `lut16Type` (`mft2`) tag: 3 inputs, 3 outputs, identity matrix.
-fn mft2(inputs: &[Vec<u16>; 3], clut: &[[u16; 3]], outputs: &[Vec<u16>; 3]) -> Vec<u8> {
+/// A `lut16Type` (`mft2`) tag: 3 inputs, 3 outputs, the matrix `matrix` (s15Fixed16; used by
+/// CMMs only for PCS XYZ input), a `grid`³ table.
+fn mft2(
+    matrix: &[[i32; 3]; 3],
+    inputs: &[Vec<u16>; 3],
+    grid: usize,
+    clut: &[[u16; 3]],
+    outputs: &[Vec<u16>; 3],
+) -> Vec<u8> {
     let mut t = b"mft2\0\0\0\0".to_vec();
-    t.extend_from_slice(&[3, 3, GRID as u8, 0]);
-    for r in 0..3 {
-        for c in 0..3 {
-            t.extend_from_slice(&s15(if r == c { 1.0 } else { 0.0 }));
+    t.extend_from_slice(&[3, 3, grid as u8, 0]);
+    for row in matrix {
+        for v in row {
+            t.extend_from_slice(&v.to_be_bytes());
         }
     }
     t.extend_from_slice(&(inputs[0].len() as u16).to_be_bytes());
@@ -294,109 +335,412 @@ fn mft2(inputs: &[Vec<u16>; 3], clut: &[[u16; 3]], outputs: &[Vec<u16>; 3]) -> V
     t
 }
 
-/// `A2B0` and `B2A0` sampled from the model.
-///
-/// `A2B0` (device → PCS XYZ): each input curve is the channel's normalised linear light
-/// ([`channel_curves`]), so the 17³ grid is even in light, not in code values; the grid holds
-/// the model's PCS XYZ ([`predict_pcs`]) at the device values whose linear light is each grid
-/// point. `B2A0` (PCS XYZ → device): identity input curves over the PCS encoding, the grid holds
-/// each channel's linear light of the model's inverse (outside the gamut the base matrix's,
-/// unclipped, offset as [`B2A_OFFSET`] says), and the output curves clip it and turn it back
-/// into device values. For an additive model both grids are linear in their inputs, so
-/// trilinear interpolation is exact up to 16-bit rounding (XYZ steps of 1/32768: up to
-/// ΔE00 ≈ 0.2 in the darkest colours); a model with channel interaction is sampled at 17³
-/// points.
-pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
-    let curves = channel_curves(cal);
-    let curves32 = curves
-        .each_ref()
-        .map(|c| c.iter().map(|v| *v as f32).collect::<Vec<_>>());
-    let g = |k: usize| k as f64 / (GRID - 1) as f64;
-    // A2B0
-    let a_in = [0, 1, 2].map(|c| curves[c].iter().map(|v| u16_unit(*v)).collect::<Vec<_>>());
-    let mut a_clut = Vec::with_capacity(GRID * GRID * GRID);
-    for r in 0..GRID {
-        for gg in 0..GRID {
-            for b in 0..GRID {
-                let lin = [g(r), g(gg), g(b)];
-                let rgb = [0, 1, 2].map(|c| curve_inverse(&curves32[c], lin[c]));
-                a_clut.push(predict_pcs(cal, rgb).map(u16_xyz));
-            }
+const IDENTITY: [[i32; 3]; 3] = [[65536, 0, 0], [0, 65536, 0], [0, 0, 65536]];
+
+/// A 16-bit curve at `x ∈ [0, 1]`, linearly interpolated (as Little CMS and ArgyllCMS do).
+fn curve_at(t: &[u16], x: f64) -> f64 {
+    let p = x.clamp(0.0, 1.0) * (t.len() - 1) as f64;
+    let i = (p.floor() as usize).min(t.len() - 2);
+    let f = p - i as f64;
+    (t[i] as f64 + f * (t[i + 1] as f64 - t[i] as f64)) / 65535.0
+}
+
+/// A `grid`³ table at `q ∈ [0, 1]³`, trilinear; outputs `0–1` (`u16 / 65535`).
+fn clut_at(grid: usize, clut: &[[u16; 3]], q: [f64; 3]) -> [f64; 3] {
+    let top = (grid - 1) as f64;
+    let mut j = [0usize; 3];
+    let mut f = [0.0; 3];
+    for c in 0..3 {
+        let x = q[c].clamp(0.0, 1.0) * top;
+        j[c] = (x.floor() as usize).min(grid - 2);
+        f[c] = x - j[c] as f64;
+    }
+    let mut out = [0.0; 3];
+    for corner in 0..8usize {
+        let s = [corner >> 2 & 1, corner >> 1 & 1, corner & 1];
+        let w: f64 = (0..3)
+            .map(|c| if s[c] == 1 { f[c] } else { 1.0 - f[c] })
+            .product();
+        let n = clut[((j[0] + s[0]) * grid + j[1] + s[1]) * grid + j[2] + s[2]];
+        for r in 0..3 {
+            out[r] += w * n[r] as f64 / 65535.0;
         }
     }
-    let ident = || vec![0u16, 65535];
-    let a2b0 = mft2(&a_in, &a_clut, &[ident(), ident(), ident()]);
-    // B2A0
-    let w = model_white(cal);
-    if !(w[1] > 0.0) {
+    out
+}
+
+/// The matrix/TRC part of the profile, from the model: `XYZ = M_w · τ(rgb)` with
+/// `τ_i(v) = (t_i(v) + k_i) / (1 + k_i)` (the black folded into the curves, `k = M⁻¹K`,
+/// negative components taken as 0) and `M_w = M·diag(1 + k)·diag(s)`, `s = (M·diag(1 + k))⁻¹ W`
+/// with `W = f(1, 1, 1)` the model's white: the matrix/TRC model's white is the model's
+/// (exactly; `s = 1` for a model without channel interaction, whose white is `M(1 + k)`).
+#[derive(Clone, Debug)]
+pub struct MatrixPart {
+    /// `M_w` (rows X, Y, Z; columns R, G, B), the calibration's units.
+    pub matrix: [[f64; 3]; 3],
+    /// The black as linear drive, `k`.
+    pub k: [f64; 3],
+    /// The model's white `f(1, 1, 1)`.
+    pub white: [f64; 3],
+}
+
+/// The profile's matrix/TRC part for `cal` (see [`MatrixPart`]).
+pub fn matrix_part(cal: &Calibration) -> Result<MatrixPart> {
+    let m = cal.matrix();
+    let inv = Mat3(m)
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
+    let k = inv.apply(cal.data().black).map(|v| v.max(0.0));
+    let m1 = [0, 1, 2].map(|r| [0, 1, 2].map(|c| m[r][c] * (1.0 + k[c])));
+    let white = model_white(cal);
+    if !(white[1] > 0.0) || white.iter().any(|v| !v.is_finite()) {
         return Err(Error::Unprofilable(
             "the calibration's white has no luminance",
         ));
     }
-    let unchad = chad(w)
+    let s = Mat3(m1)
         .inverse()
-        .map_err(|_| Error::Unprofilable("the white is degenerate"))?;
-    let lin_of = |rgb: [f64; 3]| {
-        [0, 1, 2].map(|c| {
-            let t = &curves[c];
-            let x = rgb[c].clamp(0.0, 1.0) * (t.len() - 1) as f64;
-            let i = (x.floor() as usize).min(t.len() - 2);
-            t[i] + (x - i as f64) * (t[i + 1] - t[i])
-        })
+        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?
+        .apply(white);
+    if s.iter().any(|v| !(*v > 0.0 && v.is_finite())) {
+        return Err(Error::Unprofilable(
+            "the model's white lies outside its primaries",
+        ));
+    }
+    let matrix = [0, 1, 2].map(|r| [0, 1, 2].map(|c| m1[r][c] * s[c]));
+    Ok(MatrixPart { matrix, k, white })
+}
+
+/// The model's transfer curves `t_i`, extended beyond `[0, 1]` by their secants over the last
+/// `delta` at each end (so that a table over an extended device range stays linear there).
+fn t_ext(cal: &Calibration, c: usize, v: f64, delta: f64) -> f64 {
+    let t = |x: f64| {
+        let mut rgb = [0.0; 3];
+        rgb[c] = x;
+        cal.linearise(rgb)[c]
     };
-    let full = 1.0 + 32767.0 / 32768.0;
-    let display = cal.display();
-    let mut b_clut = Vec::with_capacity(GRID * GRID * GRID);
-    for x in 0..GRID {
-        for y in 0..GRID {
-            for z in 0..GRID {
-                let pcs = [g(x) * full, g(y) * full, g(z) * full];
-                let xyz = unchad.apply(pcs).map(|v| v * w[1]);
-                // inside the gamut the model's own inverse; outside, the base matrix's linear
-                // drive unclipped, so the grid stays linear across the gamut's boundary
-                let lin = match crate::target::reach(cal, xyz) {
-                    Some(rgb) => lin_of(rgb),
-                    None => display
-                        .xyz_to_linear(specpoly_core::Xyz::new(
-                            xyz[0] as f32,
-                            xyz[1] as f32,
-                            xyz[2] as f32,
-                        ))
-                        .map(|v| v as f64),
-                };
-                b_clut.push(lin.map(|l| u16_unit((l + B2A_OFFSET) / B2A_SPAN)));
+    if v < 0.0 {
+        let (a, b) = (t(0.0), t(delta));
+        a + v * (b - a) / delta
+    } else if v > 1.0 {
+        let (a, b) = (t(1.0 - delta), t(1.0));
+        b + (v - 1.0) * (b - a) / delta
+    } else {
+        t(v)
+    }
+}
+
+/// `A2B0` on a `grid`³ table: input curves = each channel's normalised linear light
+/// ([`channel_curves`]), so the table's nodes are even in light; the table holds the model's PCS
+/// XYZ ([`predict_pcs`]) at the device values whose linear light is each node.
+fn a2b0(
+    cal: &Calibration,
+    curves: &[Vec<f64>; 3],
+    grid: usize,
+    power: f64,
+) -> ([Vec<u16>; 3], Vec<[u16; 3]>) {
+    let curves: [Vec<f64>; 3] = curves
+        .each_ref()
+        .map(|c| c.iter().map(|v| v.powf(1.0 / power)).collect());
+    let curves32 = curves
+        .each_ref()
+        .map(|c| c.iter().map(|v| *v as f32).collect::<Vec<_>>());
+    let g = |k: usize| k as f64 / (grid - 1) as f64;
+    let a_in = [0, 1, 2].map(|c| curves[c].iter().map(|v| u16_unit(*v)).collect::<Vec<_>>());
+    let mut clut = Vec::with_capacity(grid.pow(3));
+    for r in 0..grid {
+        for gg in 0..grid {
+            for b in 0..grid {
+                let lin = [g(r), g(gg), g(b)];
+                let rgb = [0, 1, 2].map(|c| curve_inverse(&curves32[c], lin[c]));
+                clut.push(predict_pcs(cal, rgb).map(u16_xyz));
             }
         }
     }
-    let b_out = [0, 1, 2].map(|c| {
+    (a_in, clut)
+}
+
+/// `A2B0` evaluated as a CMM does: PCS XYZ.
+fn a2b0_at(inputs: &[Vec<u16>; 3], grid: usize, clut: &[[u16; 3]], rgb: [f64; 3]) -> [f64; 3] {
+    let q = [0, 1, 2].map(|c| curve_at(&inputs[c], rgb[c]));
+    clut_at(grid, clut, q).map(|v| v * 65535.0 / 32768.0)
+}
+
+/// `B2A0`'s parts: matrix (s15Fixed16), input curves, table, output curves.
+struct B2a {
+    matrix: [[i32; 3]; 3],
+    inputs: [Vec<u16>; 3],
+    grid: usize,
+    clut: Vec<[u16; 3]>,
+    outputs: [Vec<u16>; 3],
+}
+
+impl B2a {
+    /// Device values for PCS XYZ, as a CMM evaluates the table.
+    fn at(&self, pcs: [f64; 3]) -> [f64; 3] {
+        let v = pcs.map(|x| x * 32768.0 / 65535.0);
+        let m = self.matrix.map(|r| r.map(|e| e as f64 / 65536.0));
+        let u = Mat3(m).apply(v);
+        let q = [0, 1, 2].map(|c| curve_at(&self.inputs[c], u[c]));
+        let o = clut_at(self.grid, &self.clut, q);
+        [0, 1, 2].map(|c| curve_at(&self.outputs[c], o[c]))
+    }
+}
+
+/// `B2A0` on a `grid`³ table (PCS XYZ → device).
+///
+/// The table's matrix (applied by CMMs to PCS XYZ input) is the inverse of the matrix/TRC
+/// part's PCS matrix, so it gives each channel's `τ_i` ([`MatrixPart`]) scaled into `[0, 1]`;
+/// the input curves turn that into the matrix/TRC model's device value `d`, extended by one
+/// node beyond `[0, 1]` at each end (`d ∈ [−δ, 1 + δ]`, `δ = 1/(grid − 3)`, so that `d = 0`
+/// and `d = 1` are nodes and `τ` is extended linearly by its secants over `δ`); the table
+/// holds the device values `D` whose model colour is the node's colour, solved in the same
+/// extended range (`f(D) = M·t(D) + K + L(clamp(D))`, Newton's method from `D = d`), and the
+/// output curves clip `D` to `[0, 1]`. For a model without channel interaction the table is
+/// the identity (`D = d`), so the inverse is exact up to 16-bit rounding; with interaction the
+/// table holds the lattice's correction, a small smooth function of `d`.
+fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
+    // margin nodes at each end: the fewest that reach B2A_MARGIN beyond the cube
+    let margin = (1..grid / 2)
+        .find(|n| *n as f64 / (grid - 1 - 2 * n) as f64 >= B2A_MARGIN)
+        .unwrap_or(1);
+    let delta = 1.0 / (grid - 1 - 2 * margin) as f64;
+    let reach = margin as f64 * delta;
+    let w = part.white;
+    let c_pcs = chad(w);
+    let mpcs = c_pcs.mul(&Mat3(part.matrix.map(|r| r.map(|v| v / w[1]))));
+    let k = part.k;
+    let tau = |c: usize, v: f64| (t_ext(cal, c, v, delta) + k[c]) / (1.0 + k[c]);
+    // the input range of each channel's τ, 0 … τ(1 + δ)
+    let top = [0, 1, 2].map(|c| tau(c, 1.0 + reach));
+    let inv = mpcs
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
+    let enc = 65535.0 / 32768.0;
+    let matrix: [[i32; 3]; 3] =
+        [0, 1, 2].map(|r| [0, 1, 2].map(|c| (inv.0[r][c] * enc / top[r] * 65536.0).round() as i32));
+    // what the stored matrix maps back: the node's PCS from its scaled τ
+    let stored = Mat3(matrix.map(|r| r.map(|e| e as f64 / 65536.0)));
+    let back = stored
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
+    // input curves: x = τ / top → (d + δ) / (1 + 2δ), d the extended device value
+    let span = 1.0 + 2.0 * reach;
+    let inputs = [0, 1, 2].map(|c| {
+        let lo = tau(c, -reach);
         (0..B2A_CURVE)
-            .map(|k| {
-                let l = k as f64 / (B2A_CURVE - 1) as f64 * B2A_SPAN - B2A_OFFSET;
-                u16_unit(curve_inverse(&curves32[c], l.clamp(0.0, 1.0)))
+            .map(|i| {
+                let u = i as f64 / (B2A_CURVE - 1) as f64 * top[c];
+                let d = if u <= lo {
+                    -reach
+                } else {
+                    // bisection on the monotone τ (42 halvings: below f64's step of the range)
+                    let (mut a, mut b) = (-reach, 1.0 + reach);
+                    for _ in 0..42 {
+                        let m = 0.5 * (a + b);
+                        if tau(c, m) < u {
+                            a = m;
+                        } else {
+                            b = m;
+                        }
+                    }
+                    0.5 * (a + b)
+                };
+                u16_unit((d + reach) / span)
             })
             .collect::<Vec<_>>()
     });
-    let b2a0 = mft2(&[ident(), ident(), ident()], &b_clut, &b_out);
+    let outputs = [0, 1, 2].map(|_| {
+        (0..B2A_CURVE)
+            .map(|i| u16_unit(i as f64 / (B2A_CURVE - 1) as f64 * B2A_OUT_SPAN - B2A_OUT_OFFSET))
+            .collect::<Vec<_>>()
+    });
+    // the model in the extended range
+    let m = cal.matrix();
+    let black = cal.data().black;
+    let lattice = cal.model().interaction();
+    let f = |d: [f64; 3]| {
+        let t = [0, 1, 2].map(|c| t_ext(cal, c, d[c], delta));
+        let l = lattice.map_or([0.0; 3], |l| {
+            l.eval(d.map(|v| v.clamp(0.0, 1.0) as f32)).map(f64::from)
+        });
+        [0, 1, 2].map(|r| m[r][0] * t[0] + m[r][1] * t[1] + m[r][2] * t[2] + black[r] + l[r])
+    };
+    let unchad = c_pcs
+        .inverse()
+        .map_err(|_| Error::Unprofilable("the white is degenerate"))?;
+    let node_d = |j: usize| (j as f64 - margin as f64) * delta;
+    let mut clut = Vec::with_capacity(grid.pow(3));
+    for r in 0..grid {
+        for g in 0..grid {
+            for b in 0..grid {
+                let d = [node_d(r), node_d(g), node_d(b)];
+                let u = [0, 1, 2].map(|c| tau(c, d[c]) / top[c]);
+                let pcs = back.apply(u).map(|v| v * enc);
+                let want = unchad.apply(pcs).map(|v| v * w[1]);
+                let sol = solve(&f, want, d, w[1]);
+                clut.push(sol.map(|v| u16_unit((v + B2A_OUT_OFFSET) / B2A_OUT_SPAN)));
+            }
+        }
+    }
+    Ok(B2a {
+        matrix,
+        inputs,
+        grid,
+        clut,
+        outputs,
+    })
+}
+
+/// Levenberg–Marquardt for `f(x) = want` from `x` (central-difference Jacobian over
+/// [`SECANT`], damping raised until the residual falls, at most 40 iterations): the best point.
+fn solve(
+    f: &impl Fn([f64; 3]) -> [f64; 3],
+    want: [f64; 3],
+    mut x: [f64; 3],
+    scale: f64,
+) -> [f64; 3] {
+    let res = |x: [f64; 3]| {
+        let p = f(x);
+        [0, 1, 2].map(|r| (p[r] - want[r]) / scale)
+    };
+    let norm = |r: [f64; 3]| r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    let mut r = res(x);
+    let mut cost = norm(r);
+    let mut mu = 1e-4;
+    for _ in 0..40 {
+        if cost < 1e-18 {
+            break;
+        }
+        let mut j = [[0.0; 3]; 3];
+        for c in 0..3 {
+            let (mut lo, mut hi) = (x, x);
+            lo[c] -= SECANT;
+            hi[c] += SECANT;
+            let (a, b) = (res(lo), res(hi));
+            for row in 0..3 {
+                j[row][c] = (b[row] - a[row]) / (2.0 * SECANT);
+            }
+        }
+        let mut a = [[0.0; 3]; 3];
+        let mut g = [0.0; 3];
+        for p in 0..3 {
+            for q in 0..3 {
+                a[p][q] = (0..3).map(|k| j[k][p] * j[k][q]).sum();
+            }
+            g[p] = (0..3).map(|k| j[k][p] * r[k]).sum();
+        }
+        let trace = a[0][0] + a[1][1] + a[2][2];
+        let mut moved = false;
+        for _ in 0..12 {
+            let mut m = a;
+            for p in 0..3 {
+                m[p][p] += mu * (a[p][p] + 1e-6 * trace) + 1e-30;
+            }
+            let Ok(mi) = Mat3(m).inverse() else {
+                mu *= 10.0;
+                continue;
+            };
+            let step = mi.apply(g);
+            let y = [0, 1, 2].map(|c| x[c] - step[c]);
+            let ry = res(y);
+            let cy = norm(ry);
+            if cy < cost {
+                (x, r, cost) = (y, ry, cy);
+                mu = (mu / 10.0).max(1e-12);
+                moved = true;
+                break;
+            }
+            mu *= 10.0;
+        }
+        if !moved {
+            break;
+        }
+    }
+    x
+}
+
+/// The step of [`solve`]'s central differences (device units).
+const SECANT: f64 = 1e-4;
+
+/// The round trip's worst error over [`check_colours`]: the model's PCS through `b2a`, and
+/// the model's colour of the device values it gives against that PCS (ΔE00: codes in a flat
+/// foot of a curve, or where the lattice folds the model, are colours the model cannot tell
+/// apart).
+fn b2a_check(cal: &Calibration, b2a: &B2a) -> f64 {
+    check_colours()
+        .iter()
+        .map(|rgb| {
+            let pcs = predict_pcs(cal, *rgb);
+            let back = b2a.at(pcs);
+            specpoly_core::delta_e2000_xyz(predict_pcs(cal, back), pcs, D50)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A measured `A2B0`: its worst ΔE00, input curves, grid side and table.
+type A2bCandidate = (f64, [Vec<u16>; 3], usize, Vec<[u16; 3]>);
+
+/// `A2B0` and `B2A0` sampled from the model, each on the smallest grid of [`GRIDS`] whose check
+/// passes (`A2B0`: within [`A2B_CHECK_DE`] of the model on [`check_colours`]; `B2A0`: those
+/// colours' model PCS back within [`B2A_CHECK_DE`]). See [`a2b0`] and [`b2a0`]: both tables
+/// are near-linear in their grids (A2B0 in light, B2A0 in the matrix/TRC model's device values),
+/// so for a model without channel interaction the first grid passes.
+pub fn lut16(cal: &Calibration) -> Result<(Vec<u8>, Vec<u8>)> {
+    let part = matrix_part(cal)?;
+    let curves = channel_curves(cal);
+    let check = check_colours();
+    let want: Vec<[f64; 3]> = check.iter().map(|c| predict_pcs(cal, *c)).collect();
+    // A2B0: the first (grid, input-curve power) that passes, else the best measured
+    let mut a: Option<A2bCandidate> = None;
+    'a: for grid in GRIDS {
+        for power in A2B_POWERS {
+            let (inputs, clut) = a2b0(cal, &curves, grid, power);
+            let worst = check
+                .iter()
+                .zip(&want)
+                .map(|(c, w)| {
+                    specpoly_core::delta_e2000_xyz(a2b0_at(&inputs, grid, &clut, *c), *w, D50)
+                })
+                .fold(0.0, f64::max);
+            if a.as_ref().is_none_or(|b| worst < b.0) {
+                a = Some((worst, inputs, grid, clut));
+            }
+            if worst <= A2B_CHECK_DE {
+                break 'a;
+            }
+        }
+    }
+    let (_, inputs, grid, clut) = a.expect("GRIDS is not empty");
+    let ident = || vec![0u16, 65535];
+    let a2b0 = mft2(
+        &IDENTITY,
+        &inputs,
+        grid,
+        &clut,
+        &[ident(), ident(), ident()],
+    );
+    let mut b: Option<(f64, B2a)> = None;
+    for grid in B2A_GRIDS {
+        let t = b2a0(cal, &part, grid)?;
+        let e = b2a_check(cal, &t);
+        if b.as_ref().is_none_or(|b| e < b.0) {
+            b = Some((e, t));
+        }
+        if e <= B2A_CHECK_DE {
+            break;
+        }
+    }
+    let (_, b) = b.expect("B2A_GRIDS is not empty");
+    let b2a0 = mft2(&b.matrix, &b.inputs, b.grid, &b.clut, &b.outputs);
     Ok((a2b0, b2a0))
 }
 
 /// Builds the profile's bytes. `description` goes into `desc`.
 pub fn build(cal: &Calibration, description: &str, opts: &IccOptions) -> Result<Vec<u8>> {
     let v2 = opts.version == IccVersion::V2;
-    let m = cal.matrix(); // rows X, Y, Z; columns R, G, B
-    let black = cal.data().black;
-    let inv = Mat3(m)
-        .inverse()
-        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
-    let k = inv.apply(black).map(|v| v.max(0.0));
-    // M' = M diag(1 + k)
-    let m1 = [0, 1, 2].map(|r| [0, 1, 2].map(|c| m[r][c] * (1.0 + k[c])));
-    let w = [0, 1, 2].map(|r| m1[r][0] + m1[r][1] + m1[r][2]);
-    if w[1].is_nan() || w[1] <= 0.0 {
-        return Err(Error::Unprofilable(
-            "the calibration's white has no luminance",
-        ));
-    }
+    let part = matrix_part(cal)?;
+    let (m1, k, w) = (part.matrix, part.k, part.white);
     let chad = chad(w);
     let col = |c: usize| chad.apply([m1[0][c] / w[1], m1[1][c] / w[1], m1[2][c] / w[1]]);
     let copyright = "No copyright; written by specpoly from a measured calibration";

@@ -109,7 +109,8 @@ pub struct IccArgs {
     /// The profile to write.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// The profile's description (`desc`); default: the calibration file's name.
+    /// The profile's description (`desc`); default: the display's name (the measurements' file
+    /// name), else the calibration file's name.
     #[arg(long)]
     pub description: Option<String>,
     /// ICC version: 2 (v2.4, read by every consumer, ArgyllCMS 2.3 included) or 4 (v4.4).
@@ -361,10 +362,19 @@ fn show(a: &ShowArgs) -> Result<()> {
 
 fn icc_cmd(a: &IccArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
-    let desc = a.description.clone().unwrap_or_else(|| {
-        a.calibration
-            .file_stem()
+    // the display's name: the measurements' file names it (a `.ti3` of DisplayCAL and
+    // ArgyllCMS is named after the display), the calibration file's name only without one
+    let stem = |p: &std::path::Path| {
+        p.file_stem()
             .map(|s| s.to_string_lossy().to_string())
+            .filter(|s| !s.is_empty())
+    };
+    let source = &cal.data().provenance.source;
+    let desc = a.description.clone().unwrap_or_else(|| {
+        (!source.is_empty())
+            .then(|| stem(std::path::Path::new(source)))
+            .flatten()
+            .or_else(|| stem(&a.calibration))
             .unwrap_or_else(|| "specpoly display".into())
     });
     let auto = icc::IccOptions::for_calibration(&cal);
