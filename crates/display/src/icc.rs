@@ -148,6 +148,24 @@ impl IccOptions {
     }
 }
 
+/// The profile description (`desc`) of the display calibrated in `cal`, loaded from
+/// `cal_path`: the stem of the measurements file it was fitted from (a `.ti3` of DisplayCAL
+/// and ArgyllCMS is named after the display), else the calibration file's stem. One rule for
+/// `calibrate icc` and for the profile `render --display` embeds.
+pub fn description(cal: &Calibration, cal_path: &std::path::Path) -> String {
+    let stem = |p: &std::path::Path| {
+        p.file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .filter(|s| !s.is_empty())
+    };
+    let source = &cal.data().provenance.source;
+    (!source.is_empty())
+        .then(|| stem(std::path::Path::new(source)))
+        .flatten()
+        .or_else(|| stem(cal_path))
+        .unwrap_or_else(|| "specpoly display".into())
+}
+
 /// Builds a v4 matrix/TRC profile's bytes. `description` goes into `desc`.
 pub fn profile(cal: &Calibration, description: &str) -> Result<Vec<u8>> {
     build(

@@ -212,11 +212,8 @@ pub fn colour_tag(spec: &DisplaySpec) -> Result<ColourTag> {
         DisplaySpec::Icc { bytes, .. } => ColourTag::Icc(bytes.clone()),
         DisplaySpec::Primaries(_) => ColourTag::None,
         DisplaySpec::Calibration { path, calibration } => {
-            // the description `specpoly calibrate icc` gives: the calibration file's stem
-            let desc = path
-                .file_stem()
-                .map(|s| s.to_string_lossy().to_string())
-                .unwrap_or_else(|| "specpoly display".into());
+            // the description `specpoly calibrate icc` gives
+            let desc = specpoly_display::icc::description(calibration, path);
             let opts = specpoly_display::icc::IccOptions::for_calibration(calibration);
             ColourTag::Icc(specpoly_display::icc::build(calibration, &desc, &opts)?)
         }

@@ -362,21 +362,10 @@ fn show(a: &ShowArgs) -> Result<()> {
 
 fn icc_cmd(a: &IccArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
-    // the display's name: the measurements' file names it (a `.ti3` of DisplayCAL and
-    // ArgyllCMS is named after the display), the calibration file's name only without one
-    let stem = |p: &std::path::Path| {
-        p.file_stem()
-            .map(|s| s.to_string_lossy().to_string())
-            .filter(|s| !s.is_empty())
-    };
-    let source = &cal.data().provenance.source;
-    let desc = a.description.clone().unwrap_or_else(|| {
-        (!source.is_empty())
-            .then(|| stem(std::path::Path::new(source)))
-            .flatten()
-            .or_else(|| stem(&a.calibration))
-            .unwrap_or_else(|| "specpoly display".into())
-    });
+    let desc = a
+        .description
+        .clone()
+        .unwrap_or_else(|| icc::description(&cal, &a.calibration));
     let auto = icc::IccOptions::for_calibration(&cal);
     let opts = icc::IccOptions {
         version: a.version.into(),
