@@ -283,3 +283,73 @@ fn short_light_refused_or_extrapolated() {
     let (_, out, _) = specpoly(&["light", pc.to_str().unwrap(), "--extrapolate"]);
     assert!(out.contains("extrapolated to 380-780 nm"), "{out}");
 }
+
+/// Several lights in one call: `FILE#*` is every column; CSV, JSON Lines and the table give
+/// one row a light, the white LED's row within the parity tolerances of colour-science 0.4.7
+/// and every row equal to that light's own single-light JSON.
+#[test]
+fn many_lights_one_row_each() {
+    let (code, out, err) = specpoly(&["light", "FL2", "data/leds/rgbwa.csv#*", "--csv"]);
+    assert_eq!(code, 0, "{err}");
+    let mut rows = out.lines();
+    let head: Vec<&str> = rows.next().unwrap().split(',').collect();
+    assert_eq!(head[0], "name");
+    let rows: Vec<Vec<&str>> = rows.map(|l| l.split(',').collect()).collect();
+    let names: Vec<&str> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(names.len(), 6, "{out}");
+    assert_eq!(names[0], "FL2");
+    assert!(
+        names[1..].iter().all(|n| n.contains("rgbwa.csv#")),
+        "{names:?}"
+    );
+    let col = |r: &[&str], k: &str| -> f64 {
+        r[head.iter().position(|h| *h == k).unwrap()]
+            .parse()
+            .unwrap()
+    };
+    let white = rows.iter().find(|r| r[0].ends_with("#white")).unwrap();
+    let cs = colour_science("rgbwa:0,0,0,1,0"); // x, y, cct, duv, ra, r9, rf, rg
+    assert!((col(white, "cct") - cs[2]).abs() < 5e-4 * cs[2]);
+    assert!((col(white, "duv") - cs[3]).abs() < 2e-5);
+    assert!((col(white, "r9") - cs[5]).abs() < 0.1);
+    assert!((col(white, "rf") - cs[6]).abs() < 0.05);
+    // a narrow-band red has no CCT: empty cells
+    let red = rows.iter().find(|r| r[0].ends_with("#red")).unwrap();
+    assert_eq!(red[head.iter().position(|h| *h == "rf").unwrap()], "");
+    for r in &rows {
+        let (code, one, err) = specpoly(&["light", r[0], "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&one).unwrap();
+        for (k, h) in head.iter().enumerate().skip(1).take(13) {
+            match v[*h].as_f64() {
+                Some(want) => assert_eq!(r[k].parse::<f64>().unwrap(), want, "{} {h}", r[0]),
+                None => assert_eq!(r[k], "", "{} {h}", r[0]),
+            }
+        }
+    }
+    // JSON Lines, the name first
+    let (code, out, _) = specpoly(&["light", "FL2", "D65", "--json"]);
+    assert_eq!(code, 0);
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    assert_eq!(lines[1]["name"], "D65");
+    assert!(
+        (lines[1]["cct"].as_f64().unwrap() - 6504.0).abs() < 2.0,
+        "{out}"
+    );
+    // the table: a header comment, the column heads, one row a light
+    let (code, out, _) = specpoly(&["light", "FL2", "D65", "A"]);
+    assert_eq!(code, 0);
+    assert_eq!(out.lines().count(), 2 + 3, "{out}");
+    assert!(out.lines().nth(4).unwrap().starts_with("A "), "{out}");
+    // one bad light fails the call with its name
+    let (code, out, err) = specpoly(&["light", "FL2", "no-such.csv", "--csv"]);
+    assert_ne!(code, 0);
+    assert!(
+        out.is_empty() && err.lines().count() == 1 && err.contains("no-such.csv"),
+        "{err}"
+    );
+}

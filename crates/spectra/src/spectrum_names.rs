@@ -157,6 +157,15 @@ pub fn resolve_all<S: AsRef<str>>(specs: &[S]) -> Result<Vec<Named>> {
     Ok(out)
 }
 
+/// Resolves lights: `FILE#*` is every column of the file, anything else one light ([`light`]).
+pub fn lights(spec: &str) -> Result<Vec<Named>> {
+    if spec.ends_with("#*") {
+        resolve(spec)
+    } else {
+        Ok(vec![light(spec)?])
+    }
+}
+
 /// Resolves a light: a built-in illuminant name, or a file / `FILE#COLUMN` with one spectrum.
 pub fn light(spec: &str) -> Result<Named> {
     if let Some(n) = illuminant(spec) {

@@ -4,20 +4,26 @@
 use crate::error::Result;
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{report, LightReport};
-use specpoly_spectra::spectrum_names;
+use specpoly_spectra::spectrum_names::{self, Named};
 use std::fmt::Write as _;
 
 /// Arguments of `specpoly light`.
 #[derive(Debug, clap::Args)]
 pub struct LightArgs {
-    /// The light's spectral power distribution: FILE.csv, FILE.csv#COLUMN, or a built-in
-    /// illuminant (A, D50, D65, E, FL2, FL7, FL11).
-    #[arg(value_name = "SPD")]
-    pub spd: String,
+    /// The lights' spectral power distributions: FILE.csv, FILE.csv#COLUMN, FILE.csv#* (every
+    /// column), or a built-in illuminant (A, D50, D65, E, FL2, FL7, FL11). Several lights print
+    /// one row each.
+    #[arg(value_name = "SPD", required = true, num_args = 1..)]
+    pub spd: Vec<String>,
     /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg} (and
-    /// extrapolated_from_nm when --extrapolate was needed).
-    #[arg(long)]
+    /// extrapolated_from_nm when --extrapolate was needed); several lights as JSON Lines, one
+    /// object a light with its "name" first.
+    #[arg(long, conflicts_with = "csv")]
     pub json: bool,
+    /// Print CSV (RFC 4180): a header, then one row a light with its name first; an empty cell
+    /// where a metric is undefined.
+    #[arg(long)]
+    pub csv: bool,
     /// A light tabulated over less than 380-780 nm: hold its end values to that range (CIE
     /// 015:2018's extrapolation) instead of refusing it; the output says so.
     #[arg(long)]
@@ -49,6 +55,7 @@ pub(crate) fn chromaticity_cells(xyuv: [f64; 4], cct: Option<f64>, duv: Option<f
 
 /// Formats the text output.
 pub fn text(name: &str, r: &LightReport) -> String {
+    let name = specpoly_formats::escape::one_line(name);
     let mut o = String::new();
     if let Some([lo, hi]) = r.extrapolated_from_nm {
         let _ = writeln!(
@@ -89,12 +96,142 @@ pub fn text(name: &str, r: &LightReport) -> String {
     o
 }
 
+/// One light's report with its name first (JSON Lines).
+#[derive(serde::Serialize)]
+struct NamedReport<'a> {
+    name: &'a str,
+    #[serde(flatten)]
+    report: &'a LightReport,
+}
+
+/// The table of several lights: one row each, the name first.
+pub fn table(rows: &[(Named, LightReport)]) -> String {
+    let width = rows
+        .iter()
+        .map(|(n, _)| n.name.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "# XYZ = Km·ΣS·x̄Δλ (CIE 1931); CCT, Duv; CIE 13.3 Ra, R9; CIE 224:2017 Rf, TM-30 Rg          ('-': more than 0.05 Duv from the Planckian locus; '*': extrapolated to 380-780 nm)"
+    );
+    let _ = writeln!(
+        o,
+        "{:width$} {:>12} {} {:>6} {:>7} {:>6} {:>6}",
+        "name",
+        "Y",
+        chromaticity_head(),
+        "ra",
+        "r9",
+        "rf",
+        "rg"
+    );
+    for (n, r) in rows {
+        let name = format!(
+            "{}{}",
+            specpoly_formats::escape::one_line(&n.name),
+            if r.extrapolated_from_nm.is_some() {
+                "*"
+            } else {
+                ""
+            }
+        );
+        let _ = writeln!(
+            o,
+            "{name:width$} {:>12.4} {} {:>6} {:>7} {:>6} {:>6}",
+            r.big_y,
+            chromaticity_cells([r.x, r.y, r.u_prime, r.v_prime], r.cct, r.duv),
+            opt(r.ra, 1),
+            opt(r.r9, 1),
+            opt(r.rf, 1),
+            opt(r.rg, 1)
+        );
+    }
+    o
+}
+
+/// The CSV of the lights: a header, one row a light.
+pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let cell = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
+    let head = [
+        "name",
+        "X",
+        "Y",
+        "Z",
+        "x",
+        "y",
+        "u_prime",
+        "v_prime",
+        "cct",
+        "duv",
+        "ra",
+        "r9",
+        "rf",
+        "rg",
+        "extrapolated_from_nm",
+    ];
+    let io = |e: csv::Error| crate::error::CliError::Data(e.to_string());
+    w.write_record(head).map_err(io)?;
+    for (n, r) in rows {
+        let ext = r
+            .extrapolated_from_nm
+            .map_or(String::new(), |[lo, hi]| format!("{lo}-{hi}"));
+        w.write_record([
+            n.name.clone(),
+            r.big_x.to_string(),
+            r.big_y.to_string(),
+            r.big_z.to_string(),
+            r.x.to_string(),
+            r.y.to_string(),
+            r.u_prime.to_string(),
+            r.v_prime.to_string(),
+            cell(r.cct),
+            cell(r.duv),
+            cell(r.ra),
+            cell(r.r9),
+            cell(r.rf),
+            cell(r.rg),
+            ext,
+        ])
+        .map_err(io)?;
+    }
+    let bytes = w
+        .into_inner()
+        .map_err(|e| crate::error::CliError::Data(e.to_string()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
 /// Runs `specpoly light`.
 pub fn run(a: &LightArgs) -> Result<()> {
-    let named = spectrum_names::light(&a.spd)?;
-    let r = report(&named, a.extrapolate)?;
-    if a.json {
-        return Ok(print_json(&r)?);
+    let mut rows = Vec::new();
+    for spec in &a.spd {
+        for named in spectrum_names::lights(spec)? {
+            let r = report(&named, a.extrapolate)?;
+            rows.push((named, r));
+        }
     }
-    Ok(specpoly_formats::stdout::print(&text(&named.name, &r))?)
+    let single = a.spd.len() == 1 && !a.spd[0].ends_with("#*");
+    let out = match (a.json, a.csv, single) {
+        (true, _, true) => return Ok(print_json(&rows[0].1)?),
+        (true, _, false) => {
+            let mut o = String::new();
+            for (n, r) in &rows {
+                let line = serde_json::to_string(&NamedReport {
+                    name: &n.name,
+                    report: r,
+                })
+                .map_err(|e| crate::error::CliError::Data(e.to_string()))?;
+                o += &line;
+                o.push('\n');
+            }
+            o
+        }
+        (false, true, _) => csv(&rows)?,
+        (false, false, true) => text(&rows[0].0.name, &rows[0].1),
+        (false, false, false) => table(&rows),
+    };
+    Ok(specpoly_formats::stdout::print(&out)?)
 }
