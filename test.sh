@@ -19,6 +19,8 @@ command -v spotread >/dev/null 2>&1 || missing+=(argyll)
 command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`'s video LUT
 [ -x /bin/kill ] || missing+=(procps)   # that test ends the X server's process group with kill
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
+command -v exrheader >/dev/null 2>&1 || missing+=(openexr)   # reads our EXR attributes
+command -v oiiotool >/dev/null 2>&1 || missing+=(openimageio-tools)   # so does OpenImageIO
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing ${missing[*]} (apt)"
@@ -30,7 +32,8 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc; do
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
+  exrheader oiiotool; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then

@@ -5,9 +5,11 @@
 //!   chunk for the sRGB display, or the display's ICC profile in an `iCCP` chunk when rendering
 //!   for a calibrated display (a calibration file; the profile is the one
 //!   `specpoly calibrate icc` writes). A plain display TOML has no profile and gets no chunk.
-//! - `.exr` (OpenEXR, 32-bit float, `exr` crate): **linear** values, unclipped, either in the
-//!   display's RGB (its primaries; the scene white, after white balance, at `(1, 1, 1)`) or in
-//!   CIE XYZ (`X`, `Y`, `Z` channels, the scene white at `Y = 1`).
+//! - `.exr` (OpenEXR, 32-bit float, `exr` crate): **linear** values, unclipped, in `R G B`
+//!   channels with a `chromaticities` attribute, either the display's RGB (its primaries; the
+//!   scene white, after white balance, at `(1, 1, 1)`) or CIE XYZ (OpenEXR's XYZ convention:
+//!   X, Y, Z in `R G B`, chromaticities red `(1, 0)`, green `(0, 1)`, blue `(0, 0)`, white
+//!   `(⅓, ⅓)`; the scene white at `Y = 1`), so every EXR reader knows what the values are.
 //!
 //! Every file is written whole or not at all (the project's atomic writer).
 
@@ -172,6 +174,24 @@ pub fn write_png(
     })?)
 }
 
+/// The EXR `chromaticities` attribute (OpenEXR's `ImfChromaticities`): the xy of the RGB
+/// channels' primaries and of `R = G = B`. Display RGB: the display's primaries and the
+/// chromaticity of their sum (the linear values are `M⁻¹·XYZ`, black excluded, so `(1, 1, 1)`
+/// is `M·1`). XYZ: OpenEXR's convention for CIE XYZ in `R G B` channels, red `(1, 0)`,
+/// green `(0, 1)`, blue `(0, 0)`, white `(⅓, ⅓)`, which readers turn back into XYZ exactly.
+pub fn exr_chromaticities(out: &Output, space: ExrSpace) -> [[f32; 2]; 4] {
+    match space {
+        ExrSpace::Xyz => [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0], [1.0 / 3.0, 1.0 / 3.0]],
+        ExrSpace::Rgb => {
+            let d = &out.display;
+            let (xy, _) = d.primaries();
+            let w = d.white() - d.black();
+            let sum = w.x + w.y + w.z;
+            [xy[0], xy[1], xy[2], [w.x / sum, w.y / sum]]
+        }
+    }
+}
+
 fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<()> {
     use exr::prelude::*;
     let w = img.width as usize;
@@ -183,19 +203,22 @@ fn write_exr(path: &Path, img: &Image, out: &Output, space: ExrSpace) -> Result<
             .map(|x| x.scale(out.exposure / 100.0).to_array())
             .collect(),
     };
-    let names = match space {
-        ExrSpace::Rgb => ["R", "G", "B"],
-        ExrSpace::Xyz => ["X", "Y", "Z"],
-    };
     let channels = SpecificChannels::build()
-        .with_channel(names[0])
-        .with_channel(names[1])
-        .with_channel(names[2])
+        .with_channel("R")
+        .with_channel("G")
+        .with_channel("B")
         .with_pixel_fn(|p: Vec2<usize>| {
             let v = px[p.y() * w + p.x()];
             (v[0], v[1], v[2])
         });
-    let image = Image::from_channels((img.width as usize, img.height as usize), channels);
+    let mut image = Image::from_channels((img.width as usize, img.height as usize), channels);
+    let [r, g, b, white] = exr_chromaticities(out, space);
+    image.attributes.chromaticities = Some(exr::meta::attribute::Chromaticities {
+        red: Vec2(r[0], r[1]),
+        green: Vec2(g[0], g[1]),
+        blue: Vec2(b[0], b[1]),
+        white: Vec2(white[0], white[1]),
+    });
     Ok(specpoly_formats::atomic::write_with(path, |f| {
         image
             .write()
