@@ -2,9 +2,12 @@
 //! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8;
 //! `bench/bvh-compare` measures it against the `bvh` crate, docs/performance.md).
 //!
-//! Triangles are one-sided for nothing: a hit reports the geometric normal `(v1 − v0) × (v2 − v0)`
-//! normalised, and the tracers flip it toward the viewer as for every other shape. Shading uses
-//! the geometric (flat) normal.
+//! Triangles are one-sided for nothing: a hit reports a unit normal and the tracers flip it toward
+//! the viewer as for every other shape. A triangle without vertex normals reports its geometric
+//! normal `(v1 − v0) × (v2 − v0)` normalised (flat shading); one whose file gives vertex normals
+//! (OBJ `vn`, PLY `nx ny nz`) reports them interpolated at the hit by its barycentric
+//! coordinates, `n = normalize(b₀n₀ + b₁n₁ + b₂n₂)` (Phong 1975), so a low-poly model shades
+//! smoothly. A scene whose meshes have no vertex normals stores none (36 bytes a triangle less).
 //!
 //! Below the scene file: PLY files are read by [`crate::mesh_ply`] on top of this module, and
 //! the scene file picks the reader by the file's name ([`crate::scene_geometry`]).
@@ -46,6 +49,8 @@ pub struct Triangles {
     tris: Vec<Triangle>,
     /// Unit geometric normals, in BVH order.
     normals: Vec<V3>,
+    /// Unit vertex normals, in BVH order; empty when no triangle of the scene has them.
+    shading: Vec<[V3; 3]>,
     /// Owner of each triangle, in BVH order.
     owners: Vec<Owner>,
     /// `None` when there are no triangles.
@@ -59,6 +64,20 @@ pub struct TriangleSoup {
     pub tris: Vec<[V3; 3]>,
     /// Owner of each.
     pub owners: Vec<Owner>,
+    /// Vertex normals of each (the geometric normal thrice for a flat triangle); empty until
+    /// a triangle with vertex normals is added.
+    pub shading: Vec<[V3; 3]>,
+}
+
+/// The unit geometric normal of a triangle (zero for a degenerate one).
+fn geometric(t: &[V3; 3]) -> V3 {
+    let n = (t[1] - t[0]).cross(t[2] - t[0]);
+    let l = n.length();
+    if l > 0.0 {
+        n * (1.0 / l)
+    } else {
+        V3::new(0.0, 0.0, 0.0)
+    }
 }
 
 impl TriangleSoup {
@@ -71,9 +90,38 @@ impl TriangleSoup {
     /// Adds one triangle belonging to `owner` (degenerate ones are dropped).
     pub fn push_owned(&mut self, t: [V3; 3], owner: Owner) {
         if (t[1] - t[0]).cross(t[2] - t[0]).length() > 0.0 {
+            if !self.shading.is_empty() {
+                let n = geometric(&t);
+                self.shading.push([n; 3]);
+            }
             self.tris.push(t);
             self.owners.push(owner);
         }
+    }
+
+    /// Adds one triangle of material `material` with vertex normals `n` (each normalised; a
+    /// zero or non-finite one is replaced by the geometric normal). Degenerate triangles are
+    /// dropped.
+    pub fn push_smooth(&mut self, t: [V3; 3], n: [V3; 3], material: usize) {
+        if (t[1] - t[0]).cross(t[2] - t[0]).length() <= 0.0 {
+            return;
+        }
+        if self.shading.is_empty() {
+            // the triangles before this one are flat
+            self.shading = self.tris.iter().map(|t| [geometric(t); 3]).collect();
+        }
+        let g = geometric(&t);
+        let unit = |v: V3| {
+            let l = v.length();
+            if l.is_finite() && l > 0.0 {
+                v * (1.0 / l)
+            } else {
+                g
+            }
+        };
+        self.shading.push(n.map(unit));
+        self.tris.push(t);
+        self.owners.push(Owner::Material(material));
     }
 
     /// A planar quad `a b c d` (in order around its edge) as the triangles `abc` and `acd`.
@@ -109,9 +157,15 @@ impl TriangleSoup {
             .map(|t| v3((t.v1 - t.v0).cross(t.v2 - t.v0).normalize_or_zero()))
             .collect();
         let owners = order.iter().map(|&i| self.owners[i]).collect();
+        let shading = if self.shading.is_empty() {
+            Vec::new()
+        } else {
+            order.iter().map(|&i| self.shading[i]).collect()
+        };
         Triangles {
             tris,
             normals,
+            shading,
             owners,
             bvh: Some(bvh),
         }
@@ -137,9 +191,33 @@ impl Triangles {
         let mut hit = RayHit::none();
         if bvh.ray_traverse(r, &mut hit, |r, id| self.tris[id].intersect(r)) {
             let i = hit.primitive_id as usize;
-            Some((hit.t, self.normals[i], self.owners[i]))
+            let n = match self.shading.get(i) {
+                Some(vn) => self.interpolated(i, vn, ray.origin + ray.dir * hit.t),
+                None => self.normals[i],
+            };
+            Some((hit.t, n, self.owners[i]))
         } else {
             None
+        }
+    }
+
+    /// The vertex normals `vn` of triangle `i` interpolated at its point `p` (barycentric
+    /// coordinates from the normal equations of `p − v0 = b₁e₁ + b₂e₂`); the geometric normal
+    /// where they cancel.
+    fn interpolated(&self, i: usize, vn: &[V3; 3], p: V3) -> V3 {
+        let t = &self.tris[i];
+        let (e1, e2, d) = (v3(t.v1 - t.v0), v3(t.v2 - t.v0), p - v3(t.v0));
+        let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (p1, p2) = (d.dot(e1), d.dot(e2));
+        let det = a * c - b * b;
+        let b1 = ((c * p1 - b * p2) / det).clamp(0.0, 1.0);
+        let b2 = ((a * p2 - b * p1) / det).clamp(0.0, 1.0 - b1);
+        let n = vn[0] * (1.0 - b1 - b2) + vn[1] * b1 + vn[2] * b2;
+        let l = n.length();
+        if l.is_finite() && l > 1e-6 {
+            n * (1.0 / l)
+        } else {
+            self.normals[i]
         }
     }
 
@@ -235,9 +313,19 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
             }
             Ok(v * place.scale + place.translate)
         };
+        // vertex normals (`vn`), one per position after tobj's single indexing; scaling and
+        // translating the mesh leaves them as they are
+        let nv = &mesh.normals;
+        let normal = |i: u32| -> Option<V3> {
+            let i = i as usize * 3;
+            nv.get(i..i + 3).map(|n| V3::new(n[0], n[1], n[2]))
+        };
         for f in mesh.indices.chunks_exact(3) {
             let t = [vertex(f[0])?, vertex(f[1])?, vertex(f[2])?];
-            soup.push(t, material);
+            match (normal(f[0]), normal(f[1]), normal(f[2])) {
+                (Some(a), Some(b), Some(c)) => soup.push_smooth(t, [a, b, c], material),
+                _ => soup.push(t, material),
+            }
             if soup.tris.len() > MAX_TRIANGLES {
                 return Err(mesh_error(
                     path,
@@ -310,6 +398,108 @@ mod tests {
             true
         });
         assert_eq!(n, 1);
+    }
+
+    /// Vertex normals interpolated at the hit follow the sphere a coarse mesh approximates:
+    /// the worst angle to the exact normal is a small fraction of the flat normals'.
+    #[test]
+    fn smooth_normals_follow_the_sphere() {
+        let (c, n) = (V3::new(0.0, 0.0, 5.0), 8);
+        let mut flat = TriangleSoup::default();
+        uv_sphere(n, c, 1.0, 0, &mut flat);
+        let mut smooth = TriangleSoup::default();
+        for t in &flat.tris {
+            smooth.push_smooth(*t, t.map(|p| p - c), 0);
+        }
+        let (flat, smooth) = (flat.build(), smooth.build());
+        let (mut worst_flat, mut worst_smooth) = (0.0f32, 0.0f32);
+        for k in 0..400 {
+            let (a, b) = (
+                (k % 20) as f32 * 0.009 - 0.09,
+                (k / 20) as f32 * 0.009 - 0.09,
+            );
+            let r = ray([0.0; 3], [a, b, 1.0]);
+            let exact = super::super::geometry::Shape::Sphere {
+                center: c,
+                radius: 1.0,
+            }
+            .intersect(&r, 1e9)
+            .unwrap();
+            let p = r.origin + r.dir * smooth.intersect(&r, 1e9).unwrap().0;
+            let want = (p - c) * (1.0 / (p - c).length());
+            let angle = |m: V3| m.dot(want).clamp(-1.0, 1.0).acos();
+            worst_smooth = worst_smooth.max(angle(smooth.intersect(&r, 1e9).unwrap().1));
+            worst_flat = worst_flat.max(angle(flat.intersect(&r, 1e9).unwrap().1));
+            assert!(exact.t > 0.0);
+        }
+        assert!(worst_flat > 0.1, "{worst_flat}");
+        assert!(
+            worst_smooth < 0.2 * worst_flat,
+            "{worst_smooth} vs {worst_flat}"
+        );
+    }
+
+    /// An OBJ with `vn` and a PLY with `nx ny nz`: at a vertex the normal is that vertex's,
+    /// at the centroid the normalised mean of the three; without normals, the face's.
+    #[test]
+    fn files_vertex_normals_are_interpolated() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = dir.path().join("t.obj");
+        std::fs::write(
+            &obj,
+            "v -1 -1 2\nv 1 -1 2\nv 0 1 2\nvn 0.6 0 -0.8\nvn 0 0.6 -0.8\nvn 0 0 -1\nf 1//1 2//2 3//3\n",
+        )
+        .unwrap();
+        let ply = dir.path().join("t.ply");
+        std::fs::write(
+            &ply,
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+             element face 1\nproperty list uchar int vertex_indices\nend_header\n\
+             -1 -1 2 0.6 0 -0.8\n1 -1 2 0 0.6 -0.8\n0 1 2 0 0 -1\n3 0 1 2\n",
+        )
+        .unwrap();
+        let map = BTreeMap::new();
+        let place = ObjPlacement {
+            scale: 1.0,
+            translate: V3::new(0.0, 0.0, 0.0),
+            default: 0,
+            map: &map,
+        };
+        let mean = V3::new(0.6, 0.6, -2.6);
+        let mean = mean * (1.0 / mean.length());
+        for path in [&obj, &ply] {
+            let mut s = TriangleSoup::default();
+            if path == &obj {
+                load_obj(path, &place, &mut s).unwrap();
+            } else {
+                crate::mesh_ply::load_ply(path, &place, &mut s).unwrap();
+            }
+            let t = s.build();
+            let at = |x: f32, y: f32| {
+                t.intersect(&ray([x, y, 0.0], [0.0, 0.0, 1.0]), 1e9)
+                    .unwrap()
+                    .1
+            };
+            let n = at(-1.0 / 3.0 + 1.0 / 3.0, -1.0 / 3.0);
+            assert!((n.dot(mean) - 1.0).abs() < 1e-5, "{path:?}: {n:?}");
+            let n = at(-0.999, -0.9985);
+            assert!(
+                (n.dot(V3::new(0.6, 0.0, -0.8)) - 1.0).abs() < 1e-3,
+                "{path:?}: {n:?}"
+            );
+        }
+        // the same triangle without normals is flat
+        std::fs::write(&obj, "v -1 -1 2\nv 1 -1 2\nv 0 1 2\nf 1 2 3\n").unwrap();
+        let mut s = TriangleSoup::default();
+        load_obj(&obj, &place, &mut s).unwrap();
+        assert!(s.shading.is_empty());
+        let n = s
+            .build()
+            .intersect(&ray([0.0, -0.3, 0.0], [0.0, 0.0, 1.0]), 1e9)
+            .unwrap()
+            .1;
+        assert!((n.z.abs() - 1.0).abs() < 1e-6);
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! and binary, read with `ply-rs-bw` (the maintained fork of `ply-rs`). The `vertex` element's
 //! `x y z` (float or double) and the `face` element's index list (`vertex_indices` or
 //! `vertex_index`, any integer type) are used; polygons are triangulated as fans, like OBJ
-//! faces. Other elements and properties (normals, colours) are ignored.
+//! faces. Vertex normals (`nx ny nz`, all three) make the mesh smooth-shaded ([`crate::mesh`]);
+//! other elements and properties (colours, texture coordinates) are ignored.
 //!
 //! Bounded work: the file is read whole through [`specpoly_formats::read::bytes`] (at most 64 MiB) and
 //! the header's element counts are checked against its size before the payload is parsed, so a
@@ -67,6 +68,7 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
     let empty = Vec::new();
     let verts = payload.get("vertex").unwrap_or(&empty);
     let mut v = Vec::with_capacity(verts.len());
+    let mut normals = Vec::new();
     for (i, e) in verts.iter().enumerate() {
         let c = |k: &str| {
             scalar(e.get(k))
@@ -78,7 +80,17 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
             return Err(bad(format!("vertex {i} is not finite in f32")));
         }
         v.push(p * place.scale + place.translate);
+        if let (Some(x), Some(y), Some(z)) = (
+            scalar(e.get("nx")),
+            scalar(e.get("ny")),
+            scalar(e.get("nz")),
+        ) {
+            // a non-finite normal becomes the face's own (`TriangleSoup::push_smooth`)
+            normals.push(V3::new(x as f32, y as f32, z as f32));
+        }
     }
+    // every vertex has a normal, or the mesh is flat
+    let smooth = !v.is_empty() && normals.len() == v.len();
     let before = soup.tris.len();
     for (i, f) in payload.get("face").unwrap_or(&empty).iter().enumerate() {
         let idx = indices(f.get("vertex_indices").or_else(|| f.get("vertex_index")))
@@ -94,7 +106,14 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
         }
         let a = vertex(idx[0])?;
         for w in idx[1..].windows(2) {
-            soup.push([a, vertex(w[0])?, vertex(w[1])?], place.default);
+            let t = [a, vertex(w[0])?, vertex(w[1])?];
+            if smooth {
+                // the indices were checked by `vertex` above
+                let n = |k: i64| normals[k as usize];
+                soup.push_smooth(t, [n(idx[0]), n(w[0]), n(w[1])], place.default);
+            } else {
+                soup.push(t, place.default);
+            }
             if soup.tris.len() > MAX_TRIANGLES {
                 return Err(bad(format!(
                     "more than {MAX_TRIANGLES} triangles in the scene"
