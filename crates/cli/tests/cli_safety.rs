@@ -220,3 +220,67 @@ fn implausible_reflectances_are_refused_with_a_hint() {
     assert_eq!(r.code, 1, "{}", r.stderr);
     assert!(!r.stdout.contains("inf") && !r.stdout.to_lowercase().contains("nan"));
 }
+
+/// The input limit (64 MiB by default) is the user's to raise or lower with
+/// `--max-input-size`: a mesh over it is a one-line error that names the option, the same
+/// mesh renders under a larger limit, and a size that is not one is a usage error.
+#[test]
+fn the_input_limit_is_settable() {
+    let dir = tempfile::tempdir().unwrap();
+    // a 10 × 10 grid of quads, ≈ 2.5 KB of OBJ
+    let mut obj = String::new();
+    for j in 0..=10 {
+        for i in 0..=10 {
+            obj += &format!("v {} {} 3\n", i as f32 / 5.0 - 1.0, j as f32 / 5.0 - 1.0);
+        }
+    }
+    for j in 0..10 {
+        for i in 0..10 {
+            let v = |a: usize, b: usize| (b * 11 + a + 1).to_string();
+            obj += &format!(
+                "f {} {} {} {}\n",
+                v(i, j),
+                v(i + 1, j),
+                v(i + 1, j + 1),
+                v(i, j + 1)
+            );
+        }
+    }
+    assert!(obj.len() > 2048);
+    std::fs::write(dir.path().join("grid.obj"), &obj).unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, 1.0]\n[[light]]\n\
+         position = [0.0, 0.0, 0.0]\nspectrum = \"D65\"\n[materials.grey]\ndiffuse = 0.5\n\
+         [[mesh]]\nfile = \"grid.obj\"\nmaterial = \"grey\"\n",
+    )
+    .unwrap();
+    let out = dir.path().join("o.png");
+    let args = |limit: &'static str| {
+        vec![
+            "render",
+            s(&scene),
+            "--size",
+            "8x8",
+            "-o",
+            s(&out),
+            "--max-input-size",
+            limit,
+        ]
+    };
+    let r = specpoly(&args("2K"));
+    fails(&r, 1, "--max-input-size");
+    assert!(
+        r.stderr.contains("grid.obj") && r.stderr.contains("2 KiB"),
+        "{}",
+        r.stderr
+    );
+    assert!(!out.exists());
+    let r = specpoly(&args("1M"));
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert!(out.exists());
+    for bad in ["0", "12X", "2T", "-1"] {
+        fails(&specpoly(&args(bad)), 2, bad);
+    }
+}

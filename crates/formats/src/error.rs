@@ -35,13 +35,13 @@ pub enum Error {
         /// The path.
         path: String,
     },
-    /// An input file larger than [`crate::read::MAX_INPUT_BYTES`].
-    #[error("{path}: larger than {limit_mib} MiB; not an input file this tool reads")]
+    /// An input file larger than [`crate::read::max_input_bytes`].
+    #[error("{path}: larger than the input limit of {} (--max-input-size raises it)", crate::read::size_text(*.limit))]
     TooLarge {
         /// The file.
         path: String,
-        /// The limit (MiB).
-        limit_mib: u64,
+        /// The limit, bytes.
+        limit: u64,
     },
     /// A text file that is not UTF-8.
     #[error("{path}: not UTF-8 text (invalid byte at offset {offset})")]

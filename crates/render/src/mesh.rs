@@ -274,8 +274,33 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
         single_index: true,
         ..Default::default()
     };
-    let (models, mtl) = tobj::load_obj(path, &opts)
+    // the OBJ and its `.mtl` files through the bounded, regular-file read (a `mtllib` naming a
+    // device or a FIFO is refused, never read); `tobj` parses the bytes
+    let bytes = specpoly_formats::read::bytes(path)?;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    let mtl_error = std::cell::RefCell::new(None);
+    let load_mtl = |name: &Path| -> tobj::MTLLoadResult {
+        let mtl_path = folder.join(name);
+        // a missing `.mtl` is not an error (its faces take the default material); one that
+        // cannot be read safely, or that `tobj` would panic on, is
+        let problem = match specpoly_formats::read::bytes(&mtl_path) {
+            Ok(b) => match check_mtl(&b) {
+                Ok(()) => return tobj::load_mtl_buf(&mut &b[..]),
+                Err(why) => why,
+            },
+            Err(specpoly_formats::Error::Missing { .. }) => {
+                return Err(tobj::LoadError::OpenFileFailed)
+            }
+            Err(e) => e.to_string(),
+        };
+        *mtl_error.borrow_mut() = Some(problem);
+        Err(tobj::LoadError::OpenFileFailed)
+    };
+    let (models, mtl) = tobj::load_obj_buf(&mut &bytes[..], &opts, load_mtl)
         .map_err(|e| mesh_error(path, format!("not a readable OBJ file: {e}")))?;
+    if let Some(why) = mtl_error.into_inner() {
+        return Err(mesh_error(path, format!("its material library: {why}")));
+    }
     // a missing .mtl is not an error: its faces take the default material
     let mtl_names: Vec<String> = mtl
         .map(|m| m.into_iter().map(|m| m.name).collect())
@@ -335,6 +360,22 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
         }
     }
     Ok(soup.tris.len() - before)
+}
+
+/// Checks a `.mtl` file's colour lines before `tobj` parses them: `Ka`/`Kd`/`Ks`/`Ke` with fewer
+/// than three values make `tobj` 4 panic (it unwraps a short array), so they are refused here
+/// with the line.
+fn check_mtl(bytes: &[u8]) -> std::result::Result<(), String> {
+    let text = String::from_utf8_lossy(bytes);
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if let Some(k @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
+            if words.count() < 3 {
+                return Err(format!("line {}: `{k}` needs three numbers", i + 1));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A procedural test mesh: a unit sphere subdivided as a latitude–longitude grid of `n × 2n`
@@ -500,6 +541,37 @@ mod tests {
             .unwrap()
             .1;
         assert!((n.z.abs() - 1.0).abs() < 1e-6);
+    }
+
+    /// A material library `tobj` would panic on (a colour with two numbers) or one that is not
+    /// a regular file (a device) is a one-line error; a missing one leaves the default material.
+    #[test]
+    fn material_libraries_are_checked_before_tobj() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = dir.path().join("t.obj");
+        let map = BTreeMap::new();
+        let place = ObjPlacement {
+            scale: 1.0,
+            translate: V3::new(0.0, 0.0, 0.0),
+            default: 7,
+            map: &map,
+        };
+        let tri = "v -1 -1 2\nv 1 -1 2\nv 0 1 2\nusemtl a\nf 1 2 3\n";
+        let load = |mtllib: &str| {
+            std::fs::write(&obj, format!("mtllib {mtllib}\n{tri}")).unwrap();
+            let mut s = TriangleSoup::default();
+            load_obj(&obj, &place, &mut s).map(|_| s)
+        };
+        std::fs::write(dir.path().join("short.mtl"), "newmtl a\nKd 0.5 0.5\n").unwrap();
+        let e = load("short.mtl").unwrap_err().to_string();
+        assert!(
+            e.contains("line 2") && e.contains("Kd") && !e.contains('\n'),
+            "{e}"
+        );
+        let e = load("/dev/zero").unwrap_err().to_string();
+        assert!(e.contains("/dev/zero"), "{e}");
+        let s = load("absent.mtl").unwrap();
+        assert_eq!(s.owners, [Owner::Material(7)]);
     }
 
     #[test]

@@ -107,6 +107,31 @@ impl From<Gamut> for GamutMap {
     }
 }
 
+/// `--max-input-size`: bytes, or a number with `K`, `M`, `G` (binary: KiB, MiB, GiB), at
+/// least 1 byte and at most 1 TiB.
+pub fn byte_size(s: &str) -> std::result::Result<u64, String> {
+    let t = s.trim();
+    let (num, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
+        Some((i, _)) => (&t[..i], t[i..].trim_end_matches(['i', 'B', 'b'])),
+        None => (t, ""),
+    };
+    let shift = match unit.to_ascii_uppercase().as_str() {
+        "" => 0,
+        "K" => 10,
+        "M" => 20,
+        "G" => 30,
+        _ => return Err(format!("`{s}`: a size is bytes or a number with K, M or G")),
+    };
+    let n: u64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}`: a size is bytes or a number with K, M or G"))?;
+    match n.checked_mul(1 << shift) {
+        Some(b) if (1..=1 << 40).contains(&b) => Ok(b),
+        _ => Err(format!("`{s}`: between 1 byte and 1 TiB")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,6 +26,10 @@ pub mod xyz;
 #[derive(Debug, Parser)]
 #[command(name = "specpoly", version, about, long_about = None)]
 pub struct Cli {
+    /// The largest input file any command reads (default 64M): bytes or a number with K, M or
+    /// G; it bounds memory on malformed input, raise it for large meshes.
+    #[arg(long, global = true, value_parser = args::byte_size, value_name = "SIZE")]
+    pub max_input_size: Option<u64>,
     /// The command.
     #[command(subcommand)]
     pub command: Command,
@@ -59,6 +63,9 @@ pub enum Command {
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<()> {
+    if let Some(limit) = cli.max_input_size {
+        specpoly_formats::read::set_max_input_bytes(limit);
+    }
     match cli.command {
         Command::Xyz(a) => xyz::run(&a),
         Command::Fit(a) => fit::run(&a),
