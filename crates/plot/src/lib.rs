@@ -15,6 +15,8 @@
 
 pub mod error;
 pub mod size;
+pub mod tm30_page;
+pub mod vector_graphic;
 
 pub use error::{Error, Result};
 

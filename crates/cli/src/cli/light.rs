@@ -6,6 +6,7 @@ use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{report, LightReport};
 use specpoly_spectra::spectrum_names;
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
 /// Arguments of `specpoly light`.
 #[derive(Debug, clap::Args)]
@@ -22,6 +23,18 @@ pub struct LightArgs {
     /// 015:2018's extrapolation) instead of refusing it; the output says so.
     #[arg(long)]
     pub extrapolate: bool,
+    /// ANSI/IES TM-30-20 in full: the 16 hue bins (Rf,hj, Rcs,hj, Rhs,hj, mean a', b', the
+    /// colour vector graphic's points), the 99 samples' Rf,CESi and the Annex E design intents;
+    /// with --json under the key "tm30".
+    #[arg(long)]
+    pub tm30: bool,
+    /// Write TM-30's colour vector graphic: FILE.svg or FILE.png.
+    #[arg(long, value_name = "FILE.svg|FILE.png")]
+    pub cvg: Option<PathBuf>,
+    /// Write a one-page TM-30 report: FILE.html (self-contained), or FILE.png (a screenshot of
+    /// that page by headless Chromium).
+    #[arg(long, value_name = "FILE.html|FILE.png")]
+    pub report: Option<PathBuf>,
 }
 
 /// `v` to `prec` decimals, `-` for none.
@@ -93,6 +106,19 @@ pub fn text(name: &str, r: &LightReport) -> String {
 pub fn run(a: &LightArgs) -> Result<()> {
     let named = spectrum_names::light(&a.spd)?;
     let r = report(&named, a.extrapolate)?;
+    if a.tm30 || a.cvg.is_some() || a.report.is_some() {
+        let t = super::light_tm30::Tm30Args {
+            print: a.tm30,
+            json: a.json,
+            cvg: a.cvg.as_deref(),
+            report: a.report.as_deref(),
+            extrapolate: a.extrapolate,
+        };
+        super::light_tm30::run(&named, &r, &t)?;
+        if a.tm30 {
+            return Ok(());
+        }
+    }
     if a.json {
         return Ok(print_json(&r)?);
     }

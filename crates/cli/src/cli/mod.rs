@@ -13,6 +13,7 @@ pub mod calibrate_verify;
 pub mod fit;
 pub mod led;
 pub mod light;
+pub mod light_tm30;
 pub mod mix;
 pub mod plot;
 pub mod render;
