@@ -372,5 +372,10 @@ fn bad_input_is_one_line_and_leaves_no_file() {
     assert!(err.contains(".html or .png"), "{err}");
     let (code, _, err) = specpoly(&["light", LED, "--cvg", "r.html"]);
     assert_eq!(code, 2, "{err}");
+    let png = dir.path().join("same.png");
+    let p = png.to_str().unwrap();
+    let (code, _, err) = specpoly(&["light", LED, "--cvg", p, "--report", p]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("same file"), "{err}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }

@@ -168,10 +168,10 @@ td.num{text-align:right;font-variant-numeric:tabular-nums}\
 .notes{font-size:11px;line-height:1.35;color:#444}";
 
 fn block(o: &mut String, id: &str, (left, top, w, h): (u32, u32, u32, u32), inner: &str) {
-    let _ = write!(
+    let _ = writeln!(
         o,
         "<div class=\"b\" id=\"{id}\" style=\"left:{left}px;top:{top}px;width:{w}px;\
-         height:{h}px\">{inner}</div>\n"
+         height:{h}px\">{inner}</div>"
     );
 }
 

@@ -71,6 +71,9 @@ pub const MIN_SIZE: u32 = 200;
 /// See [`MIN_SIZE`].
 pub const MAX_SIZE: u32 = 4000;
 
+/// One arrow in pixels: the shaft's two ends, the head's three corners (apex first).
+pub type Arrow = ([(i32, i32); 2], [(i32, i32); 3]);
+
 /// A colour vector graphic: the 16 bins' normalised reference and test points.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VectorGraphic {
@@ -138,7 +141,7 @@ impl VectorGraphic {
     /// The arrow of bin `j`: the shaft's two ends and the head's three corners (apex first),
     /// in pixels. The head is 4 % of the side long (at most 0.6 of the arrow), its base
     /// 0.8 of its length wide; the shaft stops inside the head.
-    pub fn arrow(&self, j: usize) -> ([(i32, i32); 2], [(i32, i32); 3]) {
+    pub fn arrow(&self, j: usize) -> Arrow {
         let (x0, y0) = self.pixel(self.reference[j]);
         let (x1, y1) = self.pixel(self.test[j]);
         let (dx, dy) = (x1 - x0, y1 - y0);

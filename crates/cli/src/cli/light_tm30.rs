@@ -322,6 +322,14 @@ pub fn run(named: &Named, light: &LightReport, a: &Tm30Args) -> Result<()> {
         .report
         .map(|p| kind(p, &[("html", Kind::Html), ("png", Kind::Png)], "--report"))
         .transpose()?;
+    if let (Some(c), Some(r)) = (a.cvg, a.report) {
+        if c == r {
+            return Err(CliError::usage(format!(
+                "{}: --cvg and --report name the same file",
+                one_line(&c.display().to_string())
+            )));
+        }
+    }
     let t = tm30_report(named, a.extrapolate)?;
     // every file whole in memory before any is written
     let mut files: Vec<(&Path, Vec<u8>)> = vec![];
