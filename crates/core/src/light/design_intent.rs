@@ -16,12 +16,12 @@
 //!
 //! Source: luxpy 1.12.5 (K. A. G. Smet, a co-author of the TM-30 method),
 //! `luxpy/color/cri/iestm30/metrics.py`, `_IES_TM30_ANNEX_E_TABLE` ("default as published";
-//! unchanged since luxpy 1.6.8, 2021, which added it). Two rows are confirmed by standards that
-//! cite the Annex: the 2020 addendum to ANSI/ASHRAE/ICC/USGBC/IES 189.1 (§8.3.5.3) requires
-//! "IES-TM-30, Annex E, P2 and F3" as Rf ≥ 85, Rf,h1 ≥ 85, Rg ≥ 92, Rcs,h1 −7 % to +19 %, and
-//! LEED v4.1's TM-30 option for quality lighting is P1 (Rf ≥ 78, Rg ≥ 95, Rcs,h1 −1 % to 15 %).
-//! The V rows, F1 and F2 rest on luxpy alone: the Annex itself is not held here
-//! (`docs/leds.md`).
+//! unchanged since luxpy 1.6.8, 2021, which added it). Three rows agree with documents that
+//! cite the Annex (read second-hand): the 2020 addendum to ANSI/ASHRAE/ICC/USGBC/IES 189.1
+//! (§8.3.5.3) requires "IES-TM-30, Annex E, P2 and F3" as Rf ≥ 85, Rf,h1 ≥ 85, Rg ≥ 92,
+//! Rcs,h1 −7 % to +19 %, and LEED v4.1's TM-30 option for interior lighting is P1 (Rf ≥ 78,
+//! Rg ≥ 95, Rcs,h1 −1 % to 15 %). The V rows, F1 and F2 rest on luxpy alone: the Annex itself
+//! is not held here (`docs/leds.md`).
 //!
 //! The rule, as luxpy applies it: a light is at level `k` of an intent when it meets the
 //! criteria of level `k` **and of every lower level** (so F1 also needs Rf,h1 ≥ 90 through F2);
