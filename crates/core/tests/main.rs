@@ -14,3 +14,4 @@ mod paper_eq6;
 mod paper_path;
 mod pixel_cube;
 mod srgb_iec61966;
+mod tm30_full;

@@ -9,12 +9,18 @@
 //! legend takes as many columns as it needs beside the plot, or rows below it, and a figure
 //! too small to hold it at that size is refused with the size that holds it.
 //!
+//! Also the ANSI/IES TM-30-20 colour vector graphic ([`vector_graphic`], SVG and PNG from one
+//! routine) and the one-page TM-30 report in HTML ([`tm30_page`]).
+//!
 //! `duplicates` pairs kept: the two legend placements of the layout (beside and below the
-//! plot: the same fields, different arithmetic).
+//! plot: the same fields, different arithmetic); the TM-30 page's character escaping and
+//! `specpoly-calibrate`'s report's (neither crate depends on the other).
 #![forbid(unsafe_code)]
 
 pub mod error;
 pub mod size;
+pub mod tm30_page;
+pub mod vector_graphic;
 
 pub use error::{Error, Result};
 

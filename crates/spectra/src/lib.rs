@@ -4,7 +4,8 @@
 //! command line or in a file ([`spectrum_names`]), refusing data that cannot be a reflectance
 //! ([`plausible`]), the representations a user picks and the dispatch from that runtime choice
 //! to monomorphised code ([`repr`], [`hero`]), the colours of chains of reflectances
-//! ([`colour`]) and the light-metric and LED-mixing reports ([`light`]).
+//! ([`colour`]) and the light-metric and LED-mixing reports ([`light`], TM-30 in full:
+//! [`light_tm30`]).
 //!
 //! `duplicates` pairs kept: the `light` and `mix` reports ([`light::LightReport`],
 //! [`light::MixReport`]): different key sets in a different order, which a shared flattened
@@ -17,6 +18,7 @@ pub mod data;
 pub mod error;
 pub mod hero;
 pub mod light;
+pub mod light_tm30;
 pub mod plausible;
 pub mod repr;
 pub mod spectrum_names;

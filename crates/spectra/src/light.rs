@@ -69,12 +69,18 @@ pub struct LightReport {
 /// ([`Spd`]). A light tabulated over less than 380–780 nm is an error unless `extrapolate`,
 /// which holds its end values (CIE 015:2018) and says so in the report.
 pub fn report(light: &Named, extrapolate: bool) -> Result<LightReport> {
+    let s = standard_spd(light, extrapolate)?;
+    Ok(LightReport {
+        extrapolated_from_nm: extrapolated_from(light, &s),
+        ..metrics(&s)
+    })
+}
+
+/// A light on the standards' grid ([`Spd`]): refused when tabulated over less than
+/// 380–780 nm, unless `extrapolate` (the end values held, CIE 015:2018).
+pub fn standard_spd(light: &Named, extrapolate: bool) -> Result<Spd> {
     let t = light.tabulated();
-    let err = |source| Error::Light {
-        name: light.name.clone(),
-        source,
-    };
-    let s = if extrapolate {
+    if extrapolate {
         Spd::extrapolated(&t)
     } else {
         Spd::new(&t)
@@ -85,15 +91,18 @@ pub fn report(light: &Named, extrapolate: bool) -> Result<LightReport> {
             lo,
             hi,
         },
-        e => err(e),
-    })?;
-    let w = light.wavelengths.as_slice();
-    Ok(LightReport {
-        extrapolated_from_nm: s
-            .is_extrapolated()
-            .then(|| [w[0] as f64, w[w.len() - 1] as f64]),
-        ..metrics(&s)
+        source => Error::Light {
+            name: light.name.clone(),
+            source,
+        },
     })
+}
+
+/// The tabulated range `[first, last]` nm of a light whose end values were held.
+pub fn extrapolated_from(light: &Named, s: &Spd) -> Option<[f64; 2]> {
+    let w = light.wavelengths.as_slice();
+    s.is_extrapolated()
+        .then(|| [w[0] as f64, w[w.len() - 1] as f64])
 }
 
 /// Colorimetry, CCT/Duv, CIE 13.3 and CIE 224/TM-30 of a light on the standards' grid.

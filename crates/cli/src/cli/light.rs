@@ -6,6 +6,7 @@ use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{report, LightReport};
 use specpoly_spectra::spectrum_names::{self, Named};
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
 /// Arguments of `specpoly light`.
 #[derive(Debug, clap::Args)]
@@ -28,6 +29,18 @@ pub struct LightArgs {
     /// 015:2018's extrapolation) instead of refusing it; the output says so.
     #[arg(long)]
     pub extrapolate: bool,
+    /// ANSI/IES TM-30-20 in full: the 16 hue bins (Rf,hj, Rcs,hj, Rhs,hj, mean a', b', the
+    /// colour vector graphic's points), the 99 samples' Rf,CESi and the Annex E design intents;
+    /// with --json under the key "tm30".
+    #[arg(long)]
+    pub tm30: bool,
+    /// Write TM-30's colour vector graphic: FILE.svg or FILE.png.
+    #[arg(long, value_name = "FILE.svg|FILE.png")]
+    pub cvg: Option<PathBuf>,
+    /// Write a one-page TM-30 report: FILE.html (self-contained), or FILE.png (a screenshot of
+    /// that page by headless Chromium).
+    #[arg(long, value_name = "FILE.html|FILE.png")]
+    pub report: Option<PathBuf>,
 }
 
 /// `v` to `prec` decimals, `-` for none.
@@ -115,7 +128,8 @@ pub fn table(rows: &[(Named, LightReport)]) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "# XYZ = Km·ΣS·x̄Δλ (CIE 1931); CCT, Duv; CIE 13.3 Ra, R9; CIE 224:2017 Rf, TM-30 Rg          ('-': more than 0.05 Duv from the Planckian locus; '*': extrapolated to 380-780 nm)"
+        "# XYZ = Km·ΣS·x̄Δλ (CIE 1931); CCT, Duv; CIE 13.3 Ra, R9; CIE 224:2017 Rf, TM-30 Rg \
+         ('-': more than 0.05 Duv from the Planckian locus; '*': extrapolated to 380-780 nm)"
     );
     let _ = writeln!(
         o,
@@ -214,6 +228,24 @@ pub fn run(a: &LightArgs) -> Result<()> {
         }
     }
     let single = a.spd.len() == 1 && !a.spd[0].ends_with("#*");
+    if a.tm30 || a.cvg.is_some() || a.report.is_some() {
+        if !single || rows.len() != 1 {
+            return Err(crate::error::CliError::usage(
+                "--tm30, --cvg and --report take one light",
+            ));
+        }
+        let t = super::light_tm30::Tm30Args {
+            print: a.tm30,
+            json: a.json,
+            cvg: a.cvg.as_deref(),
+            report: a.report.as_deref(),
+            extrapolate: a.extrapolate,
+        };
+        super::light_tm30::run(&rows[0].0, &rows[0].1, &t)?;
+        if a.tm30 {
+            return Ok(());
+        }
+    }
     let out = match (a.json, a.csv, single) {
         (true, _, true) => return Ok(print_json(&rows[0].1)?),
         (true, _, false) => {

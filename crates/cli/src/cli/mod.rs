@@ -13,6 +13,7 @@ pub mod calibrate_verify;
 pub mod fit;
 pub mod led;
 pub mod light;
+pub mod light_tm30;
 pub mod mix;
 pub mod plot;
 pub mod render;
@@ -55,7 +56,8 @@ pub enum Command {
     Calibrate(calibrate::CalibrateCommand),
     /// Drive the RGB-LED controller firmware over a serial port.
     Led(led::LedArgs),
-    /// Colorimetry and colour rendering of a light: XYZ, xy, u′v′, CCT, Duv, Ra, R9, Rf, Rg.
+    /// Colorimetry and colour rendering of a light: XYZ, xy, u′v′, CCT, Duv, Ra, R9, Rf, Rg;
+    /// TM-30 in full (--tm30), its colour vector graphic (--cvg) and a report page (--report).
     Light(light::LightArgs),
     /// Duties of 3–6 LED channels for a chromaticity or CCT target.
     Mix(mix::MixArgs),

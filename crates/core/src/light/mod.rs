@@ -14,7 +14,10 @@
 //!   (the metrics of one measured light; [`sprague`] takes the 5 nm test samples to 1 nm);
 //! - [`cri`]: CIE 13.3-1995 general colour rendering index Ra and the special indices (R9);
 //! - [`cam02`]: CIECAM02 and CAM02-UCS (CIE 159:2004; Luo, Cui & Li 2006);
-//! - [`tm30`]: CIE 224:2017 / ANSI-IES TM-30 fidelity Rf and gamut index Rg;
+//! - [`tm30`]: CIE 224:2017 / ANSI-IES TM-30 fidelity Rf and gamut index Rg, the hue bins and
+//!   the 99 samples' fidelities, the colour vector graphic's points;
+//! - [`design_intent`]: ANSI/IES TM-30-20 Annex E priority levels (preference, vividness,
+//!   fidelity);
 //! - [`mix`]: duties of 3–6 channels for a chromaticity or CCT target, the freedom spent on Rf,
 //!   Ra, luminous efficacy or least drive.
 //! - [`locus`]: the Planckian locus as a 25-node table (f32, cubic Hermite in mired), for
@@ -26,6 +29,7 @@ pub mod cam02;
 pub mod cct;
 pub mod channels;
 pub mod cri;
+pub mod design_intent;
 pub mod locus;
 pub mod mix;
 pub mod reference;

@@ -12,6 +12,15 @@
 //! bin's mean ΔE′, chroma shift `Rcs,hj = (Δa′ cos θⱼ + Δb′ sin θⱼ)/r`, hue shift
 //! `Rhs,hj = (−Δa′ sin θⱼ + Δb′ cos θⱼ)/r` (ANSI/IES TM-30-18 §4.3).
 //!
+//! The **colour vector graphic** (ANSI/IES TM-30-20) is drawn from the same bin means, each
+//! bin scaled by its reference radius `r = |(ā′_r, b̄′_r)|`: the reference point
+//! `(ā′_r, b̄′_r)/r` lies on the unit circle, the test point is `(ā′_t, b̄′_t)/r`, and the arrow of
+//! bin `j` runs from the first to the second ([`Tm30::vector_graphic`]; luxpy's
+//! `_get_hue_bin_data` normalises the same way). colour-science 0.4.7 instead starts each arrow
+//! on the unit circle at the mean hue angle of the bin's samples and adds the same offset
+//! `(ā′_t − ā′_r, b̄′_t − b̄′_r)/r`; the two starts differ by the angle between the mean of the
+//! hues and the hue of the mean (measured in `docs/leds.md`).
+//!
 //! Two forms: [`tm30`] from a [`Source`]'s moments and the fitted samples (fast, linear in a
 //! mix: the optimiser's), and [`tm30_spd`] from an [`Spd`] on its own 1 nm or 5 nm grid with
 //! the tabulated samples, the standard's computation (reports, `specpoly light`).
@@ -51,8 +60,45 @@ pub struct Tm30 {
     pub rcs_h: [f64; 16],
     /// Hue-bin hue shift Rhs,hj.
     pub rhs_h: [f64; 16],
+    /// The hue bin (0–15) of each sample, by its hue under the reference.
+    pub bin_of: [u8; 99],
+    /// Number of samples in each hue bin.
+    pub bin_count: [u8; 16],
+    /// Mean CAM02-UCS `(a′, b′)` of each hue bin's samples under the test light (NaN for an
+    /// empty bin).
+    pub test_ab: [[f64; 2]; 16],
+    /// Mean CAM02-UCS `(a′, b′)` of each hue bin's samples under the reference (NaN for an
+    /// empty bin).
+    pub reference_ab: [[f64; 2]; 16],
     /// CCT and Duv of the light (CIE 1931 observer).
     pub cct: Cct,
+}
+
+/// The colour vector graphic's points, each hue bin scaled by its reference radius (see the
+/// module docs): arrows from `reference[j]` (on the unit circle) to `test[j]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VectorGraphic {
+    /// `(ā′_r, b̄′_r)/r` per bin.
+    pub reference: [[f64; 2]; 16],
+    /// `(ā′_t, b̄′_t)/r` per bin.
+    pub test: [[f64; 2]; 16],
+}
+
+impl Tm30 {
+    /// The colour vector graphic's points (NaN for an empty bin).
+    pub fn vector_graphic(&self) -> VectorGraphic {
+        let mut reference = [[f64::NAN; 2]; 16];
+        let mut test = [[f64::NAN; 2]; 16];
+        for j in 0..16 {
+            let [ar, br] = self.reference_ab[j];
+            let r = libm::hypot(ar, br);
+            if r > 0.0 {
+                reference[j] = [ar / r, br / r];
+                test[j] = [self.test_ab[j][0] / r, self.test_ab[j][1] / r];
+            }
+        }
+        VectorGraphic { reference, test }
+    }
 }
 
 /// `Rf` from a colour difference: `10·ln(exp((100 − c_f·ΔE)/10) + 1)`.
@@ -110,6 +156,7 @@ pub fn tm30_spd(light: &Spd) -> Result<Tm30, LightError> {
 /// The indices from the samples' CAM02-UCS coordinates under the test light and the reference.
 fn indices(test: &[Ucs; 99], refs: &[Ucs; 99], cct: Cct) -> Tm30 {
     let mut rf_i = [0.0; 99];
+    let mut bin_of = [0u8; 99];
     let mut sum = 0.0;
     // bins: Σa′, Σb′ (test), Σa′, Σb′ (reference), ΣΔE′, count
     let mut bins = [[0.0f64; 6]; 16];
@@ -118,6 +165,7 @@ fn indices(test: &[Ucs; 99], refs: &[Ucs; 99], cct: Cct) -> Tm30 {
         rf_i[i] = rf_of(de);
         sum += de;
         let b = ((refs[i].h / 22.5) as usize).min(15);
+        bin_of[i] = b as u8;
         bins[b][0] += test[i].a;
         bins[b][1] += test[i].b;
         bins[b][2] += refs[i].a;
@@ -142,11 +190,16 @@ fn indices(test: &[Ucs; 99], refs: &[Ucs; 99], cct: Cct) -> Tm30 {
         0.5 * a
     };
     let (mut rf_h, mut rcs_h, mut rhs_h) = ([f64::NAN; 16], [f64::NAN; 16], [f64::NAN; 16]);
+    let mut bin_count = [0u8; 16];
+    let (mut test_ab, mut reference_ab) = ([[f64::NAN; 2]; 16], [[f64::NAN; 2]; 16]);
     for (j, b) in bins.iter().enumerate() {
         if b[5] == 0.0 {
             continue;
         }
         let n = b[5];
+        bin_count[j] = n as u8;
+        test_ab[j] = [b[0] / n, b[1] / n];
+        reference_ab[j] = [b[2] / n, b[3] / n];
         let (da, db) = ((b[0] - b[2]) / n, (b[1] - b[3]) / n);
         let norm = libm::hypot(b[2] / n, b[3] / n);
         let theta = (22.5 * j as f64 + 11.25).to_radians();
@@ -162,6 +215,10 @@ fn indices(test: &[Ucs; 99], refs: &[Ucs; 99], cct: Cct) -> Tm30 {
         rf_h,
         rcs_h,
         rhs_h,
+        bin_of,
+        bin_count,
+        test_ab,
+        reference_ab,
         cct,
     }
 }

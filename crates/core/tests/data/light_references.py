@@ -18,6 +18,11 @@ It writes, beside itself:
   light_references.csv      per light: CCT and Duv (Ohno 2013, as CIE 224:2017 specifies),
                             CIE 13.3 Ra and R1-R14, CIE 224:2017 Rf, ANSI/IES TM-30-18 Rg and the
                             16 hue bins' Rf,hj, Rcs,hj (a fraction, not %) and Rhs,hj.
+  light_references_tm30.csv per light: the 99 colour evaluation samples' fidelities Rf,CESi
+                            (colour-science's R_s), each sample's hue bin (1-16, by its hue under
+                            the reference) and the hue bins' mean CAM02-UCS a', b' under the test
+                            light and under the reference (averages_test, averages_reference):
+                            what the colour vector graphic is drawn from.
 Licence: colour-science is BSD-3-Clause; its spectral data are the CIE's, ISO's and the cited
 authors' published tables (see colour.SDS_ILLUMINANTS / SDS_LIGHT_SOURCES documentation).
 """
@@ -63,6 +68,7 @@ for m in [
 
 rows = []
 spd_rows = []
+tm30_rows = []
 for name, (step, v) in lights.items():
     assert "," not in name
     text = ["%.7g" % x for x in v / v.max()]
@@ -84,6 +90,13 @@ for name, (step, v) in lights.items():
         + ["%.6f" % r for r in tm.R_hs]
     )
     spd_rows.append([name, "380", str(step)] + text)
+    tm30_rows.append(
+        [name]
+        + ["%.5f" % r for r in tm.R_s]
+        + ["%d" % (b + 1) for b in tm.bins]
+        + ["%.6f" % v for v in tm.averages_test.ravel()]
+        + ["%.6f" % v for v in tm.averages_reference.ravel()]
+    )
 
 with open(os.path.join(HERE, "light_references_spd.csv"), "w") as f:
     f.write("# colour-science 0.4.7 datasets and data/leds mixes; made by light_references.py\n")
@@ -97,5 +110,14 @@ with open(os.path.join(HERE, "light_references.csv"), "w") as f:
     head += ["rhs_h%d" % i for i in range(1, 17)]
     f.write(",".join(head) + "\n")
     for r in rows:
+        f.write(",".join(r) + "\n")
+with open(os.path.join(HERE, "light_references_tm30.csv"), "w") as f:
+    f.write("# colour-science 0.4.7; made by light_references.py beside this file\n")
+    head = ["name"] + ["rf_ces%d" % i for i in range(1, 100)]
+    head += ["bin_ces%d" % i for i in range(1, 100)]
+    head += ["%s_h%d" % (c, j) for j in range(1, 17) for c in ("test_a", "test_b")]
+    head += ["%s_h%d" % (c, j) for j in range(1, 17) for c in ("ref_a", "ref_b")]
+    f.write(",".join(head) + "\n")
+    for r in tm30_rows:
         f.write(",".join(r) + "\n")
 print(len(rows), "lights")
