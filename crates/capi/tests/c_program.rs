@@ -2,7 +2,9 @@
 //! the host staticlib, its output must equal, byte for byte (floats as bit patterns), what the
 //! core's own functions give for the same inputs ([`expected`]); compiled with
 //! `arm-none-eabi-gcc` and linked with the `thumbv7em-none-eabihf` staticlib, run on QEMU
-//! `mps2-an386` (Cortex-M4F, semihosting), it must give the same within the core's f32 error
+//! `mps2-an386` (Cortex-M4F, semihosting), and with `riscv64-unknown-elf-gcc -march=rv32imc`
+//! and the `riscv32imc-unknown-none-elf` staticlib on QEMU `virt` (ESP32-C3's instruction
+//! set), it must give the same within the core's f32 error
 //! (4 ulp: `math::pow_unit`'s documented bound, the largest of the functions called) and ±1
 //! on integer levels (a rounding boundary). Both fail, never skip, when a tool is missing
 //! (`./test.sh` installs them).
@@ -306,62 +308,94 @@ fn agree(got: &str, want: &str) -> bool {
         })
 }
 
-#[test]
-fn the_c_program_on_a_cortex_m4f_under_qemu_gives_the_rust_apis_results() {
-    let lib = staticlib(
-        &["--release", "--target", "thumbv7em-none-eabihf"],
-        &["thumbv7em-none-eabihf", "release"],
-    );
-    let elf = out_dir("thumbv7em").join("specpoly_test.elf");
+/// Builds the C program for `target` with `gcc` and `flags` (start-up and linker script from
+/// `tests/c/<dir>/`), runs it under `qemu`, and compares its output with the Rust API's.
+fn on_qemu(target: &str, gcc: &str, flags: &[&str], dir: &str, ld: &str, qemu: &[&str]) {
+    let lib = staticlib(&["--release", "--target", target], &[target, "release"]);
+    let elf = out_dir(target).join("specpoly_test.elf");
     let c = crate_dir();
+    let arch = c.join("tests/c").join(dir);
     run(
-        Command::new("arm-none-eabi-gcc")
+        Command::new(gcc)
             .args([
                 "-std=c11",
                 "-Wall",
                 "-Wextra",
                 "-Werror",
                 "-O2",
-                "-mcpu=cortex-m4",
-                "-mthumb",
-                "-mfloat-abi=hard",
-                "-mfpu=fpv4-sp-d16",
                 "-ffreestanding",
-                "-nostartfiles",
-                "-specs=nano.specs",
-                "-Wl,-z,noexecstack",
-                "-I",
             ])
+            .args(flags)
+            .arg("-I")
             .arg(c.join("include"))
             .arg("-T")
-            .arg(c.join("tests/c/arm/mps2.ld"))
-            .arg(c.join("tests/c/arm/startup.c"))
+            .arg(arch.join(ld))
+            .arg(arch.join("startup.c"))
             .arg(c.join("tests/c/specpoly_test.c"))
             .arg(&lib)
+            .arg("-lgcc")
             .arg("-o")
             .arg(&elf),
-        "arm-none-eabi-gcc",
+        gcc,
     );
     // semihosting's console is QEMU's standard error here (no serial port on stdio)
     let out = Command::new("timeout")
-        .args([
-            "20",
+        .arg("20")
+        .args(qemu)
+        .args(["-nographic", "-monitor", "none", "-serial", "none"])
+        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
+        .arg(&elf)
+        .output()
+        .unwrap_or_else(|e| panic!("{}: {e} (./test.sh installs it)", qemu[0]));
+    assert!(out.status.success(), "{}: {}", qemu[0], out.status);
+    let got = String::from_utf8(out.stderr).unwrap();
+    let want = expected();
+    assert_eq!(got.lines().count(), want.lines().count(), "{got}");
+    for (g, w) in got.lines().zip(want.lines()) {
+        assert!(agree(g, w), "{target}: {g}\nRust: {w}");
+    }
+}
+
+#[test]
+fn the_c_program_on_a_cortex_m4f_under_qemu_gives_the_rust_apis_results() {
+    on_qemu(
+        "thumbv7em-none-eabihf",
+        "arm-none-eabi-gcc",
+        &[
+            "-mcpu=cortex-m4",
+            "-mthumb",
+            "-mfloat-abi=hard",
+            "-mfpu=fpv4-sp-d16",
+            "-nostartfiles",
+            "-specs=nano.specs",
+            "-Wl,-z,noexecstack",
+        ],
+        "arm",
+        "mps2.ld",
+        &[
             "qemu-system-arm",
             "-machine",
             "mps2-an386",
             "-cpu",
             "cortex-m4",
-        ])
-        .args(["-nographic", "-monitor", "none", "-serial", "none"])
-        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
-        .arg(&elf)
-        .output()
-        .expect("qemu-system-arm runs (./test.sh installs it)");
-    assert!(out.status.success(), "QEMU: {}", out.status);
-    let got = String::from_utf8(out.stderr).unwrap();
-    let want = expected();
-    assert_eq!(got.lines().count(), want.lines().count(), "{got}");
-    for (g, w) in got.lines().zip(want.lines()) {
-        assert!(agree(g, w), "QEMU: {g}\nRust: {w}");
-    }
+        ],
+    );
+}
+
+/// ESP32-C3's instruction set (no FPU: the core's f32 and f64 in soft float).
+#[test]
+fn the_c_program_on_an_rv32imc_under_qemu_gives_the_rust_apis_results() {
+    on_qemu(
+        "riscv32imc-unknown-none-elf",
+        "riscv64-unknown-elf-gcc",
+        &[
+            "-march=rv32imc",
+            "-mabi=ilp32",
+            "-nostdlib",
+            "-Wl,--no-warn-rwx-segments",
+        ],
+        "riscv",
+        "virt.ld",
+        &["qemu-system-riscv32", "-machine", "virt", "-bios", "none"],
+    );
 }

@@ -1,22 +1,31 @@
 /* Calls every function of specpoly.h on fixed inputs and prints one line per call: a name, the
  * status and the results, floats as their IEEE bit patterns in hex (f32: 8 digits, f64: 16), so
  * that the test (tests/c_program.rs) can compare them with the Rust API bit for bit. The same
- * source runs on the host (stdout) and on a Cortex-M4F under QEMU (semihosting). */
+ * source runs on the host (stdout) and, built freestanding, on a Cortex-M4F and on an RV32IMC
+ * under QEMU (semihosting; start-up in arm/ and riscv/). */
 #include "specpoly.h"
 #include <stddef.h>
 #include <stdint.h>
-#include <string.h>
 
-#ifdef __arm__
+#if __STDC_HOSTED__
+#include <stdio.h>
+static void out(const char *s) { fputs(s, stdout); }
+#elif defined(__arm__)
 /* semihosting SYS_WRITE0 */
 static void out(const char *s) {
     register int r0 __asm__("r0") = 0x04;
     register const char *r1 __asm__("r1") = s;
     __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
 }
-#else
-#include <stdio.h>
-static void out(const char *s) { fputs(s, stdout); }
+#elif defined(__riscv)
+/* semihosting SYS_WRITE0: the RISC-V semihosting sequence, uncompressed */
+static void out(const char *s) {
+    register long a0 __asm__("a0") = 0x04;
+    register const char *a1 __asm__("a1") = s;
+    __asm__ volatile(".option push\n.option norvc\n"
+                     "slli x0, x0, 0x1f\nebreak\nsrai x0, x0, 7\n.option pop"
+                     : "+r"(a0) : "r"(a1) : "memory");
+}
 #endif
 
 static char line[512];
@@ -33,8 +42,8 @@ static void hex(uint64_t v, int digits) {
     b[1 + digits] = 0;
     put(b);
 }
-static void f32(float f) { uint32_t u; memcpy(&u, &f, 4); hex(u, 8); }
-static void f64(double f) { uint64_t u; memcpy(&u, &f, 8); hex(u, 16); }
+static void f32(float f) { uint32_t u; __builtin_memcpy(&u, &f, 4); hex(u, 8); }
+static void f64(double f) { uint64_t u; __builtin_memcpy(&u, &f, 8); hex(u, 16); }
 static void dec(int32_t v) {
     char b[16];
     int i = 15;
@@ -97,7 +106,7 @@ static void rgbw(SpMixer *m) {
     sp_mixer_init(m);
     m->count = 4;
     for (int i = 0; i < 4; i++) {
-        memcpy(m->channels[i].xyz, RGBW[i], sizeof RGBW[i]);
+        __builtin_memcpy(m->channels[i].xyz, RGBW[i], sizeof RGBW[i]);
         m->channels[i].cost = 1.0f;
         m->channels[i].gamma = i == 3 ? 2.2f : 1.0f;
     }
@@ -187,6 +196,6 @@ int run(void) {
     return 0;
 }
 
-#ifndef __arm__
+#if __STDC_HOSTED__
 int main(void) { return run(); }
 #endif
