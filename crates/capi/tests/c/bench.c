@@ -1,26 +1,42 @@
-/* Instructions per call on QEMU mps2-an386 with `-icount shift=0` (1 ns of virtual time per
- * instruction; SysTick runs at 25 MHz, so one tick is 40 instructions): each call repeated, the
- * SysTick difference averaged. Build and run as docs/performance.md ("specpoly-c") says; with
- * -DGROUP=n only one function group is called (code size per group). */
+/* Instructions per call under QEMU with `-icount shift=0` (1 ns of virtual time per
+ * instruction): each call repeated and the timer's difference averaged. On mps2-an386 the timer
+ * is SysTick at 25 MHz (one tick per 40 instructions), on RISC-V `virt` the CLINT's mtime at
+ * 10 MHz (one per 100). Build and run as docs/performance.md ("C library") says; with -DGROUP=n
+ * only one function group is called (code size per group). */
 #include "specpoly.h"
 #include <stdint.h>
-#include <string.h>
 
+#if defined(__arm__)
 #define SYST_CSR (*(volatile uint32_t *)0xE000E010)
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014)
 #define SYST_CVR (*(volatile uint32_t *)0xE000E018)
-
+#define PER_TICK 40u
 static void out(const char *s) {
     register int r0 __asm__("r0") = 0x04;
     register const char *r1 __asm__("r1") = s;
     __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
 }
+static uint32_t start(void) { SYST_RVR = 0xFFFFFF; SYST_CVR = 0; SYST_CSR = 5; return SYST_CVR; }
+static uint32_t since(uint32_t t0) { return (t0 - SYST_CVR) & 0xFFFFFF; }
+#elif defined(__riscv)
+#define MTIME (*(volatile uint32_t *)0x0200BFF8)
+#define PER_TICK 100u
+static void out(const char *s) {
+    register long a0 __asm__("a0") = 0x04;
+    register const char *a1 __asm__("a1") = s;
+    __asm__ volatile(".option push\n.option norvc\n"
+                     "slli x0, x0, 0x1f\nebreak\nsrai x0, x0, 7\n.option pop"
+                     : "+r"(a0) : "r"(a1) : "memory");
+}
+static uint32_t start(void) { return MTIME; }
+static uint32_t since(uint32_t t0) { return MTIME - t0; }
+#endif
 
 static void report(const char *name, uint32_t ticks, uint32_t n) {
     char b[64], *p = b;
     while (*name) *p++ = *name++;
     *p++ = ' ';
-    uint32_t v = (uint32_t)((uint64_t)ticks * 40u * 10u / n); /* tenths of an instruction */
+    uint32_t v = (uint32_t)((uint64_t)ticks * PER_TICK * 10u / n); /* tenths of an instruction */
     char d[12];
     int i = 0;
     do { d[i++] = (char)('0' + v % 10); v /= 10; } while (v);
@@ -33,9 +49,6 @@ static void report(const char *name, uint32_t ticks, uint32_t n) {
     out(b);
 }
 
-static uint32_t start(void) { SYST_RVR = 0xFFFFFF; SYST_CVR = 0; SYST_CSR = 5; return SYST_CVR; }
-static uint32_t since(uint32_t t0) { return (t0 - SYST_CVR) & 0xFFFFFF; }
-
 volatile float sink;
 
 int run(void) {
@@ -46,7 +59,7 @@ int run(void) {
     };
     m.count = 4;
     for (int i = 0; i < 4; i++) {
-        memcpy(m.channels[i].xyz, xyz[i], sizeof xyz[i]);
+        __builtin_memcpy(m.channels[i].xyz, xyz[i], sizeof xyz[i]);
         m.channels[i].cost = 1.0f;
         m.channels[i].gamma = 1.0f;
     }
