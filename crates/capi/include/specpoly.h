@@ -191,7 +191,8 @@ extern "C" {
 //
 // Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`out` NULL); `SP_STATUS_NOT_FINITE`
 // (`cct` or `duv` NaN or infinite); `SP_STATUS_DOMAIN` (`cct` outside 1000–25 000 K or
-// |`duv`| > 0.05).
+// |`duv`| > 0.05, or a point that is no chromaticity: not `x, y > 0`, `x + y < 1`, as
+// 1000 K at Duv +0.05).
 //
 // # Safety
 // `out` is NULL or points to a writable `SpXy`.

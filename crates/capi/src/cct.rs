@@ -35,7 +35,8 @@ pub struct SpCct {
 ///
 /// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`out` NULL); `SP_STATUS_NOT_FINITE`
 /// (`cct` or `duv` NaN or infinite); `SP_STATUS_DOMAIN` (`cct` outside 1000–25 000 K or
-/// |`duv`| > 0.05).
+/// |`duv`| > 0.05, or a point that is no chromaticity: not `x, y > 0`, `x + y < 1`, as
+/// 1000 K at Duv +0.05).
 ///
 /// # Safety
 /// `out` is NULL or points to a writable `SpXy`.
@@ -54,6 +55,10 @@ fn cct_to_xy(cct: f32, duv: f32) -> Status<SpXy> {
         .point()
         .ok_or(SpStatus::Domain)?;
     let [x, y] = p.xy();
+    // far above the locus at its red end the normal leaves the chromaticity diagram
+    if !(x > 0.0 && y > 0.0 && x + y < 1.0) {
+        return Err(SpStatus::Domain);
+    }
     Ok(SpXy { x, y })
 }
 

@@ -95,6 +95,8 @@ fn expected() -> String {
         ("cct_to_xy_inf_duv", NOT_FINITE),
         ("cct_to_xy_500", DOMAIN),
         ("cct_to_xy_duv_06", DOMAIN),
+        // outside the chromaticity diagram: x + y > 1
+        ("cct_to_xy_1000_p05", DOMAIN),
         ("cct_to_xy_null", NULL),
     ] {
         l.line(name, s, "");

@@ -3,3 +3,4 @@
 
 mod c_program;
 mod header;
+mod total;

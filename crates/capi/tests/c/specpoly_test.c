@@ -124,6 +124,7 @@ int run(void) {
     cct_to_xy("cct_to_xy_inf_duv", 4000.0f, inf);
     cct_to_xy("cct_to_xy_500", 500.0f, 0.0f);
     cct_to_xy("cct_to_xy_duv_06", 4000.0f, 0.06f);
+    cct_to_xy("cct_to_xy_1000_p05", 1000.0f, 0.05f);
     begin("cct_to_xy_null", sp_cct_to_xy(4000.0f, 0.0f, NULL)); end();
 
     xy_to_cct("xy_to_cct_d65", 0.3127, 0.3290);
