@@ -93,6 +93,19 @@ int run(void) {
     t = start();
     for (int i = 0; i < 100; i++) sp_mix_step(&m, 65535, &s);
     report("sp_mix_step_4ch", since(t), 100);
+    /* six channels: + amber and cyan, the solver's worst case (240 + 160 vertices) */
+    static const float more[2][3] = {{0.40f, 0.45f, 0.05f}, {0.10f, 0.30f, 0.60f}};
+    for (int i = 0; i < 2; i++) {
+        __builtin_memcpy(m.channels[4 + i].xyz, more[i], sizeof more[i]);
+        m.channels[4 + i].cost = 1.0f;
+        m.channels[4 + i].gamma = 1.0f;
+    }
+    m.count = 6;
+    m.fade_ms = 1000;
+    sp_mix_target_cct(&m, 2700.0f, 0.0f, 0.3f, 65535, &r);
+    t = start();
+    for (int i = 0; i < 100; i++) sp_mix_step(&m, 65535, &s);
+    report("sp_mix_step_6ch", since(t), 100);
     sink = (float)s.duty[0];
 #endif
 #if !defined(GROUP) || GROUP == 4
