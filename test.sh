@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
-# target, QEMU for the firmware, Chromium for the web patch display, ArgyllCMS for the
+# target, QEMU for the firmware, arm-none-eabi-gcc and newlib, riscv64-unknown-elf-gcc, QEMU's
+# RISC-V system and the riscv32imc Rust target for the C library's QEMU tests,
+# Chromium for the web patch display, ArgyllCMS for the
 # `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints
 # (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
 # firmware under QEMU). Stops with a clear message if something cannot be installed; never
@@ -21,6 +23,12 @@ command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
 command -v exrheader >/dev/null 2>&1 || missing+=(openexr)   # reads our EXR attributes
 command -v oiiotool >/dev/null 2>&1 || missing+=(openimageio-tools)   # so does OpenImageIO
+# specpoly-c's C test program for the Cortex-M4F (QEMU): the cross compiler and its C library
+command -v arm-none-eabi-gcc >/dev/null 2>&1 || missing+=(gcc-arm-none-eabi)
+[ -f /usr/lib/arm-none-eabi/newlib/thumb/v7e-m+fp/hard/libc_nano.a ] || missing+=(libnewlib-arm-none-eabi)
+# ... and for RV32IMC (ESP32-C3's instruction set) on QEMU `virt`
+command -v riscv64-unknown-elf-gcc >/dev/null 2>&1 || missing+=(gcc-riscv64-unknown-elf)
+command -v qemu-system-riscv32 >/dev/null 2>&1 || missing+=(qemu-system-misc)
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing ${missing[*]} (apt)"
@@ -33,12 +41,14 @@ if ((${#missing[@]})); then
   fi
 fi
 for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
-  exrheader oiiotool; do
+  exrheader oiiotool arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
-if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then
-  rustup target add thumbv7em-none-eabihf
-fi
+for target in thumbv7em-none-eabihf riscv32imc-unknown-none-elf; do
+  if ! rustup target list --installed | grep -qx "$target"; then
+    rustup target add "$target"
+  fi
+done
 for c in rustfmt clippy; do
   rustup component list --installed | grep -q "^$c" || rustup component add "$c"
 done
@@ -69,6 +79,9 @@ say "firmware builds (linted as they build; the QEMU tests run these very binari
 say "specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)"
 cargo build -p specpoly-core -p specpoly-graphics -p specpoly-device --target thumbv7em-none-eabihf
 cargo build -p specpoly-device --no-default-features --target thumbv7em-none-eabihf
+# the C library's staticlibs as its QEMU tests link them (crates/capi/tests/c_program.rs)
+cargo build -p specpoly-c --release --target thumbv7em-none-eabihf
+cargo build -p specpoly-c --release --target riscv32imc-unknown-none-elf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 if cargo nextest --version >/dev/null 2>&1; then

@@ -93,8 +93,11 @@ pub fn cct_duv(uv: [f64; 2]) -> Result<Cct, LightError> {
             best = (d, m);
         }
     }
+    // `max(lo).min(hi)`, not `clamp`: the same for every non-NaN value, and without `clamp`'s
+    // formatted assertion, whose f64 formatting is 20 KiB of a device's flash (docs/c.md)
+    let within = |v: f64, lo: f64, hi: f64| v.max(lo).min(hi);
     // 5 nm sums while the bracket is wider than 0.1 mired, 1 nm sums after
-    let f = |m: f64, step: usize| dist2(uv, planck_uv_step(1e6 / m.clamp(lo_m, hi_m), step));
+    let f = |m: f64, step: usize| dist2(uv, planck_uv_step(1e6 / within(m, lo_m, hi_m), step));
     let mut m = best.1;
     let mut h = h0;
     let mut moves = 0;
@@ -103,13 +106,13 @@ pub fn cct_duv(uv: [f64; 2]) -> Result<Cct, LightError> {
         let (fa, fm, fb) = (f(m - h, st), f(m, st), f(m + h, st));
         let curv = fa - 2.0 * fm + fb;
         let step = if curv > 0.0 {
-            (0.5 * h * (fa - fb) / curv).clamp(-h, h)
+            within(0.5 * h * (fa - fb) / curv, -h, h)
         } else if fa < fb {
             -h
         } else {
             h
         };
-        m = (m + step).clamp(lo_m, hi_m);
+        m = within(m + step, lo_m, hi_m);
         // a step that reached the bracket's edge may not have reached the minimum: step again
         // at this scale (bounded) before shrinking
         if step.abs() < h || moves >= 20 {
