@@ -145,8 +145,9 @@ pub fn split(set: &[Patch], taken: &[Measurement]) -> (Vec<Measurement>, Vec<Mea
 }
 
 /// Splits the readings `taken` of `set` ([`split`]), fits Cowan's model to the fit patches,
-/// verifies it on the others, records where the readings came from and writes the
-/// calibration to `out`: the calibration and how many patches were fitted and verified.
+/// verifies it on the others, records where the readings came from (the file and its
+/// SHA-256: fit and readings are one result) and writes the calibration to `out`: the
+/// calibration and how many patches were fitted and verified.
 pub fn fit_and_save(
     out: &Path,
     ti3: &Path,
@@ -164,6 +165,7 @@ pub fn fit_and_save(
     {
         let (_, prov) = cal.report_mut();
         prov.source = ti3.display().to_string();
+        prov.readings_sha256 = crate::session::sha256_file(ti3)?;
         prov.instrument = info.instrument.clone().unwrap_or_default();
         prov.measured = info.created.clone().unwrap_or_default();
     }

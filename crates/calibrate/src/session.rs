@@ -56,6 +56,22 @@ pub fn fingerprint(devices: &[[f64; 3]]) -> String {
     format!("{} patches, fnv1a64 {h:016x}", devices.len())
 }
 
+/// The SHA-256 of `bytes`, lower-case hex (FIPS 180-4, the `sha2` crate): what a calibration
+/// records of the readings file it was fitted from (`sha256sum FILE` prints the same).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// [`sha256_hex`] of the file at `path` (a regular file, read whole: at most
+/// [`specpoly_formats::read::MAX_INPUT_BYTES`]).
+pub fn sha256_file(path: &Path) -> Result<String> {
+    Ok(sha256_hex(&specpoly_formats::read::bytes(path)?))
+}
+
 /// The first free backup name `PATH.1`, `PATH.2`, ….
 pub fn backup_name(path: &Path) -> PathBuf {
     let mut n = 1;

@@ -172,7 +172,13 @@ fn patches_cmd(a: &PatchesArgs) -> Result<()> {
 }
 
 fn fit_cmd(a: &FitArgs) -> Result<()> {
-    let ti3 = cgats::read_ti3_file(&a.ti3)?;
+    // the bytes read are the bytes hashed: the calibration names the readings it came from
+    let bytes = specpoly_formats::read::bytes(&a.ti3)?;
+    let readings_sha256 = specpoly_calibrate::session::sha256_hex(&bytes);
+    let ti3 = cgats::read_ti3(
+        &specpoly_formats::read::decode(bytes),
+        &a.ti3.display().to_string(),
+    )?;
     let (meas, absolute) = ti3.best_units();
     let (fit_set, verify_set) = if a.hold_out {
         fit::hold_out(meas)
@@ -192,6 +198,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
     let (_, prov) = cal.report_mut();
     prov.source = a.ti3.display().to_string();
+    prov.readings_sha256 = readings_sha256;
     prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
     prov.instrument = ti3
         .keyword("TARGET_INSTRUMENT")
