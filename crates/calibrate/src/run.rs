@@ -196,7 +196,7 @@ pub struct Devices<'a> {
     pub instrument: &'a str,
     /// `--settle`, ms.
     pub settle: Option<u64>,
-    /// The readings file (the ArgyllCMS path works beside it).
+    /// The readings file.
     pub ti3: &'a Path,
 }
 
@@ -234,7 +234,6 @@ impl Rig {
             let reader = argyll::Dispread::open(
                 dev.instrument,
                 dev.display,
-                dev.ti3,
                 dev.settle.map(Duration::from_millis),
             )?;
             say(&format!("display: {}", reader.describe_display()))?;
