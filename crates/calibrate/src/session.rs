@@ -226,18 +226,26 @@ impl Session {
         }
     }
 
-    /// Records the reading of patch `i` and rewrites the file atomically.
+    /// Records the reading of patch `i` and rewrites the file atomically. A reading whose
+    /// write fails is not kept: the session holds what the file holds.
     pub fn record(&mut self, i: usize, xyz: [f64; 3]) -> Result<()> {
-        self.readings[i] = Some(xyz);
-        self.save()
+        self.record_all(&[(i, xyz)])
     }
 
-    /// Records several readings (patch index, XYZ) with one write.
+    /// Records several readings (patch index, XYZ) with one write; none of them is kept if the
+    /// write fails.
     pub fn record_all(&mut self, r: &[(usize, [f64; 3])]) -> Result<()> {
+        let before: Vec<Option<[f64; 3]>> = r.iter().map(|(i, _)| self.readings[*i]).collect();
         for (i, x) in r {
             self.readings[*i] = Some(*x);
         }
-        self.save()
+        let saved = self.save();
+        if saved.is_err() {
+            for ((i, _), b) in r.iter().zip(before).rev() {
+                self.readings[*i] = b;
+            }
+        }
+        saved
     }
 
     /// The readings taken, in patch order.
@@ -265,6 +273,45 @@ impl Session {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn info() -> Ti3Info {
+        Ti3Info {
+            absolute: true,
+            ..Ti3Info::default()
+        }
+    }
+
+    fn set(n: usize) -> Vec<Patch> {
+        let devices: Vec<[f64; 3]> = (0..n).map(|k| [k as f64 / n as f64; 3]).collect();
+        crate::patches::from_devices(&devices).unwrap()
+    }
+
+    /// The readings in the file at `path`.
+    fn on_disk(path: &Path) -> usize {
+        let text = std::fs::read_to_string(path).unwrap();
+        cgats::read_ti3(&text, "t").unwrap().measurements.len()
+    }
+
+    #[test]
+    fn a_reading_whose_write_fails_is_not_counted_as_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("c.ti3");
+        let (mut s, _) = Session::open(&path, &set(4), Existing::Refuse, info()).unwrap();
+        s.record(0, [1.0, 2.0, 3.0]).unwrap();
+        s.record(1, [2.0, 3.0, 4.0]).unwrap();
+        // a reading the file cannot take (the .ti3 writer refuses non-finite values)
+        let e = s.record(2, [f64::INFINITY, 1.0, 1.0]).unwrap_err();
+        assert_eq!(s.taken(), 2);
+        assert_eq!(on_disk(&path), 2);
+        assert_eq!(s.missing(), [2, 3]);
+        let stopped = s.stopped(e).to_string();
+        assert!(stopped.contains("2 readings kept"), "{stopped}");
+        // a batch fails whole
+        let e = s.record_all(&[(2, [1.0; 3]), (3, [f64::NAN; 3])]);
+        assert!(e.is_err());
+        assert_eq!(s.taken(), 2);
+        assert_eq!(on_disk(&path), 2);
+    }
 
     #[test]
     fn fingerprint_follows_the_values() {
