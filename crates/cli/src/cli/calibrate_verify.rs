@@ -149,7 +149,8 @@ pub fn predict(a: &PredictArgs) -> Result<()> {
 pub fn verify(a: &VerifyArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
     let ti3 = cgats::read_ti3_file(&a.ti3)?;
-    let m = verify::measurements_for(&cal, &ti3)?;
+    let m = verify::measurements_for(&cal, &ti3)
+        .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
     let v = Verification::new(&cal, &m, &ti3.lines);
     if let Some(path) = &a.report {
         let curve = a.tone_target;
