@@ -5,7 +5,7 @@
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
 //!                        [--patches SET.ti1] [--resume | --force]
 //! ```
-//! writes `CAL.ti3` (all readings, rewritten atomically after each patch — or each batch with
+//! writes `CAL.ti3` (all readings, committed after each patch — or each batch with
 //! `--instrument argyll` — so an interrupted run keeps what it measured; see
 //! [`crate::session`]) and `CAL.toml` (the fit of the non-verification patches).
 //! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
@@ -381,10 +381,16 @@ pub fn measure_session(
 }
 
 /// Measures the patches `session` lacks on `rig` (through its LUT, if it has one), saving
-/// each reading (each batch, with ArgyllCMS) as it is taken. A failure comes as
-/// [`Error::Stopped`]: why, and the readings the session kept.
+/// each reading (each batch, with ArgyllCMS) as it is taken, and closes the readings file
+/// ([`Session::close`]) however measuring ends. A failure comes as [`Error::Stopped`]: why,
+/// and the readings the session kept.
 pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
-    record(rig, set, session).map_err(|e| session.stopped(e))
+    let measured = record(rig, set, session);
+    let closed = session.close();
+    match measured.and(closed) {
+        Ok(()) => Ok(()),
+        Err(e) => Err(session.stopped(e)),
+    }
 }
 
 fn record(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
