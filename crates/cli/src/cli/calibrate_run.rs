@@ -66,7 +66,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
     }
     let (mut session, note) = Session::open(&ti3, &set, existing, info.clone())?;
     if let Some(n) = note {
-        eprintln!("{n}");
+        eprintln!("{}", specpoly_formats::escape::one_line(&n));
     }
     interrupt::install();
     let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
@@ -123,10 +123,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         &set,
         &taken,
     )?;
-    eprintln!(
-        "wrote {}",
-        specpoly_formats::escape::one_line(&a.output.display().to_string())
-    );
+    crate::cli::wrote::wrote(&a.output, "");
     if a.json {
         let mut v = fit_json(&cal, &a.output, n_fit);
         v["readings"] = serde_json::json!(ti3.display().to_string());

@@ -167,10 +167,7 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
         };
         let html = report_html::page(&v, &cal, &info);
         specpoly_formats::atomic::write(path, html.as_bytes())?;
-        eprintln!(
-            "wrote {}",
-            specpoly_formats::escape::one_line(&path.display().to_string())
-        );
+        crate::cli::wrote::wrote(path, "");
     }
     if a.json {
         print_json(&verification_json(&v, a))?;

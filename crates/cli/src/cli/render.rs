@@ -180,7 +180,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             print(&line)?;
         }
     }
-    eprintln!("wrote {}", a.output.display());
+    crate::cli::wrote::wrote(&a.output, "");
     Ok(())
 }
 
