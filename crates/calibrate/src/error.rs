@@ -259,6 +259,20 @@ pub enum Error {
         /// Where `--force` would keep it.
         backup: PathBuf,
     },
+    /// Another run holds the output's lock ([`crate::lock::RunLock`]).
+    #[error(
+        "{} is being measured by another run ({holder}; lock {}): wait for it to end, or use another -o",
+        output.display(),
+        lock.display()
+    )]
+    Locked {
+        /// The output (`-o`).
+        output: PathBuf,
+        /// The lock file.
+        lock: PathBuf,
+        /// The holder's line in the lock file (`pid N, started TIME`).
+        holder: String,
+    },
     /// `--resume` of a readings file that cannot be read.
     #[error("cannot resume: {0} (use --force to start over; the file is kept as a backup)")]
     ResumeUnreadable(specpoly_formats::Error),

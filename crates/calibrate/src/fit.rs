@@ -374,7 +374,7 @@ fn project_primaries(p: &mut [[f64; 3]; 3]) -> Vec<String> {
 pub const MAX_READING: f64 = 1e6;
 
 /// A usage error for a bad table size, a data error for a measurement that is not finite or
-/// beyond [`MAX_READING`].
+/// beyond [`MAX_READING`] ([`check_readings`]).
 fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
     if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
         return Err(Error::TablePoints {
@@ -382,6 +382,14 @@ fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
             max: specpoly_core::display::TABLE_MAX,
         });
     }
+    check_readings(meas)
+}
+
+/// The rule for readings, one for every command that takes them (`calibrate fit` and `run`
+/// fit them, `calibrate verify` compares them): every device value and XYZ finite, and
+/// |X|, |Y|, |Z| at most [`MAX_READING`]. The first measurement (1-based) that breaks it is
+/// the error ([`Error::NotFinite`], [`Error::BeyondRange`]).
+pub fn check_readings(meas: &[Measurement]) -> Result<()> {
     if let Some(i) = meas
         .iter()
         .position(|m| m.device.iter().chain(&m.xyz).any(|v| !v.is_finite()))

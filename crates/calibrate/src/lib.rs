@@ -1,9 +1,9 @@
 //! # specpoly-calibrate
 //!
 //! Measuring a display: patch sets ([`patches`]), where patches are shown ([`patch_display`]),
-//! where readings come from ([`instrument`]), the readings log ([`session`]), the measuring loop
-//! ([`run`]), the fit of the display model ([`fit`]), verification ([`verify`], [`criteria`]) and
-//! its report ([`report_html`]). The calibration file and its exports are in `specpoly-display`.
+//! where readings come from ([`instrument`]), the readings log ([`session`]), one run per
+//! output ([`lock`]), the measuring loop ([`run`]), the fit of the display model ([`fit`]),
+//! verification ([`verify`], [`criteria`]) and its report ([`report_html`]). The calibration file and its exports are in `specpoly-display`.
 #![forbid(unsafe_code)]
 
 pub mod criteria;
@@ -11,6 +11,7 @@ pub mod error;
 pub mod fit;
 pub mod instrument;
 pub mod interrupt;
+pub mod lock;
 pub mod patch_display;
 pub mod patches;
 pub mod progress;

@@ -49,7 +49,9 @@ pub fn uv_prime(x: f64, y: f64) -> [f64; 2] {
     [4.0 * x / d, 9.0 * y / d]
 }
 
-/// `s` with `& < > " '` written as character references (for text and attribute values).
+/// `s` with `& < > " '` written as character references (for text and attribute values), and
+/// every control character but the newline written visibly as an escape (`\u{1b}`): XML 1.0
+/// cannot hold those, not even as character references, and the page is well-formed XML.
 pub fn escape(s: &str) -> String {
     let mut o = String::with_capacity(s.len());
     for c in s.chars() {
@@ -59,7 +61,7 @@ pub fn escape(s: &str) -> String {
             '>' => o.push_str("&#62;"),
             '"' => o.push_str("&#34;"),
             '\'' => o.push_str("&#39;"),
-            c if c.is_control() && c != '\n' => o.push_str(&format!("&#{};", c as u32)),
+            c if c.is_control() && c != '\n' => o.extend(c.escape_default()),
             c => o.push(c),
         }
     }
@@ -559,6 +561,7 @@ mod tests {
             "{u} {v}"
         );
         assert_eq!(escape("a<b & \"c\""), "a&#60;b &#38; &#34;c&#34;");
+        assert_eq!(escape("x\u{1b}]0;t\u{7}\ty\n"), "x\\u{1b}]0;t\\u{7}\\ty\n");
         assert_eq!(css_colour([1.0, 0.5, 0.0]), "#ff8000");
         assert_eq!(css_colour([f64::NAN, 2.0, -1.0]), "#00ff00");
     }

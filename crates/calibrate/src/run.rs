@@ -5,7 +5,7 @@
 //! specpoly calibrate run --display D --instrument I -o CAL.toml [--ramp-steps N] [--verify N]
 //!                        [--patches SET.ti1] [--resume | --force]
 //! ```
-//! writes `CAL.ti3` (all readings, rewritten atomically after each patch — or each batch with
+//! writes `CAL.ti3` (all readings, committed after each patch — or each batch with
 //! `--instrument argyll` — so an interrupted run keeps what it measured; see
 //! [`crate::session`]) and `CAL.toml` (the fit of the non-verification patches).
 //! An existing `CAL.ti3` is never overwritten: `--resume` measures only the patches it lacks,
@@ -145,8 +145,9 @@ pub fn split(set: &[Patch], taken: &[Measurement]) -> (Vec<Measurement>, Vec<Mea
 }
 
 /// Splits the readings `taken` of `set` ([`split`]), fits Cowan's model to the fit patches,
-/// verifies it on the others, records where the readings came from and writes the
-/// calibration to `out`: the calibration and how many patches were fitted and verified.
+/// verifies it on the others, records where the readings came from (the file and its
+/// SHA-256: fit and readings are one result) and writes the calibration to `out`: the
+/// calibration and how many patches were fitted and verified.
 pub fn fit_and_save(
     out: &Path,
     ti3: &Path,
@@ -164,6 +165,7 @@ pub fn fit_and_save(
     {
         let (_, prov) = cal.report_mut();
         prov.source = ti3.display().to_string();
+        prov.readings_sha256 = crate::session::sha256_file(ti3)?;
         prov.instrument = info.instrument.clone().unwrap_or_default();
         prov.measured = info.created.clone().unwrap_or_default();
     }
@@ -194,7 +196,7 @@ pub struct Devices<'a> {
     pub instrument: &'a str,
     /// `--settle`, ms.
     pub settle: Option<u64>,
-    /// The readings file (the ArgyllCMS path works beside it).
+    /// The readings file.
     pub ti3: &'a Path,
 }
 
@@ -232,7 +234,6 @@ impl Rig {
             let reader = argyll::Dispread::open(
                 dev.instrument,
                 dev.display,
-                dev.ti3,
                 dev.settle.map(Duration::from_millis),
             )?;
             say(&format!("display: {}", reader.describe_display()))?;
@@ -380,10 +381,16 @@ pub fn measure_session(
 }
 
 /// Measures the patches `session` lacks on `rig` (through its LUT, if it has one), saving
-/// each reading (each batch, with ArgyllCMS) as it is taken. A failure comes as
-/// [`Error::Stopped`]: why, and the readings the session kept.
+/// each reading (each batch, with ArgyllCMS) as it is taken, and closes the readings file
+/// ([`Session::close`]) however measuring ends. A failure comes as [`Error::Stopped`]: why,
+/// and the readings the session kept.
 pub fn record_session(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {
-    record(rig, set, session).map_err(|e| session.stopped(e))
+    let measured = record(rig, set, session);
+    let closed = session.close();
+    match measured.and(closed) {
+        Ok(()) => Ok(()),
+        Err(e) => Err(session.stopped(e)),
+    }
 }
 
 fn record(rig: &mut Rig, set: &[Patch], session: &mut Session) -> Result<()> {

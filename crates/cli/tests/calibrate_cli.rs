@@ -68,6 +68,13 @@ fn fit_show_predict_verify_icc() {
         assert!(v.get(k).is_some(), "no {k}");
     }
     assert_eq!(v["units"], "cd/m2");
+    // the fit names the readings it came from by their SHA-256 (coreutils' `sha256sum`)
+    let sum = std::process::Command::new("sha256sum")
+        .arg(ACER)
+        .output()
+        .unwrap();
+    let sum = String::from_utf8(sum.stdout).unwrap();
+    assert_eq!(v["provenance"]["readings_sha256"], sum[..64]);
     assert!((v["white"]["Y"].as_f64().unwrap() - 118.724927).abs() < 1e-6);
     assert!(v["primaries"]["red"]["x"].as_f64().unwrap() > 0.6);
     let o = specpoly(&["calibrate", "show", s(&cal)], "");

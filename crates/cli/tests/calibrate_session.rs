@@ -188,3 +188,83 @@ fn sigkill_at_any_instant_leaves_a_valid_ti3() {
     assert_eq!(done.code, Some(0), "{done:?}");
     same(&rows(&ti3), &want);
 }
+
+/// The SHA-256 of a file as coreutils' `sha256sum` prints it (an independent implementation).
+fn sha256sum(path: &Path) -> String {
+    let out = std::process::Command::new("sha256sum")
+        .arg(path)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    String::from_utf8(out.stdout).unwrap()[..64].to_string()
+}
+
+/// Waits (at most 20 s) until `path` exists.
+fn wait_for(path: &Path) {
+    let t = Instant::now();
+    while !path.exists() && t.elapsed() < Duration::from_secs(20) {
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    assert!(path.exists(), "{} never appeared", path.display());
+}
+
+#[test]
+fn a_second_run_on_the_same_output_refuses_at_once_and_the_first_completes() {
+    let dir = tempfile::tempdir().unwrap();
+    let cal = dir.path().join("c.toml");
+    let c = cal.to_str().unwrap();
+    let ti3 = dir.path().join("c.ti3");
+    // the first run: 49 patches, 15 ms each
+    let first = common::start(&args(c, &["--settle", "15"]));
+    wait_for(&ti3);
+    // the second, on the same output, even with --force (which would move the first run's
+    // readings away) and another patch set: refused before it touches anything
+    let second = common::run(
+        &args(c, &["--force", "--ramp-steps", "5", "--verify", "3"]),
+        Duration::from_secs(30),
+    );
+    let e = second.one_line_error(1);
+    assert!(e.contains("is being measured by another run"), "{e}");
+    assert!(e.contains(&format!("pid {}", first.pid())), "{e}");
+    assert!(e.contains("c.toml.lock"), "{e}");
+    assert!(!dir.path().join("c.ti3.1").exists());
+    let done = first.finish(Duration::from_secs(60));
+    assert_eq!(done.code, Some(0), "{done:?}");
+    // the first run's readings, whole, and the calibration fitted from exactly them
+    assert_eq!(rows(&ti3).len(), 49);
+    let fitted = specpoly_display::calibration::load(&cal).unwrap();
+    let prov = &fitted.data().provenance;
+    assert_eq!(prov.readings_sha256, sha256sum(&ti3));
+    assert_eq!(prov.patches_total, 49);
+    // the lock is gone with the run
+    assert!(!dir.path().join("c.toml.lock").exists());
+}
+
+#[test]
+fn a_sigkilled_runs_lock_does_not_block_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let cal = dir.path().join("k.toml");
+    let c = cal.to_str().unwrap();
+    let ti3 = dir.path().join("k.ti3");
+    let lock = dir.path().join("k.toml.lock");
+    let run = common::start(&args(c, &["--settle", "15"]));
+    let pid = run.pid();
+    wait_for(&ti3);
+    signal(pid, "-KILL");
+    let done = run.finish(Duration::from_secs(30));
+    assert_eq!(done.code, None, "{done:?}");
+    // the killed run's lock file is left, naming it, but the lock died with the process
+    let left = std::fs::read_to_string(&lock).unwrap();
+    assert!(left.starts_with(&format!("pid {pid}, started ")), "{left}");
+    let done = common::run(&args(c, &["--resume"]), Duration::from_secs(60));
+    assert_eq!(done.code, Some(0), "{done:?}");
+    assert!(
+        done.stderr.contains(&format!(
+            "k.toml.lock: the run that held it (pid {pid}, started "
+        )),
+        "{done:?}"
+    );
+    assert!(done.stderr.contains("taken over"), "{done:?}");
+    assert_eq!(rows(&ti3).len(), 49);
+    assert!(!lock.exists());
+}

@@ -489,3 +489,63 @@ fn report_renders_in_headless_chromium_without_console_errors() {
         "the refused load was not logged: {log}"
     );
 }
+
+#[test]
+fn verify_refuses_the_readings_fit_refuses_with_the_same_message() {
+    use specpoly_formats::cgats::{write_ti3, Ti3Info};
+    use specpoly_formats::measurement::Measurement;
+    let dir = tempfile::tempdir().unwrap();
+    // a gamma-2.2 display with the sRGB matrix (IEC 61966-2-1), 100 cd/m² white, measured on
+    // the standard patch set
+    let m = [
+        [41.24, 35.76, 18.05],
+        [21.26, 71.52, 7.22],
+        [1.93, 11.92, 95.05],
+    ];
+    let meas: Vec<Measurement> = specpoly_calibrate::patches::standard(9, 16)
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let l = p.device.map(|v| v.powf(2.2));
+            Measurement {
+                device: p.device,
+                xyz: [0, 1, 2].map(|r| (0..3).map(|c| m[r][c] * l[c]).sum::<f64>() + 0.1),
+            }
+        })
+        .collect();
+    let info = Ti3Info {
+        absolute: true,
+        ..Ti3Info::default()
+    };
+    let good = dir.path().join("good.ti3");
+    std::fs::write(&good, write_ti3(&meas, &info).unwrap()).unwrap();
+    let cal = dir.path().join("good.toml");
+    let o = specpoly(&["calibrate", "fit", "--ti3", s(&good), "-o", s(&cal)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // one reading a thousand orders of magnitude beyond any display
+    let mut bad_meas = meas.clone();
+    bad_meas[20].xyz[0] = 1e200;
+    let bad = dir.path().join("bad.ti3");
+    std::fs::write(&bad, write_ti3(&bad_meas, &info).unwrap()).unwrap();
+    let fit = specpoly(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        s(&bad),
+        "-o",
+        s(&dir.path().join("bad.toml")),
+    ]);
+    let fit_err = String::from_utf8_lossy(&fit.stderr).to_string();
+    assert_eq!(fit.status.code(), Some(1), "{fit_err}");
+    assert!(fit_err.contains("measurement 21"), "{fit_err}");
+    assert!(fit_err.contains("beyond"), "{fit_err}");
+    let o = verify(&cal, s(&bad), &["--json"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err, fit_err);
+    assert!(
+        o.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}

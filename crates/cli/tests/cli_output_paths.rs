@@ -1,4 +1,5 @@
-//! Output paths through the real binary (issue 10): `-o -` is stdout, a symlink is written
+//! Output paths through the real binary (issue 10): `-o -` is stdout (also for `render`; a
+//! closed stdout is an error, not a lost output), a symlink is written
 //! through (the link stays), a FIFO is written directly, the temporary file is exclusive and
 //! random (a planted symlink at the old predictable name is not followed), and a temporary file
 //! a killed run left behind is cleaned up.
@@ -46,6 +47,52 @@ fn dash_writes_to_stdout() {
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     assert!(String::from_utf8_lossy(&r.stdout).contains("format"));
     assert!(!Path::new("-").exists());
+}
+
+#[test]
+fn render_dash_writes_the_png_to_stdout_and_a_closed_stdout_is_an_error() {
+    let r = specpoly(&["render", "example1", "--size", "8x6", "-o", "-"]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success(), "{err}");
+    // stdout is the PNG alone (read by the `png` crate); the summary went to stderr
+    let png = png::Decoder::new(&r.stdout[..]).read_info().unwrap();
+    assert_eq!((png.info().width, png.info().height), (8, 6));
+    assert!(err.contains("8x6") && err.contains("→ stdout"), "{err}");
+    assert!(!Path::new("-").exists());
+    // stdout also taken by --json: refused before rendering
+    let r = specpoly(&["render", "example1", "--size", "8x6", "-o", "-", "--json"]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(r.stdout.is_empty());
+    // `>&-`: stdout closed, the image would be lost; one line, exit 1, nothing rendered
+    for args in [
+        &["render", "example1", "--size", "8x6", "-o", "-"][..],
+        &["calibrate", "patches", "-o", "-"][..],
+    ] {
+        let r = Command::new("sh")
+            .arg("-c")
+            .arg(r#"exec "$0" "$@" >&-"#)
+            .arg(env!("CARGO_BIN_EXE_specpoly"))
+            .args(args)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.contains("stdout: it is closed (`>&-`), so the output would be lost"),
+            "{err}"
+        );
+    }
+    // a stdout that is /dev/null opened for writing (`>/dev/null`) is a stdout like any other
+    let r = Command::new("sh")
+        .arg("-c")
+        .arg(r#"exec "$0" "$@" >/dev/null"#)
+        .arg(env!("CARGO_BIN_EXE_specpoly"))
+        .args(["render", "example1", "--size", "8x6", "-o", "-"])
+        .output()
+        .unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
 }
 
 #[test]

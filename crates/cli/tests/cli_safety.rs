@@ -284,3 +284,77 @@ fn the_input_limit_is_settable() {
         fails(&specpoly(&args(bad)), 2, bad);
     }
 }
+
+#[test]
+fn file_names_with_control_characters_print_escaped_in_wrote_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    // an OSC sequence that would retitle the terminal, a bell, a carriage return
+    let name = "x\u{1b}]0;owned\u{7}\ry";
+    let shown = "x\\u{1b}]0;owned\\u{7}\\ry";
+    let p = |ext: &str| dir.path().join(format!("{name}.{ext}"));
+    let (cal, png, ti1, h, svg) = (p("toml"), p("png"), p("ti1"), p("h"), p("svg"));
+    let runs = [
+        vec!["render", "example1", "--size", "4x4", "-o", s(&png)],
+        vec!["calibrate", "patches", "-o", s(&ti1)],
+        vec![
+            "calibrate",
+            "run",
+            "--display",
+            "sim:crt",
+            "--instrument",
+            "sim",
+            "--ramp-steps",
+            "3",
+            "--verify",
+            "1",
+            "--target",
+            "white=D65,gamma=2.2",
+            "-o",
+            s(&cal),
+        ],
+        vec![
+            "calibrate",
+            "export",
+            "--calibration",
+            s(&cal),
+            "--format",
+            "c-table",
+            "-o",
+            s(&h),
+        ],
+        vec!["plot", "colorchecker#blue", "-o", s(&svg)],
+    ];
+    for args in runs {
+        let r = specpoly(&args);
+        assert_eq!(r.code, 0, "{args:?}: {}", r.stderr);
+        for c in ['\u{1b}', '\u{7}', '\r'] {
+            assert!(!r.stderr.contains(c), "{args:?}: {:?}", r.stderr);
+        }
+        assert!(
+            r.stderr
+                .contains(&format!("wrote {}/{shown}.", dir.path().display())),
+            "{args:?}: {}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn plot_svg_of_a_name_with_control_characters_is_well_formed_xml() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("esc.csv");
+    std::fs::write(&f, csv("red\u{1b}]0;owned\u{7}\u{0}", "0.5")).unwrap();
+    let svg = dir.path().join("esc.svg");
+    let r = specpoly(&["plot", s(&f), "-o", s(&svg)]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    // an independent XML 1.0 parser
+    let doc = roxmltree::Document::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let shown: Vec<&str> = doc.descendants().filter_map(|n| n.text()).collect();
+    assert!(
+        shown
+            .iter()
+            .any(|t| t.contains("red\\u{1b}]0;owned\\u{7}\\u{0}")),
+        "{shown:?}"
+    );
+}

@@ -35,6 +35,33 @@ pub fn parse(line: &str) -> Result<Command, Fault> {
     Command::parse(line)
 }
 
+/// The largest X, Y or Z a colour command may ask for (white `Y = 100`): a hundred times the
+/// LED's white. No LED comes near it; a larger number is a mistake, not a colour.
+pub const MAX_TARGET: f32 = 1e4;
+
+/// How far below zero X, Y or Z may be and still count as zero (rounding, as in the XYZ of a
+/// reflectance near black): 10⁻⁵ of the white's `Y = 100`.
+pub const NEGATIVE_TOLERANCE: f32 = 1e-3;
+
+/// Whether `t` can be a colour: finite ([`ErrorCode::NotFinite`] if not), and X, Y, Z each in
+/// [−[`NEGATIVE_TOLERANCE`], [`MAX_TARGET`]] ([`ErrorCode::OutOfRange`] if not). Every real
+/// light has non-negative tristimulus values (the CIE colour-matching functions are
+/// non-negative), so a negative one names no colour: gamut mapping must not be asked to
+/// show it (desaturating `xyz -1e30 1 1` toward the grey of its luminance lit the LED at its
+/// full white, a hundred times the target's `Y`).
+pub fn check_target(t: Xyz) -> Result<(), ErrorCode> {
+    let v = [t.x, t.y, t.z];
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(ErrorCode::NotFinite);
+    }
+    if v.iter()
+        .any(|c| !(-NEGATIVE_TOLERANCE..=MAX_TARGET).contains(c))
+    {
+        return Err(ErrorCode::OutOfRange);
+    }
+    Ok(())
+}
+
 /// The LED colour controller.
 pub struct Controller {
     xy: [[f32; 2]; 3],
@@ -290,12 +317,17 @@ impl Controller {
         ColourReport::of(target, &drive, self.map, self.max)
     }
 
-    /// The reply to a colour command: the colour report, or `err not-finite` (and nothing
-    /// changes: target and duties stay) when any number of the report would not be a finite
-    /// f32 (e.g. `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour
-    /// replies are made, so no `ok` reply carries `nan` or `inf`. `hex`: the numbers in the
-    /// compact form (a `refl` line written in it).
+    /// The reply to a colour command: the colour report, or an error (and nothing changes:
+    /// target and duties stay): `err out-of-range` for a target that is no colour
+    /// ([`check_target`]: a negative or absurdly large X, Y or Z), `err not-finite` when any
+    /// number of the target or the report would not be a finite f32 (e.g.
+    /// `xyy 0.5 1e-45 3.4e38`, whose X and Z overflow). The one place where colour replies are
+    /// made, so no `ok` reply carries `nan` or `inf`. `hex`: the numbers in the compact form (a
+    /// `refl` line written in it).
     fn show(&mut self, target: Xyz, hex: bool) -> Reply {
+        if let Err(code) = check_target(target) {
+            return Reply::Error(Fault::new(code));
+        }
         let drive = self.drive(target);
         let report = ColourReport {
             hex,
@@ -577,6 +609,7 @@ mod tests {
             } else {
                 assert!(
                     reply == Reply::Error(Fault::new(ErrorCode::NotFinite))
+                        || reply == Reply::Error(Fault::new(ErrorCode::OutOfRange))
                         || reply == Reply::Error(Fault::new(ErrorCode::Singular)),
                     "{line} → {text}"
                 );
@@ -584,6 +617,66 @@ mod tests {
             }
         }
         assert!(refused > 0, "the extremes overflow somewhere");
+    }
+
+    #[test]
+    fn a_colour_no_light_can_have_is_refused_never_amplified() {
+        let mut c = Controller::new(65535);
+        assert_eq!(run(&mut c, "map desaturate"), Reply::Done("map"));
+        run(&mut c, "xyz 20 20 20");
+        let duty = c.duty();
+        let refused = Reply::Error(Fault::new(ErrorCode::OutOfRange));
+        for line in [
+            "xyz -1e30 1 1",
+            "xyz -1 1 1",
+            "xyz 1 -0.5 1",
+            "xyz 0 -5 0",
+            "xyz 50 50 -3",
+            "xyz 1e30 1 1",
+            "xyz 1 1 1e30",
+            "xyz 1e6 1e6 1e6",
+            "xyy 0.3 0.3 1e5",
+        ] {
+            assert_eq!(run(&mut c, line), refused, "{line}");
+            assert_eq!(c.duty(), duty, "{line} changed the duties");
+        }
+        // colours, also out of gamut and at the limits, are shown; never brighter than asked
+        // (desaturation keeps the luminance, clipped at the LED's white Y = 100)
+        for line in [
+            "xyz -0.0005 50 50",
+            "xyz 1e-30 1 1",
+            "xyz 9999 1 1",
+            "xyz 1 1 9999",
+            "xyz 1e4 1e4 1e4",
+            "xyy 0.9 0.05 1",
+            "xyy 0.08 0.85 50",
+        ] {
+            match run(&mut c, line) {
+                Reply::Colour(r) => {
+                    assert!(r.led.y <= r.xyz.y.min(100.0) + 0.01, "{line}: {r:?}")
+                }
+                other => panic!("{line}: {other:?}"),
+            }
+        }
+        // a sweep of chromaticities far outside any gamut, at several luminances
+        for k in 0..400 {
+            let x = 10f32.powf(-6.0 + (k % 20) as f32 * 0.5);
+            let z = 10f32.powf(-6.0 + (k / 20) as f32 * 0.5);
+            for y in [0.0f32, 1.0, 30.0, 100.0, 5000.0] {
+                match run(&mut c, &format!("xyz {x:e} {y:e} {z:e}")) {
+                    Reply::Colour(r) => assert!(
+                        r.led.y <= y.min(100.0) + 0.01,
+                        "xyz {x:e} {y:e} {z:e}: {r:?}"
+                    ),
+                    // X or Z beyond MAX_TARGET
+                    Reply::Error(f) => {
+                        assert_eq!(f, Fault::new(ErrorCode::OutOfRange));
+                        assert!(x > MAX_TARGET || z > MAX_TARGET, "{x} {y} {z}");
+                    }
+                    other => panic!("{other:?}"),
+                }
+            }
+        }
     }
 
     #[test]

@@ -193,6 +193,11 @@ pub struct Outlier {
 pub struct Provenance {
     /// The measurements' file.
     pub source: String,
+    /// The SHA-256 of the measurements' file as it was when fitted (lower-case hex; absent in
+    /// files written before it was recorded): `sha256sum SOURCE` tells whether these readings
+    /// are the ones this calibration was fitted from.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub readings_sha256: String,
     /// When the calibration was fitted (UTC, ISO 8601).
     pub created: String,
     /// When the measurements were taken (as the source says), if known.

@@ -1,6 +1,7 @@
 //! Output files are written whole or not at all, and only where the user pointed:
 //!
-//! - `-` writes to stdout;
+//! - `-` writes to stdout (refused when stdout was closed at start:
+//!   [`crate::stdout::check_open`]);
 //! - a FIFO, character device or socket (e.g. `/dev/stdout`, `/dev/null`, a named pipe) is
 //!   written directly: it cannot be replaced, only written;
 //! - a symlink is followed (the link stays, its target gets the bytes);
@@ -40,6 +41,7 @@ pub fn write_with(
     f: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> Result<()> {
     if path == Path::new("-") {
+        crate::stdout::check_open()?;
         return stream(stdout_file().map_err(|e| Error::io("stdout", e))?, f)
             .map_err(|e| Error::io("stdout", e));
     }

@@ -509,34 +509,36 @@ pub fn white_patch(meas: &[Measurement]) -> Option<[f64; 3]> {
     Some(s)
 }
 
-/// Writes measurements as a CGATS `.ti3` that ArgyllCMS (`colprof`) and DisplayCAL read.
-/// Refuses (naming the reading) any value that is not finite, as written: [`read_ti3`] refuses
-/// `inf` and `NaN`, so every file this writes reads back.
-pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
-    use std::fmt::Write;
-    for (i, m) in meas.iter().enumerate() {
-        if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
-            return Err(Error::Ti3Write {
-                why: format!(
-                    "reading {} (device {}, XYZ {}) has the non-finite \
+/// Refuses (naming reading `n`, 1-based) a value that is not finite or a device value
+/// outside 0–1: what no `.ti3` can hold so that it reads back.
+fn check_reading(n: usize, m: &Measurement) -> Result<()> {
+    if let Some(v) = m.device.iter().chain(&m.xyz).find(|v| !v.is_finite()) {
+        return Err(Error::Ti3Write {
+            why: format!(
+                "reading {n} (device {}, XYZ {}) has the non-finite \
                  value {v}, which no .ti3 reader accepts",
-                    i + 1,
-                    crate::stdout::values(&m.device),
-                    crate::stdout::values(&m.xyz)
-                ),
-            });
-        }
-        if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
-            return Err(Error::Ti3Write {
-                why: format!(
-                    "reading {} has the device value {v} outside 0–1 \
-                 (device {})",
-                    i + 1,
-                    crate::stdout::values(&m.device)
-                ),
-            });
-        }
+                crate::stdout::values(&m.device),
+                crate::stdout::values(&m.xyz)
+            ),
+        });
     }
+    if let Some(v) = m.device.iter().find(|v| !(0.0..=1.0).contains(*v)) {
+        return Err(Error::Ti3Write {
+            why: format!(
+                "reading {n} has the device value {v} outside 0–1 \
+                 (device {})",
+                crate::stdout::values(&m.device)
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The lines of a `.ti3` before its rows, through `BEGIN_DATA`: normalised to `white` (its
+/// absolute XYZ in `LUMINANCE_XYZ_CDM2`) when given, else `NORMALIZED_TO_Y_100 "NO"`;
+/// `NUMBER_OF_SETS` when `sets` is given (it is optional in CGATS).
+fn head(info: &Ti3Info, white: Option<[f64; 3]>, sets: Option<usize>) -> String {
+    use std::fmt::Write;
     let mut s = String::new();
     let descriptor = if info.descriptor.is_empty() {
         "Argyll Calibration Target chart information 3"
@@ -555,12 +557,77 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
     if let Some(i) = &info.instrument {
         let _ = writeln!(s, "TARGET_INSTRUMENT \"{}\"", q(i));
     }
+    match white {
+        Some(w) => {
+            let _ = writeln!(
+                s,
+                "LUMINANCE_XYZ_CDM2 \"{:.6} {:.6} {:.6}\"",
+                w[0], w[1], w[2]
+            );
+            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"YES\"");
+        }
+        None => {
+            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"NO\"");
+        }
+    }
+    for (k, v) in &info.keywords {
+        let _ = writeln!(s, "{k} \"{}\"", q(v));
+    }
+    let _ = writeln!(s, "\nNUMBER_OF_FIELDS 7");
+    let _ = writeln!(s, "BEGIN_DATA_FORMAT");
+    let _ = writeln!(s, "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z");
+    let _ = writeln!(s, "END_DATA_FORMAT\n");
+    if let Some(n) = sets {
+        let _ = writeln!(s, "NUMBER_OF_SETS {n}");
+    }
+    let _ = writeln!(s, "BEGIN_DATA");
+    s
+}
+
+/// Row `n` (1-based, its `SAMPLE_ID`) of a `.ti3`, its XYZ times `scale`, with its newline;
+/// refused when scaling overflows.
+fn row(n: usize, m: &Measurement, scale: f64) -> Result<String> {
+    let v = [
+        m.device[0] * 100.0,
+        m.device[1] * 100.0,
+        m.device[2] * 100.0,
+        m.xyz[0] * scale,
+        m.xyz[1] * scale,
+        m.xyz[2] * scale,
+    ];
+    // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(Error::Ti3Write {
+            why: format!(
+                "reading {n} overflows to {x} when scaled (device {}, \
+                 XYZ {})",
+                crate::stdout::values(&m.device),
+                crate::stdout::values(&m.xyz)
+            ),
+        });
+    }
+    Ok(format!(
+        "{n} {:.5} {:.5} {:.5} {:.7} {:.7} {:.7}\n",
+        v[0], v[1], v[2], v[3], v[4], v[5]
+    ))
+}
+
+/// The line that ends a table's rows.
+pub const END_DATA: &str = "END_DATA\n";
+
+/// Writes measurements as a CGATS `.ti3` that ArgyllCMS (`colprof`) and DisplayCAL read.
+/// Refuses (naming the reading) any value that is not finite, as written: [`read_ti3`] refuses
+/// `inf` and `NaN`, so every file this writes reads back.
+pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
+    for (i, m) in meas.iter().enumerate() {
+        check_reading(i + 1, m)?;
+    }
     let white = if info.absolute {
         white_patch(meas)
     } else {
         None
     };
-    let scale = match white {
+    let (white, scale) = match white {
         Some(w) if w.iter().any(|v| !v.is_finite()) => {
             return Err(Error::Ti3Write {
                 why: format!(
@@ -569,64 +636,77 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
                 ),
             });
         }
-        Some(w) if w[1] > 0.0 => {
-            let _ = writeln!(
-                s,
-                "LUMINANCE_XYZ_CDM2 \"{:.6} {:.6} {:.6}\"",
-                w[0], w[1], w[2]
-            );
-            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"YES\"");
-            100.0 / w[1]
-        }
-        _ => {
-            let _ = writeln!(s, "NORMALIZED_TO_Y_100 \"NO\"");
-            1.0
-        }
+        Some(w) if w[1] > 0.0 => (Some(w), 100.0 / w[1]),
+        _ => (None, 1.0),
     };
-    for (k, v) in &info.keywords {
-        let _ = writeln!(s, "{k} \"{}\"", q(v));
-    }
-    let _ = writeln!(s, "\nNUMBER_OF_FIELDS 7");
-    let _ = writeln!(s, "BEGIN_DATA_FORMAT");
-    let _ = writeln!(s, "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z");
-    let _ = writeln!(s, "END_DATA_FORMAT\n");
-    let _ = writeln!(s, "NUMBER_OF_SETS {}", meas.len());
-    let _ = writeln!(s, "BEGIN_DATA");
+    let mut s = head(info, white, Some(meas.len()));
     for (i, m) in meas.iter().enumerate() {
-        let row = [
-            m.device[0] * 100.0,
-            m.device[1] * 100.0,
-            m.device[2] * 100.0,
-            m.xyz[0] * scale,
-            m.xyz[1] * scale,
-            m.xyz[2] * scale,
-        ];
-        // finite readings can still overflow when scaled (to percent, or to the white's Y = 100)
-        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
-            return Err(Error::Ti3Write {
-                why: format!(
-                    "reading {} overflows to {v} when scaled (device {}, \
-                 XYZ {})",
-                    i + 1,
-                    crate::stdout::values(&m.device),
-                    crate::stdout::values(&m.xyz)
-                ),
-            });
-        }
-        let _ = writeln!(
-            s,
-            "{} {:.5} {:.5} {:.5} {:.7} {:.7} {:.7}",
-            i + 1,
-            row[0],
-            row[1],
-            row[2],
-            row[3],
-            row[4],
-            row[5]
-        );
+        s.push_str(&row(i + 1, m, scale)?);
     }
-    let _ = writeln!(s, "END_DATA");
+    s.push_str(END_DATA);
     Ok(s)
+}
+
+/// The readings log form of a `.ti3` (what `calibrate run` appends to while it measures): the
+/// head of [`write_ti3`] with XYZ as given (`NORMALIZED_TO_Y_100 "NO"`: no white is needed
+/// before the first row) and no `NUMBER_OF_SETS`, through `BEGIN_DATA`. Rows
+/// ([`ti3_log_row`]) follow, then [`END_DATA`]; every prefix that ends in a whole row plus
+/// `END_DATA` is a `.ti3` that [`read_ti3`] reads.
+pub fn ti3_log_head(info: &Ti3Info) -> String {
+    head(info, None, None)
+}
+
+/// Row `n` (1-based) of the readings log ([`ti3_log_head`]), with its newline; refused as
+/// [`write_ti3`] refuses a reading.
+pub fn ti3_log_row(n: usize, m: &Measurement) -> Result<String> {
+    check_reading(n, m)?;
+    row(n, m, 1.0)
+}
+
+/// A readings log a run left open — stopped by `SIGKILL`, a crash or a full disk before it
+/// wrote [`END_DATA`] after its last row — closed: the text with `END_DATA` appended, and the
+/// last line, if it was torn (cut off without its newline, or not a whole row), dropped and
+/// returned (control characters escaped). `None` when `text` is not an open log (no
+/// `BEGIN_DATA`, or its rows end with `END_DATA`) or is not one even when closed.
+pub fn close_open_log(text: &str, source: &str) -> Option<(String, Option<String>)> {
+    let last = text.lines().rev().find(|l| !l.trim().is_empty())?;
+    if last.trim() == "END_DATA" || !text.lines().any(|l| l.trim() == "BEGIN_DATA") {
+        return None;
+    }
+    let closed = |body: &str| {
+        let mut s = body.to_string();
+        if !s.is_empty() && !s.ends_with('\n') {
+            s.push('\n');
+        }
+        s.push_str(END_DATA);
+        s
+    };
+    let drop_last = |t: &str| {
+        let body = t.trim_end_matches('\n');
+        let cut = body.rfind('\n').map_or(0, |i| i + 1);
+        let torn = crate::escape::one_line(&body[cut..]).into_owned();
+        (body[..cut].to_string(), torn)
+    };
+    let (body, torn) = if text.ends_with('\n') {
+        let lines = text.lines().count();
+        match read_ti3(&closed(text), source) {
+            Ok(_) => return Some((closed(text), None)),
+            // the last line is not a whole row
+            Err(Error::Cgats { line: Some(l), .. }) | Err(Error::CgatsNumber { line: l, .. })
+                if l == lines =>
+            {
+                let (b, t) = drop_last(text);
+                (b, Some(t))
+            }
+            Err(_) => return None,
+        }
+    } else {
+        let (b, t) = drop_last(text);
+        (b, Some(t))
+    };
+    let fixed = closed(&body);
+    read_ti3(&fixed, source).ok()?;
+    Some((fixed, torn))
 }
 
 /// Reads a .ti3 file.
@@ -660,6 +740,43 @@ mod tests {
         assert!(t.video_lut_active());
         assert_eq!(t.measurements[0].device, [1.0; 3]);
         assert_eq!(t.lines[0], 38);
+    }
+
+    #[test]
+    fn a_log_is_a_ti3_after_every_row_and_an_open_one_is_closed_without_its_torn_line() {
+        let info = Ti3Info {
+            absolute: true,
+            ..Default::default()
+        };
+        let m = |k: f64| Measurement {
+            device: [k / 4.0; 3],
+            xyz: [k, k + 0.5, k + 0.25],
+        };
+        let mut text = ti3_log_head(&info);
+        for n in 1..=3 {
+            text.push_str(&ti3_log_row(n, &m(n as f64)).unwrap());
+            let closed = format!("{text}{END_DATA}");
+            let t = read_ti3(&closed, "log").unwrap();
+            assert_eq!(t.measurements.len(), n);
+            assert_eq!(t.measurements[n - 1], m(n as f64));
+            // a whole file is not an open log
+            assert_eq!(close_open_log(&closed, "log"), None);
+        }
+        // killed between rows: closed as it is
+        let (closed, torn) = close_open_log(&text, "log").unwrap();
+        assert_eq!(closed, format!("{text}{END_DATA}"));
+        assert_eq!(torn, None);
+        // killed inside a row, with and without its newline
+        for cut in [
+            "4 100.00000 10",
+            "4 100.0DATA\n",
+            "4 100.00000 100.00000 100.00000 1 2\n",
+        ] {
+            let (closed, torn) = close_open_log(&format!("{text}{cut}"), "log").unwrap();
+            assert_eq!(closed, format!("{text}{END_DATA}"));
+            assert_eq!(torn.as_deref(), Some(cut.trim_end()));
+        }
+        assert!(ti3_log_row(4, &m(f64::NAN)).is_err());
     }
 
     #[test]

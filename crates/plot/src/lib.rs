@@ -228,8 +228,35 @@ impl Figure {
         })
     }
 
-    /// Draws the figure on any plotters drawing area.
+    /// The figure with every text (title, axis labels, legend entries) on one line and its
+    /// control characters written as escapes (`\u{1b}`, [`specpoly_formats::escape::one_line`]):
+    /// XML 1.0 cannot hold them, not even as character references, so an SVG with one is not
+    /// well-formed; in a PNG they would be drawn as missing glyphs.
+    fn printable(&self) -> std::borrow::Cow<'_, Figure> {
+        use specpoly_formats::escape::one_line;
+        let bad = |t: &str| t.chars().any(char::is_control);
+        let texts = [&self.title, &self.x_label, &self.y_label];
+        if !texts.iter().any(|t| bad(t))
+            && !self.series.iter().flat_map(|s| &s.label).any(|t| bad(t))
+        {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut f = self.clone();
+        for t in [&mut f.title, &mut f.x_label, &mut f.y_label] {
+            *t = one_line(t).into_owned();
+        }
+        for l in f.series.iter_mut().filter_map(|s| s.label.as_mut()) {
+            *l = one_line(l).into_owned();
+        }
+        std::borrow::Cow::Owned(f)
+    }
+
+    /// Draws the figure ([`Figure::printable`]) on any plotters drawing area.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        self.printable().draw_printable(root)
+    }
+
+    fn draw_printable<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let fail = Error::Draw;
         register_font();
         let l = self.layout()?;
@@ -516,6 +543,18 @@ mod tests {
         assert!(px.chunks(3).any(|p| p[0] < 60 && p[1] < 60 && p[2] < 60)); // text and frame
         let png = f.png().unwrap();
         assert_eq!(&png[1..4], b"PNG");
+    }
+
+    #[test]
+    fn control_characters_in_texts_leave_the_svg_well_formed() {
+        let mut f = fig(2, (500, 300), "red\u{1b}]0;owned\u{7}");
+        f.title = "t\u{0}\u{8}".into();
+        f.x_label = "nm\u{1b}[2J".into();
+        let s = f.svg().unwrap();
+        assert!(!s.chars().any(|c| c.is_control() && c != '\n'), "{s:?}");
+        assert!(s.contains("red\\u{1b}]0;owned\\u{7}"), "{s}");
+        assert!(s.contains("nm\\u{1b}[2J"), "{s}");
+        assert!(s.contains("t\\u{0}\\u{8}"), "{s}");
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! Image files: the format follows the extension of the output path.
+//! Image files: the format follows the extension of the output path; `-` writes a PNG to
+//! stdout.
 //!
 //! - `.png`, 8 bits per channel (default) or 16 (`bits = 16`): display-encoded values (the
 //!   display's transfer curve, gamut-mapped), with the colour metadata of the display: an `sRGB`
@@ -67,12 +68,16 @@ pub enum ColourTag {
     Icc(Vec<u8>),
 }
 
-/// The format for `path` from its extension; `bits` (8 or 16) applies to PNG.
+/// The format for `path` from its extension; `bits` (8 or 16) applies to PNG. `-` (stdout)
+/// is PNG, the format a pipe can carry (OpenEXR's writer seeks).
 pub fn format_for(path: &Path, bits: u8) -> Result<Format> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
+    let ext = if path == Path::new("-") {
+        "png".to_string()
+    } else {
+        path.extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default()
+    };
     match (ext.as_str(), bits) {
         ("png", 8) => Ok(Format::Png8),
         ("png", 16) => Ok(Format::Png16),

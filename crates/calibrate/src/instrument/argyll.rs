@@ -16,8 +16,13 @@
 //! batch in progress, and each finished batch is in `CAL.ti3` (atomically) before the next
 //! starts. Each batch re-opens the instrument (about a second for an i1Display Pro).
 //!
-//! **Never hang.** `dispread` runs in a temporary directory beside `CAL.ti3` with `-v`, and
-//! must say something (a `patch k of n` line, a prompt, an error) at least every `timeout`
+//! **A private working folder.** `dispread` reads its `.ti1` and writes its `.ti3` in a folder
+//! of this run's own: created fresh in the system's temporary folder (`$TMPDIR`, else `/tmp`)
+//! under a random name, mode 0700, never reused, removed when the run ends (the `tempfile`
+//! crate's `TempDir`). No other user can plant a folder or a symlink there beforehand, so a
+//! run never writes through someone else's link.
+//!
+//! **Never hang.** `dispread` runs with `-v` and must say something (a `patch k of n` line, a prompt, an error) at least every `timeout`
 //! seconds (default 30), or it is killed and the run stops with one line. This also catches
 //! ArgyllCMS's device scan blocking on a serial port with no instrument.
 //!
@@ -272,7 +277,7 @@ pub struct Dispread {
     program: PathBuf,
     display: DisplayOptions,
     options: ArgyllOptions,
-    dir: PathBuf,
+    dir: tempfile::TempDir,
     settle: Option<Duration>,
     instrument_name: Option<String>,
     runs: usize,
@@ -291,32 +296,24 @@ impl Drop for Reaper {
 }
 
 impl Dispread {
-    /// Checks that `dispread` is installed, parses the options and makes the working
-    /// directory beside `ti3` (removed when done). `settle` sets ArgyllCMS's minimum display
-    /// update delay (`ARGYLL_MIN_DISPLAY_UPDATE_DELAY_MS`).
-    pub fn open(
-        instrument: &str,
-        display: &str,
-        ti3: &Path,
-        settle: Option<Duration>,
-    ) -> Result<Self> {
+    /// Checks that `dispread` is installed, parses the options and makes the private working
+    /// folder (see the module docs; removed when done). `settle` sets ArgyllCMS's minimum
+    /// display update delay (`ARGYLL_MIN_DISPLAY_UPDATE_DELAY_MS`).
+    pub fn open(instrument: &str, display: &str, settle: Option<Duration>) -> Result<Self> {
+        use std::os::unix::fs::PermissionsExt;
         let options = ArgyllOptions::parse(instrument)?;
         let display = DisplayOptions::parse(display)?;
         let program =
             find_program("dispread").ok_or(InstrumentError::NotInstalled { package: PACKAGE })?;
-        let parent = match ti3.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        let name = ti3
-            .file_name()
-            .map(|n| n.to_string_lossy().to_string())
-            .unwrap_or_else(|| "cal.ti3".into());
-        let dir = parent.join(format!(".{name}.argyll{}", std::process::id()));
-        std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+        let tmp = std::env::temp_dir();
+        let dir = tempfile::Builder::new()
+            .prefix("specpoly-argyll-")
+            .permissions(std::fs::Permissions::from_mode(0o700))
+            .tempdir_in(&tmp)
+            .map_err(|e| Error::io(&tmp, e))?;
         if let ArgyllDisplay::Fake(Some(icc)) = &display.display {
             // ArgyllCMS looks for `fake.icc` on Unix and macOS, `fake.icm` on Windows
-            let to = dir.join(if cfg!(windows) {
+            let to = dir.path().join(if cfg!(windows) {
                 "fake.icm"
             } else {
                 "fake.icc"
@@ -364,6 +361,11 @@ impl Dispread {
         }
     }
 
+    /// The private working folder `dispread` runs in.
+    pub fn work_dir(&self) -> &Path {
+        self.dir.path()
+    }
+
     /// Patches per `dispread` run.
     pub fn batch(&self) -> usize {
         self.options.batch
@@ -379,8 +381,8 @@ impl Dispread {
         if interrupt::requested() {
             return Err(InstrumentError::Interrupted.into());
         }
-        let ti1_path = self.dir.join("batch.ti1");
-        let ti3_path = self.dir.join("batch.ti3");
+        let ti1_path = self.dir.path().join("batch.ti1");
+        let ti3_path = self.dir.path().join("batch.ti3");
         let _ = std::fs::remove_file(&ti3_path);
         std::fs::write(
             &ti1_path,
@@ -388,7 +390,7 @@ impl Dispread {
         )
         .map_err(|e| Error::io(&ti1_path, e))?;
         let mut cmd = Command::new(&self.program);
-        cmd.current_dir(&self.dir)
+        cmd.current_dir(self.dir.path())
             .arg("-v")
             .args(self.display.args())
             .args(&self.options.args)
@@ -547,12 +549,6 @@ impl Dispread {
     }
 }
 
-impl Drop for Dispread {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
-    }
-}
-
 /// `text` without ArgyllCMS's console warnings when stdin is not a terminal
 /// (`poll_con_char: tcgetattr failed with '…' on stdin`, printed without a line end).
 pub fn strip_noise(text: &str) -> String {
@@ -608,6 +604,37 @@ pub fn dispread_failed(stderr: &str, code: Option<i32>) -> InstrumentError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_working_folder_is_private_fresh_and_never_a_planted_one() {
+        use std::os::unix::fs::{MetadataExt, PermissionsExt};
+        let out = tempfile::tempdir().unwrap();
+        let profile = out.path().join("display.icc");
+        std::fs::write(&profile, b"a profile").unwrap();
+        // what another local user could plant where the folder used to be made: the old name
+        // beside the readings (`.NAME.ti3.argyllPID`), a symlink to a folder of theirs
+        let victim = out.path().join("victim");
+        std::fs::create_dir(&victim).unwrap();
+        let planted = out
+            .path()
+            .join(format!(".cal.ti3.argyll{}", std::process::id()));
+        std::os::unix::fs::symlink(&victim, &planted).unwrap();
+        let display = format!("argyll:fake:{}", profile.display());
+        let a = Dispread::open("argyll", &display, None).unwrap();
+        let b = Dispread::open("argyll", &display, None).unwrap();
+        let dir = a.work_dir().to_path_buf();
+        assert_ne!(dir, b.work_dir());
+        assert!(!dir.starts_with(out.path()), "{}", dir.display());
+        let meta = std::fs::symlink_metadata(&dir).unwrap();
+        assert!(meta.is_dir());
+        assert_eq!(meta.permissions().mode() & 0o777, 0o700);
+        assert_eq!(meta.uid(), std::fs::metadata(out.path()).unwrap().uid());
+        // the profile went into the private folder, nothing through the planted link
+        assert_eq!(std::fs::read(dir.join("fake.icc")).unwrap(), b"a profile");
+        assert_eq!(std::fs::read_dir(&victim).unwrap().count(), 0);
+        drop(a);
+        assert!(!dir.exists());
+    }
 
     #[test]
     fn parses_options() {

@@ -34,10 +34,7 @@ pub fn run(a: &AccuracyArgs) -> Result<()> {
     }
     let (doc, summary) = specpoly_paper::accuracy::report_and_summary()?;
     specpoly_formats::atomic::write(&a.output, doc.as_bytes())?;
-    eprintln!(
-        "wrote {}",
-        specpoly_formats::escape::one_line(&a.output.display().to_string())
-    );
+    crate::cli::wrote::wrote(&a.output, "");
     if a.json {
         return Ok(specpoly_formats::stdout::print_json(&summary)?);
     }

@@ -167,12 +167,18 @@ fn patches_cmd(a: &PatchesArgs) -> Result<()> {
     let devices: Vec<[f64; 3]> = set.iter().map(|p| p.device).collect();
     let text = specpoly_formats::ti1::write_ti1(&devices, "specpoly calibrate patches");
     specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
-    eprintln!("wrote {} ({} patches)", a.output.display(), set.len());
+    crate::cli::wrote::wrote(&a.output, &format!(" ({} patches)", set.len()));
     Ok(())
 }
 
 fn fit_cmd(a: &FitArgs) -> Result<()> {
-    let ti3 = cgats::read_ti3_file(&a.ti3)?;
+    // the bytes read are the bytes hashed: the calibration names the readings it came from
+    let bytes = specpoly_formats::read::bytes(&a.ti3)?;
+    let readings_sha256 = specpoly_calibrate::session::sha256_hex(&bytes);
+    let ti3 = cgats::read_ti3(
+        &specpoly_formats::read::decode(bytes),
+        &a.ti3.display().to_string(),
+    )?;
     let (meas, absolute) = ti3.best_units();
     let (fit_set, verify_set) = if a.hold_out {
         fit::hold_out(meas)
@@ -192,6 +198,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
     let (_, prov) = cal.report_mut();
     prov.source = a.ti3.display().to_string();
+    prov.readings_sha256 = readings_sha256;
     prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
     prov.instrument = ti3
         .keyword("TARGET_INSTRUMENT")
@@ -221,10 +228,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         cal.set_video_lut(Some(lut))?;
     }
     cal.save(&a.output)?;
-    eprintln!(
-        "wrote {}",
-        specpoly_formats::escape::one_line(&a.output.display().to_string())
-    );
+    crate::cli::wrote::wrote(&a.output, "");
     if a.json {
         return Ok(print_json(&fit_json(&cal, &a.output, fit_set.len()))?);
     }
@@ -384,11 +388,7 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
     if let Some(l) = cal.video_lut() {
         what.push_str(&format!(", vcgt of {} entries", l.len()));
     }
-    eprintln!(
-        "wrote {} ({} bytes, {what})",
-        specpoly_formats::escape::one_line(&a.output.display().to_string()),
-        bytes.len()
-    );
+    crate::cli::wrote::wrote(&a.output, &format!(" ({} bytes, {what})", bytes.len()));
     Ok(())
 }
 
@@ -404,10 +404,12 @@ fn export_cmd(a: &ExportArgs) -> Result<()> {
     );
     let text = export::source_text(&p, a.format.into(), &a.name, &origin)?;
     specpoly_formats::atomic::write(&a.output, text.as_bytes())?;
-    eprintln!(
-        "wrote {} ({} bytes of tables)",
-        a.output.display(),
-        specpoly_core::pixel::PanelTransform::TABLE_BYTES
+    crate::cli::wrote::wrote(
+        &a.output,
+        &format!(
+            " ({} bytes of tables)",
+            specpoly_core::pixel::PanelTransform::TABLE_BYTES
+        ),
     );
     Ok(())
 }

@@ -7,13 +7,15 @@
 //! ```
 //! writes `CAL.ti3` (every reading, committed atomically as it is taken; never overwritten:
 //! see [`specpoly_calibrate::session`]) and `CAL.toml` (the fit of the non-verification
-//! patches).
+//! patches, with the readings file's SHA-256). One run per output: a second run on the same
+//! `-o` stops at once ([`specpoly_calibrate::lock`]).
 
 use crate::cli::calibrate::common::{
     fit_json, line, native_ti3_path, print_fit, set_json, RunArgs,
 };
 use crate::error::{CliError, Result};
 use specpoly_calibrate::interrupt;
+use specpoly_calibrate::lock::RunLock;
 use specpoly_calibrate::run::{
     fit_and_save, measure_session, patch_set, raw_primaries, ti3_path, Devices,
 };
@@ -56,9 +58,15 @@ pub fn run(a: &RunArgs) -> Result<()> {
         absolute: true,
         keywords: Vec::new(),
     };
+    // one run per output, from before the readings are touched until the calibration is
+    // written (released when `_lock` is dropped, or by the OS however the process ends)
+    let (_lock, note) = RunLock::acquire(&a.output, &calibration::now_utc())?;
+    if let Some(n) = note {
+        eprintln!("{}", specpoly_formats::escape::one_line(&n));
+    }
     let (mut session, note) = Session::open(&ti3, &set, existing, info.clone())?;
     if let Some(n) = note {
-        eprintln!("{n}");
+        eprintln!("{}", specpoly_formats::escape::one_line(&n));
     }
     interrupt::install();
     let n_verify = set.iter().filter(|p| !p.kind.for_fit()).count();
@@ -115,10 +123,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         &set,
         &taken,
     )?;
-    eprintln!(
-        "wrote {}",
-        specpoly_formats::escape::one_line(&a.output.display().to_string())
-    );
+    crate::cli::wrote::wrote(&a.output, "");
     if a.json {
         let mut v = fit_json(&cal, &a.output, n_fit);
         v["readings"] = serde_json::json!(ti3.display().to_string());

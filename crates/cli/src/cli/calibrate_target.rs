@@ -108,14 +108,14 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         "specpoly calibrate run",
         &target::cal_keywords(c.target, &outcome),
     )?;
-    eprintln!("wrote {}", cal_file.display());
+    crate::cli::wrote::wrote(&cal_file, "");
 
     // the display with the LUT loaded: measure again and fit that
     rig.set_lut(Some(outcome.lut.clone()));
     let ti3 = ti3_path(&a.output);
     let (mut session, note) = Session::open(&ti3, c.set, c.existing, c.info.clone())?;
     if let Some(n) = note {
-        eprintln!("{n}");
+        eprintln!("{}", specpoly_formats::escape::one_line(&n));
     }
     record_session(&mut rig, c.set, &mut session)?;
     // the LUT as the readings' CAL table (as `dispread -k` writes it)

@@ -149,7 +149,8 @@ pub fn predict(a: &PredictArgs) -> Result<()> {
 pub fn verify(a: &VerifyArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
     let ti3 = cgats::read_ti3_file(&a.ti3)?;
-    let m = verify::measurements_for(&cal, &ti3)?;
+    let m = verify::measurements_for(&cal, &ti3)
+        .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
     let v = Verification::new(&cal, &m, &ti3.lines);
     if let Some(path) = &a.report {
         let curve = a.tone_target;
@@ -166,10 +167,7 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
         };
         let html = report_html::page(&v, &cal, &info);
         specpoly_formats::atomic::write(path, html.as_bytes())?;
-        eprintln!(
-            "wrote {}",
-            specpoly_formats::escape::one_line(&path.display().to_string())
-        );
+        crate::cli::wrote::wrote(path, "");
     }
     if a.json {
         print_json(&verification_json(&v, a))?;

@@ -20,6 +20,7 @@ pub mod render;
 pub mod render_equal_time;
 pub mod render_report;
 pub mod table1;
+pub mod wrote;
 pub mod xyz;
 
 /// Spectral shading with piecewise polynomials and calibrated colour output

@@ -70,9 +70,6 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         Format::Png => fig.png()?,
     };
     specpoly_formats::atomic::write(&a.output, &bytes)?;
-    eprintln!(
-        "wrote {}",
-        specpoly_formats::escape::one_line(&a.output.display().to_string())
-    );
+    crate::cli::wrote::wrote(&a.output, "");
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! [--gamut clip|desaturate] [--compare] -o OUT.png`
 //!
 //! Renders a built-in scene or a scene file with the spectral Whitted ray tracer and writes a PNG
-//! encoded for the display. `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` (and `hero:4` with the
+//! encoded for the display (`-o -`: to stdout, the summary line then on stderr). `--compare` renders `rgb`, `paper`, `poly`, `sampled:81` (and `hero:4` with the
 //! path tracer; `--rounds N` times, interleaved) and the 1 nm reference,
 //! writes `rgb | poly | reference | ΔE00 rgb | ΔE00 poly` side by side, and prints the ΔE00
 //! statistics of each mode against the reference. `--equal-time` is [`render_equal_time`]; both
@@ -11,7 +11,7 @@
 use crate::cli::args::Gamut;
 use crate::cli::render_equal_time;
 use crate::cli::render_report::{report, Report, Target};
-use crate::error::Result;
+use crate::error::{CliError, Result};
 use specpoly_calibrate::progress;
 use specpoly_display::spec::DisplaySpec;
 use specpoly_formats::stdout::{print, print_json};
@@ -72,8 +72,9 @@ pub struct RenderArgs {
     /// Print the render statistics as JSON on stdout.
     #[arg(long)]
     pub json: bool,
-    /// Output image: .png (8 or 16 bits, with sRGB or ICC colour metadata) or .exr (linear).
-    #[arg(short, long, value_name = "OUT.png|OUT.exr")]
+    /// Output image: .png (8 or 16 bits, with sRGB or ICC colour metadata) or .exr (linear);
+    /// `-` writes the PNG to stdout.
+    #[arg(short, long, value_name = "OUT.png|OUT.exr|-")]
     pub output: PathBuf,
 }
 
@@ -89,6 +90,18 @@ fn render_help() -> String {
 /// Runs `specpoly render`.
 pub fn run(a: &RenderArgs) -> Result<()> {
     let mode = a.mode;
+    // `-o -`: the PNG is stdout's whole content, so nothing else may go there
+    let to_stdout = a.output == std::path::Path::new("-");
+    if to_stdout && (a.json || a.compare) {
+        return Err(CliError::usage(format!(
+            "-o - writes the image to stdout, where {} prints too: name an image file",
+            if a.json { "--json" } else { "--compare" }
+        )));
+    }
+    if to_stdout {
+        // before rendering, not after
+        specpoly_formats::stdout::check_open()?;
+    }
     let format = image_out::format_for(&a.output, a.bits)?;
     let space: ExrSpace = a.exr_space.parse()?;
     let spec = DisplaySpec::open(&a.display)?;
@@ -146,7 +159,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             "output": a.output.display().to_string(),
         }))?;
     } else {
-        print(&format!(
+        let line = format!(
             "{}: {w}x{h}, {paths} {} per pixel, {}, mode {mode}, {secs:.2} s → {}\n",
             a.scene,
             if scene.render.integrator == Integrator::Path {
@@ -155,10 +168,19 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 "rays"
             },
             scene.render.integrator,
-            a.output.display()
-        ))?;
+            if to_stdout {
+                "stdout".into()
+            } else {
+                a.output.display().to_string()
+            }
+        );
+        if to_stdout {
+            eprint!("{}", specpoly_formats::escape::control(&line));
+        } else {
+            print(&line)?;
+        }
     }
-    eprintln!("wrote {}", a.output.display());
+    crate::cli::wrote::wrote(&a.output, "");
     Ok(())
 }
 

@@ -37,12 +37,14 @@ pub fn report(a: &Target<'_>, out: &Output, r: Report<'_>) -> Result<()> {
     let (cw, ch, px) = compose(&comparison_panels(&r.shown, r.reference, out))?;
     render::write_png(a.output, cw, ch, &px)?;
     let names: Vec<String> = r.shown.iter().map(|m| m.repr.to_string()).collect();
-    let written = format!(
-        "wrote {} ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \
-         yellow, white, its colour bar below)",
-        specpoly_formats::escape::one_line(&a.output.display().to_string()),
-        names.join(" | "),
-        render::HEAT_MAX
+    let written = crate::cli::wrote::line(
+        a.output,
+        &format!(
+            " ({} | reference | their ΔE00, labelled; heat map 0 → {} ΔE00: black, blue, red, \
+             yellow, white, its colour bar below)",
+            names.join(" | "),
+            render::HEAT_MAX
+        ),
     );
     if a.json {
         let mut j = r.json;

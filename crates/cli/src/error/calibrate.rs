@@ -1,9 +1,9 @@
 //! `specpoly_calibrate::Error` → [`CliError`]: bad arguments (ramp steps, patch counts, table
 //! size, device specs and which display goes with which instrument, a readings file that
 //! exists or belongs to another patch set) are usage errors (exit 2); the fit's data, the
-//! devices, Ctrl-C and unreadable readings are data errors (exit 1); I/O errors stay I/O
-//! errors. An error at a patch, at a batch or stopping a run takes the exit code of its
-//! cause and the whole message.
+//! devices, Ctrl-C, unreadable readings and an output another run holds are data errors
+//! (exit 1); I/O errors stay I/O errors. An error at a patch, at a batch or stopping a run
+//! takes the exit code of its cause and the whole message.
 
 use super::CliError;
 use specpoly_calibrate::Error;
@@ -55,6 +55,7 @@ impl From<Error> for CliError {
             | Error::Display(_)
             | Error::Instrument(_)
             | Error::Interrupted
+            | Error::Locked { .. }
             | Error::ResumeUnreadable(_)
             | Error::ResumeRelative { .. }
             | Error::ResumeStrayPatch { .. } => CliError::Data(message),
