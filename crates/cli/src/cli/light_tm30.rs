@@ -353,7 +353,7 @@ pub fn run(named: &Named, light: &LightReport, a: &Tm30Args) -> Result<()> {
     }
     for (p, bytes) in &files {
         atomic::write(p, bytes)?;
-        eprintln!("wrote {}", one_line(&p.display().to_string()));
+        super::wrote::wrote(p, "");
     }
     if !a.print {
         return Ok(());
