@@ -49,24 +49,8 @@ pub fn uv_prime(x: f64, y: f64) -> [f64; 2] {
     [4.0 * x / d, 9.0 * y / d]
 }
 
-/// `s` with `& < > " '` written as character references (for text and attribute values), and
-/// every control character but the newline written visibly as an escape (`\u{1b}`): XML 1.0
-/// cannot hold those, not even as character references, and the page is well-formed XML.
-pub fn escape(s: &str) -> String {
-    let mut o = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => o.push_str("&#38;"),
-            '<' => o.push_str("&#60;"),
-            '>' => o.push_str("&#62;"),
-            '"' => o.push_str("&#34;"),
-            '\'' => o.push_str("&#39;"),
-            c if c.is_control() && c != '\n' => o.extend(c.escape_default()),
-            c => o.push(c),
-        }
-    }
-    o
-}
+/// The page's escape for text and attribute values ([`specpoly_formats::escape::markup`]).
+pub use specpoly_formats::escape::markup as escape;
 
 /// The CSS colour of device RGB (0–1) shown as is: `#rrggbb`.
 pub fn css_colour(rgb: [f64; 3]) -> String {

@@ -15,6 +15,25 @@ pub fn one_line(s: &str) -> Cow<'_, str> {
     escape_if(s, char::is_control)
 }
 
+/// `s` for HTML, SVG and XML text and attribute values: `& < > " '` as character references,
+/// and every control character but the newline written visibly as an escape (`\u{1b}`): XML
+/// 1.0 cannot hold those, not even as character references, so the page stays well-formed.
+pub fn markup(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => o.push_str("&#38;"),
+            '<' => o.push_str("&#60;"),
+            '>' => o.push_str("&#62;"),
+            '"' => o.push_str("&#34;"),
+            '\'' => o.push_str("&#39;"),
+            c if c.is_control() && c != '\n' => o.extend(c.escape_default()),
+            c => o.push(c),
+        }
+    }
+    o
+}
+
 fn escape_if(s: &str, bad: impl Fn(char) -> bool) -> Cow<'_, str> {
     if !s.chars().any(&bad) {
         return Cow::Borrowed(s);

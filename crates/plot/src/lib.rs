@@ -13,8 +13,7 @@
 //! routine) and the one-page TM-30 report in HTML ([`tm30_page`]).
 //!
 //! `duplicates` pairs kept: the two legend placements of the layout (beside and below the
-//! plot: the same fields, different arithmetic); the TM-30 page's character escaping and
-//! `specpoly-calibrate`'s report's (neither crate depends on the other).
+//! plot: the same fields, different arithmetic).
 #![forbid(unsafe_code)]
 
 pub mod error;

@@ -51,24 +51,7 @@ pub struct Tm30Page {
     pub notes: Vec<String>,
 }
 
-/// `s` with `& < > " '` as character references (text and attribute values).
-fn escape(s: &str) -> String {
-    let mut o = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => o.push_str("&#38;"),
-            '<' => o.push_str("&#60;"),
-            '>' => o.push_str("&#62;"),
-            '"' => o.push_str("&#34;"),
-            '\'' => o.push_str("&#39;"),
-            c if c.is_control() => {
-                let _ = write!(o, "&#{};", c as u32);
-            }
-            c => o.push(c),
-        }
-    }
-    o
-}
+use specpoly_formats::escape::markup as escape;
 
 fn hex(c: [u8; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
