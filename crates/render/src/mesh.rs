@@ -25,6 +25,28 @@ use std::time::Duration;
 /// At most this many triangles per scene (bounds memory on absurd input).
 pub const MAX_TRIANGLES: usize = 20_000_000;
 
+/// The largest vertex coordinate a mesh may have, after its scene's scale and translation
+/// (10¹⁸ scene units: light-years in millimetres). The BVH builder quantises node bounds in
+/// f32 and panics on coordinates above ≈ 10²⁷; a bound well below that keeps every product of
+/// two coordinates finite too.
+pub const MAX_COORDINATE: f32 = 1e18;
+
+/// A placed vertex within [`MAX_COORDINATE`], or why not.
+pub(crate) fn placed(v: V3, place: &ObjPlacement<'_>) -> std::result::Result<V3, String> {
+    let p = v * place.scale + place.translate;
+    if [p.x, p.y, p.z]
+        .iter()
+        .all(|c| c.is_finite() && c.abs() <= MAX_COORDINATE)
+    {
+        Ok(p)
+    } else {
+        Err(format!(
+            "a vertex at ({}, {}, {}) once placed is beyond ±{MAX_COORDINATE:e}",
+            p.x, p.y, p.z
+        ))
+    }
+}
+
 fn a3(v: V3) -> Vec3A {
     Vec3A::new(v.x, v.y, v.z)
 }
@@ -366,7 +388,7 @@ pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
                     format!("model `{}`: a vertex is not finite", m.name),
                 ));
             }
-            Ok(v * place.scale + place.translate)
+            placed(v, place).map_err(|why| mesh_error(path, format!("model `{}`: {why}", m.name)))
         };
         // vertex normals (`vn`), one per position after tobj's single indexing; scaling and
         // translating the mesh leaves them as they are
@@ -602,6 +624,42 @@ mod tests {
         assert!(e.contains("/dev/zero"), "{e}");
         let s = load("absent.mtl").unwrap();
         assert_eq!(s.owners, [Owner::Material(7)]);
+    }
+
+    /// A vertex beyond ±10¹⁸ (the BVH builder panicked above ≈ 10²⁷) is a one-line error, in
+    /// OBJ and PLY, and so is one that the scene's scale takes there.
+    #[test]
+    fn vertices_beyond_the_coordinate_bound_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let map = BTreeMap::new();
+        let mut place = ObjPlacement {
+            scale: 1.0,
+            translate: V3::new(0.0, 0.0, 0.0),
+            default: 0,
+            map: &map,
+        };
+        let obj = dir.path().join("t.obj");
+        std::fs::write(&obj, "v 0 0 3\nv 1 0 3\nv 0 3e27 3\nf 1 2 3\n").unwrap();
+        let e = load_obj(&obj, &place, &mut TriangleSoup::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("beyond") && !e.contains('\n'), "{e}");
+        let ply = dir.path().join("t.ply");
+        std::fs::write(
+            &ply,
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+             end_header\n0 0 3\n1 0 3\n0 2e19 3\n3 0 1 2\n",
+        )
+        .unwrap();
+        let e = crate::mesh_ply::load_ply(&ply, &place, &mut TriangleSoup::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("vertex 2") && e.contains("beyond"), "{e}");
+        std::fs::write(&obj, "v 0 0 3\nv 1 0 3\nv 0 1 3\nf 1 2 3\n").unwrap();
+        assert!(load_obj(&obj, &place, &mut TriangleSoup::default()).is_ok());
+        place.scale = 1e30;
+        assert!(load_obj(&obj, &place, &mut TriangleSoup::default()).is_err());
     }
 
     /// Repeated faces (the same vertices in any order, the same owner) are built once: 20 000

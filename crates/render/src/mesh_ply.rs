@@ -79,7 +79,7 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
         if !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
             return Err(bad(format!("vertex {i} is not finite in f32")));
         }
-        v.push(p * place.scale + place.translate);
+        v.push(crate::mesh::placed(p, place).map_err(|why| bad(format!("vertex {i}: {why}")))?);
         if let (Some(x), Some(y), Some(z)) = (
             scalar(e.get("nx")),
             scalar(e.get("ny")),

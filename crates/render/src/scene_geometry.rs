@@ -47,6 +47,15 @@ pub fn triangles(
         for (k, v) in q.vertices.iter().enumerate() {
             vs[k] = v3(*v, &format!("{source}: {what}"))?;
         }
+        if vs
+            .iter()
+            .any(|v| [v.x, v.y, v.z].iter().any(|c| c.abs() > mesh::MAX_COORDINATE))
+        {
+            return Err(Error::invalid(
+                source,
+                format!("{what}: a corner is beyond ±{:e}", mesh::MAX_COORDINATE),
+            ));
+        }
         let n = (vs[1] - vs[0]).cross(vs[2] - vs[0]);
         if n.length() == 0.0 {
             return Err(Error::invalid(
