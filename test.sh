@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of specpoly on a fresh machine: installs what is missing (the thumbv7em Rust
 # target, QEMU for the firmware, Chromium for the web patch display, ArgyllCMS for the
-# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints
+# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test, ffmpeg and
+# OpenColorIO's tools for the 3D LUT tests), then formatting, lints
 # (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
 # firmware under QEMU). Stops with a clear message if something cannot be installed; never
 # skips a test.
@@ -19,6 +20,8 @@ command -v spotread >/dev/null 2>&1 || missing+=(argyll)
 command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`'s video LUT
 [ -x /bin/kill ] || missing+=(procps)   # that test ends the X server's process group with kill
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
+command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)   # applies `calibrate lut3d`'s LUTs in a test
+command -v ocioconvert >/dev/null 2>&1 || missing+=(opencolorio-tools)   # OpenColorIO applies them too
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     echo "installing ${missing[*]} (apt)"
@@ -30,7 +33,7 @@ if ((${#missing[@]})); then
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc; do
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc ffmpeg ocioconvert; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 if ! rustup target list --installed | grep -qx thumbv7em-none-eabihf; then

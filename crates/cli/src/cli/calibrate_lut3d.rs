@@ -33,6 +33,10 @@ pub struct Lut3dArgs {
     /// hue kept).
     #[arg(long, value_enum, default_value_t = LutGamutValue::Clip)]
     pub gamut: LutGamutValue,
+    /// Each node the exact inverse of its own colour (default: nodes fitted to the colours
+    /// between them, where the interpolation would miss; docs/calibration.md).
+    #[arg(long)]
+    pub exact_nodes: bool,
 }
 
 /// `--size`: a whole number in the LUT's range (the library's check, as a usage error).
@@ -62,6 +66,7 @@ pub fn run(a: &Lut3dArgs) -> Result<()> {
         size: a.size,
         white: a.white.into(),
         gamut: a.gamut.into(),
+        refine: !a.exact_nodes,
     };
     let started = std::time::Instant::now();
     let lut = lut3d::build(&model, &spec.name(), &opts)?;

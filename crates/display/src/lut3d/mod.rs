@@ -53,6 +53,7 @@
 //! and no file.
 
 pub mod file;
+pub mod refine;
 pub mod source;
 
 use crate::error::{Error, Result};
@@ -126,6 +127,9 @@ pub struct Options {
     pub white: WhiteMode,
     /// The gamut mapping.
     pub gamut: GamutMode,
+    /// Whether the nodes are fitted to the colours between them ([`refine`]); else each node
+    /// is its colour's exact inverse.
+    pub refine: bool,
 }
 
 impl Default for Options {
@@ -135,6 +139,7 @@ impl Default for Options {
             size: 33,
             white: WhiteMode::Adapt,
             gamut: GamutMode::Clip,
+            refine: true,
         }
     }
 }
@@ -403,6 +408,8 @@ pub struct Stats {
     pub inexact: usize,
     /// The largest ΔE00 of those.
     pub worst_inexact_de: f64,
+    /// Nodes fitted to the colours between them ([`refine`]).
+    pub refined: usize,
 }
 
 /// A built 3D LUT.
@@ -606,6 +613,13 @@ struct Node {
     miss: Option<f64>,
 }
 
+impl Node {
+    /// Whether its colour was in the gamut and is shown exactly.
+    fn shown(&self) -> bool {
+        !self.mapped && !self.beyond && self.miss.is_none()
+    }
+}
+
 /// One node (module docs): the colour asked for, mapped into the matrix part's gamut, and
 /// inverted through the full model; a colour beyond the full model's gamut is taken to its
 /// boundary by the inverse's local solve (`clip`) or toward the grey (`desaturate`).
@@ -614,15 +628,20 @@ fn solve_node(
     target: &Target,
     gamut: GamutMode,
     c: [f64; 3],
-    start: Option<[f32; 3]>,
+    neighbour: Option<Node>,
 ) -> Result<Node> {
+    let start = neighbour.map(|n| n.solved);
+    // the global steps search for a colour the local descent from the neighbour missed: worth
+    // it only when the neighbour was itself shown (else this colour, next to one outside the
+    // gamut, is outside too, and the search would only confirm it)
+    let search = neighbour.is_none_or(|n| n.shown());
     let f32s = |x: [f64; 3]| Xyz::from_array(x.map(|v| v as f32));
     let global = |x: [f64; 3]| {
         model.inverse_with(
             f32s(x),
             InverseOptions {
                 start,
-                global: true,
+                global: search,
             },
         )
     };
@@ -726,7 +745,7 @@ pub fn build(model: &DisplayModel<FULL>, display: &str, opts: &Options) -> Resul
                     for b in slices.rev() {
                         for g in (0..n).rev() {
                             for r in (0..n).rev() {
-                                let from = |i: usize| out[i].map(|node: Node| node.solved);
+                                let from = |i: usize| out[i];
                                 let start = if r + 1 < n {
                                     from(at(r + 1, g, b))
                                 } else if g + 1 < n {
@@ -764,7 +783,7 @@ pub fn build(model: &DisplayModel<FULL>, display: &str, opts: &Options) -> Resul
     for block in blocks {
         for node in block? {
             nodes.push(node.device);
-            in_gamut.push(!node.mapped && !node.beyond && node.miss.is_none());
+            in_gamut.push(node.shown());
             stats.out_of_gamut += usize::from(node.mapped || node.beyond);
             stats.beyond_model += usize::from(node.beyond);
             if let Some(de) = node.miss {
@@ -772,6 +791,9 @@ pub fn build(model: &DisplayModel<FULL>, display: &str, opts: &Options) -> Resul
                 stats.worst_inexact_de = stats.worst_inexact_de.max(de);
             }
         }
+    }
+    if opts.refine {
+        stats.refined = refine::refine(model, &target, n, &mut nodes, &in_gamut);
     }
     let title = format!("specpoly: {} to {display}, {n}^3", opts.source.name());
     let mut lut = Lut3d::from_nodes(n, nodes, &title)?;
@@ -781,6 +803,15 @@ pub fn build(model: &DisplayModel<FULL>, display: &str, opts: &Options) -> Resul
         "nodes: {n}^3 = {total}; {} outside the display's gamut (mapped; {} of them by its channel interaction); {} not reached exactly (the nearest on the gamut boundary, worst {:.3} dE00)",
         stats.out_of_gamut, stats.beyond_model, stats.inexact, stats.worst_inexact_de
     ));
+    header.push(if opts.refine {
+        format!(
+            "nodes fitted to the colours between them: {} nodes of the cells whose centre missed by more than {} dE00",
+            stats.refined,
+            refine::CELL_DE
+        )
+    } else {
+        "nodes: each the exact inverse of its colour".into()
+    });
     lut.header = header;
     lut.in_gamut = in_gamut;
     lut.stats = stats;
