@@ -137,15 +137,14 @@ fn bad_sizes_sources_and_extensions_are_one_line_and_write_nothing() {
     refused(&r, 2, "3D LUT size 1000", &kept, Some("keep me\n"));
 }
 
-/// A calibration whose channel interaction makes every mixture far brighter and greener than
-/// its channels: no grey between black and white is shown by any device colour.
-fn folding_calibration(path: &Path) {
+/// A calibration of the given lattice (`None`: the matrix model), near-sRGB primaries.
+fn calibration(path: &Path, interaction: Option<Lattice>) {
     let primary = |x: f64, y: f64, l: f64| Primary { x, y, luminance: l };
     let data = CalibrationData {
         format: FORMAT.into(),
         version: VERSION,
         units: "relative".into(),
-        black: [0.0; 3],
+        black: [0.1, 0.1, 0.12],
         white: [95.05, 100.0, 108.9],
         primaries: Primaries {
             red: primary(0.64, 0.33, 21.26),
@@ -159,23 +158,83 @@ fn folding_calibration(path: &Path) {
             green: vec![0.0, 1.0],
             blue: vec![0.0, 1.0],
         },
-        // corners red slowest: every corner but black (0) and white (7) adds Y = 300
-        interaction: Some(Lattice {
-            grid: 2,
-            values: (0..8)
-                .map(|i| {
-                    if i == 0 || i == 7 {
-                        [0.0; 3]
-                    } else {
-                        [0.0, 300.0, 0.0]
-                    }
-                })
-                .collect(),
-        }),
+        interaction,
         fit: FitReport::default(),
         provenance: Provenance::default(),
     };
     Calibration::new(data).unwrap().save(path).unwrap();
+}
+
+/// A calibration whose channel interaction makes every mixture far brighter and greener than
+/// its channels: no grey between black and white is shown by any device colour.
+fn folding_calibration(path: &Path) {
+    // corners red slowest: every corner but black (0) and white (7) adds Y = 300
+    let values = (0..8)
+        .map(|i| {
+            if i == 0 || i == 7 {
+                [0.0; 3]
+            } else {
+                [0.0, 300.0, 0.0]
+            }
+        })
+        .collect();
+    calibration(path, Some(Lattice { grid: 2, values }));
+}
+
+#[test]
+fn verify_lut3d_predicts_the_luts_effect_through_the_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let cal = dir.path().join("cal.toml");
+    calibration(&cal, None);
+    let cube = dir.path().join("x.cube");
+    let r = lut3d(s(&cal), &cube, &["--size", "33"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let verify = |extra: &[&str]| {
+        let mut args = vec![
+            "calibrate",
+            "verify",
+            "--calibration",
+            s(&cal),
+            "--lut3d",
+            s(&cube),
+        ];
+        args.extend_from_slice(extra);
+        cli::run(&args)
+    };
+    let r = verify(&["--require", "recommended", "--json"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["pass"], true);
+    assert_eq!(v["lut3d"]["patches"], 193);
+    assert!(
+        v["delta_e00"]["mean"].as_f64().unwrap() < 0.3,
+        "{}",
+        v["delta_e00"]
+    );
+    assert!(
+        v["delta_e00"]["max"].as_f64().unwrap() < 1.0,
+        "{}",
+        v["delta_e00"]
+    );
+    // white and grey balance are judged on the source's white and greys
+    let crit = v["criteria"].as_array().unwrap();
+    let white = crit.iter().find(|c| c["id"] == "white_delta_e00").unwrap();
+    assert!(white["value"].as_f64().unwrap() < 0.05, "{white}");
+    // the same LUT taken as a Rec. 2020 one fails, with one line
+    let r = verify(&["--source", "rec2020"]);
+    assert_eq!(r.code, 1, "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    assert!(r.stderr.contains("verification failed"), "{}", r.stderr);
+    // a LUT file of no format `verify` reads
+    let r = cli::run(&[
+        "calibrate",
+        "verify",
+        "--calibration",
+        s(&cal),
+        "--lut3d",
+        "x.3dlut",
+    ]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
 }
 
 #[test]

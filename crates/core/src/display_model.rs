@@ -311,14 +311,14 @@ impl<const CAP: usize> DisplayModel<CAP> {
             }
             from_start = Some((sol, cost));
         }
-        // 1. the matrix model's inverse, corrected for the lattice
+        // 1. the matrix model's inverse, corrected for the lattice (`xyz_to_linear` takes the
+        // black off)
         let t = self.display.transfer();
-        let b = self.display.black().to_array();
         let mut x = [0.0f32; 3];
         let mut best = ([0.0f32; 3], f32::INFINITY);
         for _ in 0..FIXED_POINT_ROUNDS {
             let l = self.interaction.as_ref().map_or([0.0; 3], |l| l.eval(x));
-            let v = [0, 1, 2].map(|r| w[r] - l[r] - b[r]);
+            let v = [0, 1, 2].map(|r| w[r] - l[r]);
             let lin = self.display.xyz_to_linear(Xyz::from_array(v));
             x = [0, 1, 2].map(|c| {
                 let d = t[c].encode(lin[c]);
@@ -810,6 +810,39 @@ mod tests {
         );
         assert!(!local.exact && local.starts == 1, "{local:?}");
         assert!(m.inverse(far).starts > 1);
+    }
+
+    /// Step 1 is the matrix model's exact inverse: with a black, a colour on the cube's face
+    /// (a power-law channel at 0, whose slope there is 0) is reached without the global steps.
+    #[test]
+    fn the_start_is_the_matrix_inverse_with_a_black() {
+        let (xy, lum) = Display::srgb().primaries();
+        let d = Display::from_primaries(
+            xy,
+            lum.map(|l| l * 100.0),
+            Xyz::new(0.1, 0.1, 0.12),
+            [
+                Transfer::Gamma(2.2),
+                Transfer::Gamma(2.2),
+                Transfer::Gamma(2.2),
+            ],
+        )
+        .unwrap();
+        let m = DisplayModel::<8>::new(d, None);
+        for rgb in [[0.0912, 0.0, 0.0], [0.3, 0.0, 0.7], [0.0, 0.05, 0.0]] {
+            let s = m.inverse_with(
+                m.device_to_xyz(rgb),
+                InverseOptions {
+                    start: None,
+                    global: false,
+                },
+            );
+            assert!(s.exact && s.starts == 1, "{rgb:?}: {s:?}");
+            assert!(
+                (0..3).all(|c| (s.device[c] - rgb[c]).abs() < 1e-3),
+                "{rgb:?}: {s:?}"
+            );
+        }
     }
 
     #[test]
