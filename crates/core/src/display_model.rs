@@ -43,6 +43,11 @@
 //!    near 0 as the scans), and
 //!    step 2 from the [`RESTARTS`] best of them.
 //!
+//! [`DisplayModel::inverse_with`] adds a step 0 — a descent from given device values (a
+//! neighbouring colour's solution: continuation, which keeps neighbours on one branch where
+//! the model folds), taken when it is exact — and can leave out steps 3–5, for colours already
+//! mapped onto the gamut's boundary (3D LUTs, `specpoly_display::lut3d`).
+//!
 //! Inside the gamut (`w = f(rgb₀)` for some `rgb₀` in the cube) it returns device values whose
 //! prediction is within [`INVERSE_DE`] of `w` (tested on every shipped display: ΔE00 ≤ 0.001
 //! against an f64 evaluation of the model). Outside the gamut it returns the nearest
