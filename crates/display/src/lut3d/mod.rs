@@ -40,12 +40,15 @@
 //!   (`K + y (W − K)`), to the gamut boundary (bisection, [`DESATURATE_STEPS`] steps), so
 //!   out-of-gamut colours lose chroma only.
 //!
-//! The mapped colour is then inverted through the full model ([`DisplayModel::inverse`], the
-//! one inverse of the project; module docs of `specpoly_core::display_model`). Where channel
-//! interaction makes the full model's gamut smaller than `M′`'s, its inverse does not reach the
-//! colour: `clip` takes the inverse's nearest colour (least squares in XYZ over the white's
-//! `Y`, within the cube), `desaturate` bisects again toward the grey, the full inverse's
-//! exactness as the test. Such nodes count as out of gamut ([`Stats`]).
+//! The mapped colour is then inverted through the full model ([`DisplayModel::inverse_with`],
+//! the one inverse of the project; module docs of `specpoly_core::display_model`): from the
+//! neighbouring node's solution (continuation, [`build`]); a colour mapped onto `M′`'s boundary
+//! by its local steps only, as is one whose neighbour was not shown. Where channel interaction
+//! makes the full model's gamut smaller than `M′`'s, the inverse does not reach the colour:
+//! `clip` takes its local nearest colour (least squares in XYZ over the white's `Y`, within the
+//! cube), `desaturate` bisects again toward the grey, the inverse's exactness as the test. Such
+//! nodes count as out of gamut ([`Stats`]). Last, the nodes of cells whose colours between
+//! the nodes miss are fitted to those colours ([`refine`]; [`Options::refine`]).
 //!
 //! Every grey of the source (`r = g = b`, which asks for `K + y (W − K)` with `--white adapt`)
 //! must be shown: a model whose inverse misses one by more than [`INVERT_LIMIT_DE`] ΔE00 (an

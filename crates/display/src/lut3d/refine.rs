@@ -10,7 +10,9 @@
 //! 1. every cell's centre is interpolated and predicted through the model; cells whose colour
 //!    there misses the source's by more than [`CELL_DE`] ΔE00 are *bad*;
 //! 2. the nodes of the bad cells (those whose colour is in the gamut and shown exactly; nodes
-//!    outside the gamut stay where the gamut mapping put them) are moved, one at a time, by a
+//!    outside the gamut stay where the gamut mapping put them, and the greys `r = g = b`, black
+//!    and white among them, stay exact: grey balance and white are judged on them alone) are
+//!    moved, one at a time, by a
 //!    damped Gauss–Newton step on the sum of squared CIELAB differences (relative to the
 //!    display's white) over the samples they influence: the node itself and `2³ + 1` points
 //!    inside each of its eight cells (at `1/4`, `3/4` and the centre), each weighted by the
@@ -229,7 +231,9 @@ pub fn refine(
             }
         }
     }
-    let todo: Vec<usize> = (0..n * n * n).filter(|&i| refine[i]).collect();
+    // the greys (black and white among them) stay exact: verification judges them alone
+    let grey = |i: usize| i % n == (i / n) % n && i % n == i / (n * n);
+    let todo: Vec<usize> = (0..n * n * n).filter(|&i| refine[i] && !grey(i)).collect();
     // the samples each refined node influences
     let samples_of = |i: usize| -> Vec<Sample> {
         let p = [i % n, (i / n) % n, i / (n * n)];
