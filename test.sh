@@ -3,7 +3,9 @@
 # target, QEMU for the firmware, arm-none-eabi-gcc and newlib, riscv64-unknown-elf-gcc, QEMU's
 # RISC-V system and the riscv32imc Rust target for the C library's QEMU tests,
 # Chromium for the web patch display, ArgyllCMS for the
-# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test), then formatting, lints
+# `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test, ffmpeg and
+# OpenColorIO's tools for the 3D LUT tests, OpenEXR's and OpenImageIO's tools for the EXR
+# tests), then formatting, lints
 # (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
 # firmware under QEMU). Stops with a clear message if something cannot be installed; never
 # skips a test.
@@ -23,6 +25,8 @@ command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
 command -v exrheader >/dev/null 2>&1 || missing+=(openexr)   # reads our EXR attributes
 command -v oiiotool >/dev/null 2>&1 || missing+=(openimageio-tools)   # so does OpenImageIO
+command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)   # applies `calibrate lut3d`'s LUTs in a test
+command -v ocioconvert >/dev/null 2>&1 || missing+=(opencolorio-tools)   # OpenColorIO applies them too
 # specpoly-c's C test program for the Cortex-M4F (QEMU): the cross compiler and its C library
 command -v arm-none-eabi-gcc >/dev/null 2>&1 || missing+=(gcc-arm-none-eabi)
 [ -f /usr/lib/arm-none-eabi/newlib/thumb/v7e-m+fp/hard/libc_nano.a ] || missing+=(libnewlib-arm-none-eabi)
@@ -41,7 +45,7 @@ if ((${#missing[@]})); then
   fi
 fi
 for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
-  exrheader oiiotool arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
+  exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 for target in thumbv7em-none-eabihf riscv32imc-unknown-none-elf; do

@@ -6,11 +6,18 @@
 //! Dalal 2005). [`Verification`] holds every patch's result and the pass/fail outcome of
 //! DisplayCAL's and ISO 14861's criteria ([`crate::criteria`]); `calibrate verify` prints it as
 //! text or JSON and draws it as an HTML page ([`crate::report_html`]).
+//!
+//! A 3D LUT is verified the same way without measuring ([`Verification::lut3d`]): each source
+//! patch goes through the LUT (tetrahedral interpolation) and the display's model, and what
+//! the model predicts the display shows is compared with the colour the source asks for.
 
 use crate::criteria::{self, Outcome, PatchResult};
 use crate::error::{Error, Result};
 use specpoly_core::delta_e2000_xyz;
+use specpoly_core::display_model::FULL;
+use specpoly_core::{DisplayModel, Xyz};
 use specpoly_display::calibration::Calibration;
+use specpoly_display::lut3d::{Lut3d, Target};
 use specpoly_formats::measurement::Measurement;
 use specpoly_formats::stats::Stats;
 
@@ -89,6 +96,44 @@ impl Verification {
             patches,
             white,
         }
+    }
+
+    /// A 3D LUT on a display, predicted through its model: for each source patch `c` (encoded
+    /// source RGB) whose colour `target.xyz(c)` the display shows (inside the gamut: the
+    /// matrix test of [`Target::in_gamut`] and the model's inverse reaching it), the reference
+    /// is that colour and the "measurement" the model's prediction at the LUT's device values
+    /// `lut.apply(c)`; CIELAB relative to the display's white. Patch numbers are 1-based
+    /// positions in `sources`. Returns the verification and the number of patches outside the
+    /// gamut, not counted.
+    pub fn lut3d(
+        model: &DisplayModel<FULL>,
+        lut: &Lut3d,
+        target: &Target,
+        sources: &[[f64; 3]],
+    ) -> (Verification, usize) {
+        let white = target.white();
+        let mut outside = 0;
+        let mut patches = Vec::with_capacity(sources.len());
+        for (i, c) in sources.iter().enumerate() {
+            let want = target.xyz(*c);
+            let shown = target.in_gamut(want)
+                && model.inverse(Xyz::from_array(want.map(|v| v as f32))).exact;
+            if !shown {
+                outside += 1;
+                continue;
+            }
+            let device = lut.apply(*c).map(|v| v as f32);
+            let got: [f64; 3] = model.device_to_xyz(device).into();
+            patches.push(PatchResult::new(i + 1, *c, want, got, white));
+        }
+        let de: Vec<f64> = patches.iter().map(|p| p.delta_e00).collect();
+        let v = Verification {
+            stats: Stats::of(&de),
+            outcomes: criteria::evaluate(&patches, white),
+            patches,
+            white,
+        };
+        (v, outside)
     }
 
     /// The patch with the largest ΔE00 (a NaN counts as largest).

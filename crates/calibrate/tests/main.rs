@@ -6,5 +6,6 @@ mod displays;
 mod icc;
 mod icc_lut;
 mod locus;
+mod lut3d;
 mod model;
 mod ti3;

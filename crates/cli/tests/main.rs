@@ -4,6 +4,7 @@ mod calibrate_argyll;
 mod calibrate_cli;
 mod calibrate_export;
 mod calibrate_icc_input;
+mod calibrate_lut3d;
 mod calibrate_run_led;
 mod calibrate_run_sim;
 mod calibrate_serial;

@@ -167,6 +167,23 @@ impl Lab {
             b: 200.0 * (fy - fz),
         }
     }
+
+    /// The XYZ of this CIELAB colour relative to `white` ([`Lab::from_xyz`]'s inverse, CIE
+    /// 15:2004 §8.2.1: `f⁻¹(t) = t³` above `6/29`, else `3 (6/29)² (t − 4/29)`).
+    pub fn to_xyz(self, white: impl Into<[f64; 3]>) -> [f64; 3] {
+        let white = white.into();
+        fn f_inv(t: f64) -> f64 {
+            const D: f64 = 6.0 / 29.0;
+            if t > D {
+                t * t * t
+            } else {
+                3.0 * D * D * (t - 4.0 / 29.0)
+            }
+        }
+        let fy = (self.l + 16.0) / 116.0;
+        let f = [fy + self.a / 500.0, fy, fy - self.b / 200.0];
+        [0, 1, 2].map(|i| white[i] * f_inv(f[i]))
+    }
 }
 
 impl Add for Lab {
@@ -370,6 +387,33 @@ mod tests {
         let red = Xyz::new(41.24, 21.26, 1.93);
         let back = Xyy::from_xyz(red, Xyz::default()).to_xyz();
         assert!((back - red).to_array().iter().all(|d| d.abs() < 1e-4));
+    }
+
+    #[test]
+    fn lab_round_trips_through_xyz() {
+        let w = [95.047, 100.0, 108.883];
+        // above and below the cube root's linear foot (Y/Yn = 0.001 is below (6/29)³)
+        for xyz in [
+            [41.24, 21.26, 1.93],
+            [0.05, 0.1, 0.2],
+            [95.047, 100.0, 108.883],
+        ] {
+            let back = Lab::from_xyz(xyz, w).to_xyz(w);
+            for i in 0..3 {
+                assert!(
+                    (back[i] - xyz[i]).abs() < 1e-9 * w[i],
+                    "{xyz:?} -> {back:?}"
+                );
+            }
+        }
+        // CIE 15: L* = 50 is Y/Yn = ((50 + 16)/116)³ = 0.18419
+        let grey = Lab {
+            l: 50.0,
+            a: 0.0,
+            b: 0.0,
+        }
+        .to_xyz(w);
+        assert!((grey[1] - 18.4187).abs() < 1e-3);
     }
 
     #[test]

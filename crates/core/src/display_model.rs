@@ -43,6 +43,11 @@
 //!    near 0 as the scans), and
 //!    step 2 from the [`RESTARTS`] best of them.
 //!
+//! [`DisplayModel::inverse_with`] adds a step 0 — a descent from given device values (a
+//! neighbouring colour's solution: continuation, which keeps neighbours on one branch where
+//! the model folds), taken when it is exact — and can leave out steps 3–5, for colours already
+//! mapped onto the gamut's boundary (3D LUTs, `specpoly_display::lut3d`).
+//!
 //! Inside the gamut (`w = f(rgb₀)` for some `rgb₀` in the cube) it returns device values whose
 //! prediction is within [`INVERSE_DE`] of `w` (tested on every shipped display: ΔE00 ≤ 0.001
 //! against an f64 evaluation of the model). Outside the gamut it returns the nearest
@@ -131,6 +136,24 @@ pub struct Solution {
     /// Starts tried (the first, one per box the cell search descends from, one per scan
     /// round, and those of the coarse search).
     pub starts: u32,
+}
+
+/// How [`DisplayModel::inverse_with`] searches; the default is [`DisplayModel::inverse`]'s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InverseOptions {
+    /// Device values to descend from first (a neighbouring colour's solution).
+    pub start: Option<[f32; 3]>,
+    /// Whether the global steps 3–5 run when steps 1–2 miss.
+    pub global: bool,
+}
+
+impl Default for InverseOptions {
+    fn default() -> Self {
+        Self {
+            start: None,
+            global: true,
+        }
+    }
 }
 
 /// The cell search's state (step 3): the wanted colour, the residuals' scale, what is left
@@ -245,6 +268,19 @@ impl<const CAP: usize> DisplayModel<CAP> {
 
     /// Device values whose prediction is `xyz` (display units): see the module docs.
     pub fn inverse(&self, xyz: Xyz) -> Solution {
+        self.inverse_with(xyz, InverseOptions::default())
+    }
+
+    /// [`Self::inverse`] with a start and without the global steps, as `opts` says.
+    ///
+    /// - `start`: Levenberg–Marquardt (step 2) first descends from these device values (a
+    ///   neighbour's solution: continuation); when that reaches the colour it is the answer,
+    ///   else the steps below run as usual and the better of the two is kept. Where the model
+    ///   folds (two device colours show one colour), neighbouring colours so stay on one branch.
+    /// - `global: false`: steps 1 and 2 only — for a colour mapped onto the gamut's boundary
+    ///   or known to lie outside it, where steps 3–5 would only search for a root that is not
+    ///   there; [`Solution::exact`] says whether it was reached.
+    pub fn inverse_with(&self, xyz: Xyz, opts: InverseOptions) -> Solution {
         let w = xyz.to_array();
         let k = self.inv_scale();
         let resid = |x: [f32; 3]| {
@@ -254,14 +290,40 @@ impl<const CAP: usize> DisplayModel<CAP> {
         let white = self.white();
         let lab_w = Lab::from_xyz(xyz, white);
         let miss = |x: [f32; 3]| delta_e2000(Lab::from_xyz(self.device_to_xyz(x), white), lab_w);
-        // 1. the matrix model's inverse, corrected for the lattice
+        let global = opts.global;
+        // 0. from the given start
+        let mut from_start = None;
+        if let Some(s) = opts.start {
+            let s = s.map(|v| {
+                if v.is_finite() {
+                    v.clamp(0.0, 1.0)
+                } else {
+                    0.5
+                }
+            });
+            let (x, cost, n) = self.descend(&resid, k, s, [false; 3]);
+            let delta_e00 = miss(x);
+            let sol = Solution {
+                device: x,
+                residual: max_abs(resid(x)),
+                delta_e00,
+                exact: delta_e00 <= INVERSE_DE,
+                iterations: n,
+                starts: 1,
+            };
+            if sol.exact {
+                return sol;
+            }
+            from_start = Some((sol, cost));
+        }
+        // 1. the matrix model's inverse, corrected for the lattice (`xyz_to_linear` takes the
+        // black off)
         let t = self.display.transfer();
-        let b = self.display.black().to_array();
         let mut x = [0.0f32; 3];
         let mut best = ([0.0f32; 3], f32::INFINITY);
         for _ in 0..FIXED_POINT_ROUNDS {
             let l = self.interaction.as_ref().map_or([0.0; 3], |l| l.eval(x));
-            let v = [0, 1, 2].map(|r| w[r] - l[r] - b[r]);
+            let v = [0, 1, 2].map(|r| w[r] - l[r]);
             let lin = self.display.xyz_to_linear(Xyz::from_array(v));
             x = [0, 1, 2].map(|c| {
                 let d = t[c].encode(lin[c]);
@@ -284,7 +346,11 @@ impl<const CAP: usize> DisplayModel<CAP> {
         let mut starts = 1;
         // 3. the lattice cells that may hold a root, bisected, a descent from each small box
         // that still may
-        if let Some(l) = self.interaction.as_ref().filter(|_| miss(x) > INVERSE_DE) {
+        if let Some(l) = self
+            .interaction
+            .as_ref()
+            .filter(|_| global && miss(x) > INVERSE_DE)
+        {
             let mut s = Search {
                 w,
                 k,
@@ -303,7 +369,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
         // 4. channel scans: each channel over its whole range, the other two refitted by the
         // matrix model at each value; a descent from the best point found
         for _ in 0..SCAN_ROUNDS {
-            if miss(x) <= INVERSE_DE {
+            if !global || miss(x) <= INVERSE_DE {
                 break;
             }
             let mut improved = false;
@@ -344,7 +410,7 @@ impl<const CAP: usize> DisplayModel<CAP> {
             }
         }
         // 5. a coarse search, and descents from its best points
-        if miss(x) > INVERSE_DE {
+        if global && miss(x) > INVERSE_DE {
             let mut seeds = [([0.0f32; 3], f32::INFINITY); RESTARTS];
             let top = (SEARCH_GRID - 1) as f32;
             for i in 0..nodes(SEARCH_GRID) {
@@ -381,6 +447,13 @@ impl<const CAP: usize> DisplayModel<CAP> {
                 if miss(x) <= INVERSE_DE {
                     break;
                 }
+            }
+        }
+        if let Some((sol, c)) = from_start {
+            iterations += sol.iterations;
+            starts += 1;
+            if c < cost {
+                x = sol.device;
             }
         }
         let delta_e00 = miss(x);
@@ -716,6 +789,64 @@ mod tests {
                     assert!(s.exact, "({r}, {gg}, {b}): {s:?}");
                 }
             }
+        }
+        // continuation: from a neighbour's solution on the flat foot's top, a darker red stays
+        // there (the foot shows no light: every red in it is a solution)
+        let w = m.device_to_xyz([0.125, 0.5, 0.5]);
+        let s = m.inverse_with(
+            w,
+            InverseOptions {
+                start: Some([0.13, 0.5, 0.5]),
+                global: true,
+            },
+        );
+        assert!(
+            s.exact && s.starts == 1 && (s.device[0] - 0.125).abs() < 0.01,
+            "{s:?}"
+        );
+        // without the global steps an unreachable colour costs one start
+        let far = Xyz::new(0.0, 150.0, 0.0);
+        let local = m.inverse_with(
+            far,
+            InverseOptions {
+                start: None,
+                global: false,
+            },
+        );
+        assert!(!local.exact && local.starts == 1, "{local:?}");
+        assert!(m.inverse(far).starts > 1);
+    }
+
+    /// Step 1 is the matrix model's exact inverse: with a black, a colour on the cube's face
+    /// (a power-law channel at 0, whose slope there is 0) is reached without the global steps.
+    #[test]
+    fn the_start_is_the_matrix_inverse_with_a_black() {
+        let (xy, lum) = Display::srgb().primaries();
+        let d = Display::from_primaries(
+            xy,
+            lum.map(|l| l * 100.0),
+            Xyz::new(0.1, 0.1, 0.12),
+            [
+                Transfer::Gamma(2.2),
+                Transfer::Gamma(2.2),
+                Transfer::Gamma(2.2),
+            ],
+        )
+        .unwrap();
+        let m = DisplayModel::<8>::new(d, None);
+        for rgb in [[0.0912, 0.0, 0.0], [0.3, 0.0, 0.7], [0.0, 0.05, 0.0]] {
+            let s = m.inverse_with(
+                m.device_to_xyz(rgb),
+                InverseOptions {
+                    start: None,
+                    global: false,
+                },
+            );
+            assert!(s.exact && s.starts == 1, "{rgb:?}: {s:?}");
+            assert!(
+                (0..3).all(|c| (s.device[c] - rgb[c]).abs() < 1e-3),
+                "{rgb:?}: {s:?}"
+            );
         }
     }
 

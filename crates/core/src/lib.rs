@@ -92,7 +92,7 @@ pub use colorimetry::{
     bradford, chromaticity, de2000_terms, delta_e2000, delta_e2000_xyz, De2000Terms, Lab, Xyy, Xyz,
 };
 pub use display::{quantize, quantize8, Display, Encoded, GamutMap, Transfer};
-pub use display_model::{DisplayModel, Solution};
+pub use display_model::{DisplayModel, InverseOptions, Solution};
 pub use drive::Drive;
 pub use error::Error;
 pub use fit::FitErrors;

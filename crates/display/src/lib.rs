@@ -4,12 +4,14 @@
 //! a fitted display model in TOML), one loader that sniffs a display file once ([`spec`]), ICC
 //! profiles written from a calibration ([`icc`]) and read back ([`icc_read`]), the
 //! channel-interaction lattice ([`lattice`]), video LUTs ([`video_lut`]), calibration targets
-//! ([`target`]) and framebuffer tables baked from a calibration ([`export`]).
+//! ([`target`]), framebuffer tables baked from a calibration ([`export`]) and 3D LUTs ([`lut3d`]).
 //!
 //! Layers, each module depending only on those before it in this list (no module cycles):
 //! [`error`] and [`time`] (the UTC stamps); [`lattice`]; [`video_lut`]; [`calibration`];
 //! [`target`] and [`export`] on a calibration; [`icc`] (its B2A0 table uses [`target`]'s
-//! inverse); [`icc_read`]; [`spec`], the one loader over all the readers.
+//! inverse); [`icc_read`]; [`spec`], the one loader over all the readers; [`lut3d`], 3D LUTs
+//! from a source colour space to any display model (the core's `DisplayModel`, as [`spec`]
+//! gives it), and their files.
 //!
 //! The colour maths is the core's: Bradford, 3×3 products and inverses are
 //! `specpoly_core::Mat3<f64>`/`Xyz<f64>` and `specpoly_core::bradford` (the ICC writer and
@@ -27,6 +29,7 @@ pub mod export;
 pub mod icc;
 pub mod icc_read;
 pub mod lattice;
+pub mod lut3d;
 pub mod spec;
 pub mod target;
 pub mod time;

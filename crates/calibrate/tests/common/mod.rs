@@ -1,3 +1,4 @@
 //! Helpers the test modules share.
 
 pub mod displays;
+pub mod lut3d_consumers;

@@ -36,6 +36,9 @@ pub enum CalibrateCommand {
     Icc(IccArgs),
     /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
     Export(ExportArgs),
+    /// Write a 3D LUT (.cube, .3dl, madVR .3dlut) from a source colour space (sRGB, Rec. 709,
+    /// Display P3, Rec. 2020) to the display, inverted through its model.
+    Lut3d(crate::cli::calibrate_lut3d::Lut3dArgs),
     /// Measure a display: show patches, read them, write CAL.ti3, fit and write CAL.toml.
     Run(common::RunArgs),
     /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
@@ -157,6 +160,7 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
         CalibrateCommand::Verify(a) => crate::cli::calibrate_verify::verify(&a),
         CalibrateCommand::Icc(a) => icc_cmd(&a),
         CalibrateCommand::Export(a) => export_cmd(&a),
+        CalibrateCommand::Lut3d(a) => crate::cli::calibrate_lut3d::run(&a),
         CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
         CalibrateCommand::Patches(a) => patches_cmd(&a),
     }

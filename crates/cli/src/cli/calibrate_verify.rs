@@ -14,6 +14,7 @@
 //! before it. JSON keys: docs/calibration.md.
 
 use crate::cli::args::{self, Curve};
+use crate::cli::calibrate::values::{LutSourceValue, LutWhiteValue};
 use crate::error::{CliError, Result};
 use serde_json::json;
 use specpoly_calibrate::criteria::{self, Level, Outcome};
@@ -64,15 +65,25 @@ pub struct VerifyArgs {
     #[arg(long)]
     pub calibration: PathBuf,
     /// The measured patches.
-    #[arg(long)]
-    pub ti3: PathBuf,
+    #[arg(long, required_unless_present = "lut3d", conflicts_with = "lut3d")]
+    pub ti3: Option<PathBuf>,
+    /// Instead of measurements: a 3D LUT (.cube or .3dl) for this display, verified through the
+    /// display's model on source patches (grey and primary ramps, 128 spread colours).
+    #[arg(long, value_name = "FILE.cube")]
+    pub lut3d: Option<PathBuf>,
+    /// With --lut3d: the LUT's source colour space.
+    #[arg(long, value_enum, default_value_t = LutSourceValue::Srgb)]
+    pub source: LutSourceValue,
+    /// With --lut3d: how the LUT reproduces the source white.
+    #[arg(long, value_enum, default_value_t = LutWhiteValue::Adapt)]
+    pub white: LutWhiteValue,
     /// The level every criterion must meet for exit code 0: DisplayCAL's `nominal` or
     /// `recommended` tolerances (ISO 14861's one level counts at both).
     #[arg(long, value_enum, default_value_t = LevelArg::Nominal)]
     pub require: LevelArg,
     /// Also write the report as one self-contained HTML page (gamut, ΔE00 per patch, tone
     /// curves, the criteria).
-    #[arg(long, value_name = "REPORT.html")]
+    #[arg(long, value_name = "REPORT.html", conflicts_with = "lut3d")]
     pub report: Option<PathBuf>,
     /// The tone curve the report draws the measured ramps against: `gamma:G`, `srgb` or `linear`.
     #[arg(long, default_value = "gamma:2.2", value_parser = args::transfer, value_name = "CURVE")]
@@ -145,12 +156,72 @@ pub fn predict(a: &PredictArgs) -> Result<()> {
     }
 }
 
+/// The source patches `verify --lut3d` checks: black, white, red, green, blue and grey ramps
+/// of 17 levels and 128 colours spread over the cube (the patch set of `calibrate run
+/// --ramp-steps 17 --verify 128`).
+pub const LUT3D_RAMP_STEPS: usize = 17;
+/// … and its spread colours.
+pub const LUT3D_SPREAD: usize = 128;
+
+/// `calibrate verify --lut3d`: the LUT through the calibration's model.
+fn verify_lut3d(a: &VerifyArgs, cal: &Calibration, path: &std::path::Path) -> Result<()> {
+    use specpoly_display::lut3d::{file, Target};
+    let format = file::Format::from_path(path)
+        .filter(|f| *f != file::Format::MadVr)
+        .ok_or_else(|| {
+            CliError::Usage(format!(
+                "--lut3d `{}`: give a .cube or .3dl file",
+                path.display()
+            ))
+        })?;
+    let text = specpoly_formats::read::text(path)?;
+    let lut = file::read(&text, format, &path.display().to_string())?;
+    let target = Target::new(cal.model(), a.source.into(), a.white.into())?;
+    let sources: Vec<[f64; 3]> =
+        specpoly_calibrate::patches::standard(LUT3D_RAMP_STEPS, LUT3D_SPREAD)?
+            .iter()
+            .map(|p| p.device)
+            .collect();
+    let (v, outside) = Verification::lut3d(cal.model(), &lut, &target, &sources);
+    let label = format!(
+        "{} ({} source patches, {outside} outside the display's gamut not counted)",
+        path.display(),
+        args::name(&a.source)
+    );
+    if a.json {
+        let mut j = verification_json(&v, a, &path.display().to_string());
+        j["lut3d"] = json!({
+            "file": path.display().to_string(),
+            "source": args::name(&a.source),
+            "white": args::name(&a.white),
+            "patches": sources.len(),
+            "outside_gamut": outside,
+        });
+        print_json(&j)?;
+    } else {
+        print(&verification_text(&v, cal, a, &label))?;
+    }
+    match criteria::failures(&v.outcomes, a.require.into()) {
+        None => Ok(()),
+        Some(f) => Err(CliError::data(format!(
+            "{}: verification failed: {f}",
+            path.display()
+        ))),
+    }
+}
+
 /// Runs `calibrate verify`.
 pub fn verify(a: &VerifyArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
-    let ti3 = cgats::read_ti3_file(&a.ti3)?;
+    if let Some(lut) = &a.lut3d {
+        return verify_lut3d(a, &cal, lut);
+    }
+    let Some(ti3_path) = &a.ti3 else {
+        return Err(CliError::Usage("give --ti3 FILE or --lut3d FILE".into()));
+    };
+    let ti3 = cgats::read_ti3_file(ti3_path)?;
     let m = verify::measurements_for(&cal, &ti3)
-        .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
+        .map_err(|e| CliError::data(format!("{}: {e}", ti3_path.display())))?;
     let v = Verification::new(&cal, &m, &ti3.lines);
     if let Some(path) = &a.report {
         let curve = a.tone_target;
@@ -161,7 +232,7 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
         };
         let info = ReportInfo {
             calibration: &a.calibration.display().to_string(),
-            measurements: &a.ti3.display().to_string(),
+            measurements: &ti3_path.display().to_string(),
             tone_target: (curve.into(), name),
             level: a.require.into(),
         };
@@ -169,10 +240,11 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
         specpoly_formats::atomic::write(path, html.as_bytes())?;
         crate::cli::wrote::wrote(path, "");
     }
+    let measurements = ti3_path.display().to_string();
     if a.json {
-        print_json(&verification_json(&v, a))?;
+        print_json(&verification_json(&v, a, &measurements))?;
     } else {
-        print(&verification_text(&v, &cal, a))?;
+        print(&verification_text(&v, &cal, a, &measurements))?;
     }
     match criteria::failures(&v.outcomes, a.require.into()) {
         None => Ok(()),
@@ -220,8 +292,12 @@ pub fn outcomes_json(outcomes: &[Outcome], level: Level) -> serde_json::Value {
         .collect()
 }
 
-/// The JSON `calibrate verify --json` prints.
-pub fn verification_json(v: &Verification, a: &VerifyArgs) -> serde_json::Value {
+/// The JSON `calibrate verify --json` prints; `measurements` names what was verified.
+pub fn verification_json(
+    v: &Verification,
+    a: &VerifyArgs,
+    measurements: &str,
+) -> serde_json::Value {
     let s: &Stats = &v.stats;
     let worst = v
         .worst()
@@ -245,7 +321,7 @@ pub fn verification_json(v: &Verification, a: &VerifyArgs) -> serde_json::Value 
         .collect();
     json!({
         "calibration": a.calibration.display().to_string(),
-        "measurements": a.ti3.display().to_string(),
+        "measurements": measurements,
         "white": v.white,
         "delta_e00": {
             "patches": s.n,
@@ -263,12 +339,12 @@ pub fn verification_json(v: &Verification, a: &VerifyArgs) -> serde_json::Value 
     })
 }
 
-fn verification_text(v: &Verification, cal: &Calibration, a: &VerifyArgs) -> String {
+fn verification_text(v: &Verification, cal: &Calibration, a: &VerifyArgs, what: &str) -> String {
     let s = &v.stats;
     let mut t = format!(
         "{} patches of {} against {} ({})\n",
         s.n,
-        a.ti3.display(),
+        what,
         a.calibration.display(),
         if cal.absolute() {
             "cd/m²"

@@ -7,6 +7,7 @@ use clap::{Parser, Subcommand};
 pub mod accuracy;
 pub mod args;
 pub mod calibrate;
+pub mod calibrate_lut3d;
 pub mod calibrate_run;
 pub mod calibrate_target;
 pub mod calibrate_verify;
