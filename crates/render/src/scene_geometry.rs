@@ -47,10 +47,11 @@ pub fn triangles(
         for (k, v) in q.vertices.iter().enumerate() {
             vs[k] = v3(*v, &format!("{source}: {what}"))?;
         }
-        if vs
-            .iter()
-            .any(|v| [v.x, v.y, v.z].iter().any(|c| c.abs() > mesh::MAX_COORDINATE))
-        {
+        if vs.iter().any(|v| {
+            [v.x, v.y, v.z]
+                .iter()
+                .any(|c| c.abs() > mesh::MAX_COORDINATE)
+        }) {
             return Err(Error::invalid(
                 source,
                 format!("{what}: a corner is beyond ±{:e}", mesh::MAX_COORDINATE),
