@@ -116,9 +116,9 @@ fn lenovo_cube_through_ffmpeg_and_opencolorio() {
     through_consumers("lenovo", 33, GOAL_MAX);
 }
 
-/// The Surface is tested at 17³ (its 33³ build takes 8–12 s; its figures at 33³ and 65³ are in
-/// docs/calibration.md): measured mean 0.17, max 1.85 ΔE00. At 33³ it misses the goal's maximum
-/// (1.39 on its darkest colours): its fitted red curve climbs in steps near black (table values
+/// The Surface is tested at 17³ (its 33³ build takes 5–12 s; its figures at 33³ and 65³ are in
+/// docs/calibration.md): measured mean 0.17, max 1.87 ΔE00. At 33³ it misses the goal's maximum
+/// (1.32 on its darkest colours): its fitted red curve climbs in steps near black (table values
 /// 0.0042, 0.0049, 0.0054, then 0.0099 at device 3/63 … 6/63), so its inverse jumps there and no
 /// node fit on a 33-point grid follows the jumps; at 65³ it is 0.04 / 0.44.
 const SURFACE_MAX_17: f64 = 2.0;
