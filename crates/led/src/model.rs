@@ -58,6 +58,9 @@ impl Model {
     /// [`Model::answer`] with the numbers in the compact hexadecimal form when `hex` (the
     /// reply to a `refl` line written in that form, as the firmware answers it).
     pub fn answer_in(&self, target: Xyz, hex: bool) -> Reply {
+        if let Err(code) = specpoly_protocol::target::check_target(target) {
+            return Reply::Error(Fault::new(code));
+        }
         Self::finite(ColourReport {
             hex,
             ..self.colour(target)
@@ -66,6 +69,9 @@ impl Model {
 
     /// [`Model::answer`] with the drive-correction table `table` applied.
     pub fn answer_with(&self, target: Xyz, table: Option<&DriveTable>) -> Reply {
+        if let Err(code) = specpoly_protocol::target::check_target(target) {
+            return Reply::Error(Fault::new(code));
+        }
         Self::finite(self.colour_with(target, table))
     }
 

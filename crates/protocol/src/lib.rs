@@ -32,6 +32,7 @@ pub mod lut;
 pub mod mix;
 pub mod number;
 pub mod reply;
+pub mod target;
 
 pub use command::{write_reflect, write_reflect_hex, Channels, Command, Reflectance};
 pub use fault::{ErrorCode, Fault};
