@@ -38,7 +38,7 @@ pub enum Error {
         /// Which, 1-based.
         index: usize,
     },
-    /// A measurement (1-based) beyond [`crate::fit::MAX_READING`].
+    /// A measurement (1-based) beyond [`crate::readings::MAX_READING`].
     #[error(
         "measurement {index}: XYZ {:.4e} {:.4e} {:.4e} is beyond ±{:e} cd/m² (not a display reading)",
         xyz[0],
@@ -51,7 +51,7 @@ pub enum Error {
         index: usize,
         /// Its XYZ.
         xyz: [f64; 3],
-        /// The limit ([`crate::fit::MAX_READING`]).
+        /// The limit ([`crate::readings::MAX_READING`]).
         max: f64,
     },
     /// No reading of device black.

@@ -43,6 +43,7 @@ pub mod robust;
 pub mod select;
 
 use crate::error::{Error, Result};
+use crate::readings::check_readings;
 use crate::verify;
 use specpoly_display::calibration::{
     Calibration, CalibrationData, FitReport, Primaries, Primary, Provenance, TransferCurves,
@@ -369,12 +370,8 @@ fn project_primaries(p: &mut [[f64; 3]; 3]) -> Vec<String> {
     notes
 }
 
-/// The largest |X|, |Y| or |Z| accepted from an instrument (cd/m²): a hundred times the
-/// brightest HDR display; beyond it the fit's squares would overflow and no display shows it.
-pub const MAX_READING: f64 = 1e6;
-
 /// A usage error for a bad table size, a data error for a measurement that is not finite or
-/// beyond [`MAX_READING`] ([`check_readings`]).
+/// beyond [`crate::readings::MAX_READING`] ([`check_readings`]).
 fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
     if !(2..=specpoly_core::display::TABLE_MAX).contains(&opts.table_points) {
         return Err(Error::TablePoints {
@@ -383,30 +380,6 @@ fn check_input(meas: &[Measurement], opts: &FitOptions) -> Result<()> {
         });
     }
     check_readings(meas)
-}
-
-/// The rule for readings, one for every command that takes them (`calibrate fit` and `run`
-/// fit them, `calibrate verify` compares them): every device value and XYZ finite, and
-/// |X|, |Y|, |Z| at most [`MAX_READING`]. The first measurement (1-based) that breaks it is
-/// the error ([`Error::NotFinite`], [`Error::BeyondRange`]).
-pub fn check_readings(meas: &[Measurement]) -> Result<()> {
-    if let Some(i) = meas
-        .iter()
-        .position(|m| m.device.iter().chain(&m.xyz).any(|v| !v.is_finite()))
-    {
-        return Err(Error::NotFinite { index: i + 1 });
-    }
-    if let Some(i) = meas
-        .iter()
-        .position(|m| m.xyz.iter().any(|v| v.abs() > MAX_READING))
-    {
-        return Err(Error::BeyondRange {
-            index: i + 1,
-            xyz: meas[i].xyz,
-            max: MAX_READING,
-        });
-    }
-    Ok(())
 }
 
 /// Black and the three primaries' XYZ at full drive minus black (Cowan 1983), from the

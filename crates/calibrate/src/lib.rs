@@ -15,6 +15,7 @@ pub mod lock;
 pub mod patch_display;
 pub mod patches;
 pub mod progress;
+pub mod readings;
 pub mod report_html;
 pub mod run;
 pub mod session;

@@ -37,14 +37,14 @@ pub fn delta_e(cal: &Calibration, meas: &[Measurement]) -> Vec<f64> {
 
 /// The .ti3's measurements in the calibration's units: absolute if both can be; otherwise
 /// relative ones scaled by the calibration's white (see docs/calibration.md). Readings a fit
-/// would refuse are refused here too ([`crate::fit::check_readings`]): a reading of 1e200
+/// would refuse are refused here too ([`crate::readings::check_readings`]): a reading of 1e200
 /// would make the mean ΔE00 NaN and hide the patch from the maximum.
 pub fn measurements_for(
     cal: &Calibration,
     ti3: &specpoly_formats::cgats::Ti3,
 ) -> Result<Vec<Measurement>> {
     let (m, abs) = ti3.best_units();
-    crate::fit::check_readings(&m)?;
+    crate::readings::check_readings(&m)?;
     let k = match (cal.absolute(), abs) {
         (true, true) | (false, false) => 1.0,
         // relative (white Y = 100) → the calibration's cd/m²
