@@ -265,7 +265,7 @@ fn mesh(
             if tris.is_empty() {
                 return;
             }
-            let c = V3::from_array([0, 1, 2].map(|k| (lo[k] * 0.5 + hi[k] * 0.5)));
+            let c = V3::from_array([0, 1, 2].map(|k| lo[k] * 0.5 + hi[k] * 0.5));
             let r = [0, 1, 2]
                 .map(|k| hi[k] - lo[k])
                 .into_iter()
