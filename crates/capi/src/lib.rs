@@ -28,8 +28,10 @@ extern crate std;
 
 pub mod cct;
 pub mod display;
+mod lights;
 pub mod mix;
 mod ptr;
+pub mod spectrum;
 pub mod status;
 
 pub use status::SpStatus;

@@ -3,4 +3,5 @@
 
 mod c_program;
 mod header;
+mod spectra;
 mod total;
