@@ -10,13 +10,14 @@
 //! and runs its drive step, or its forward model (device values → XYZ, [`sp_display_forward`])
 //! or its inverse (XYZ → device values, [`sp_display_inverse`]).
 
-use crate::status::{finite, of, Status};
+use crate::status::{self, finite, of, Status};
 use crate::{ptr, SpStatus};
 use specpoly_core::display::TABLE_MAX;
 use specpoly_core::{blob, Display, Error, GamutMap, Transfer, Xyz};
 
 /// The most points of a tabulated transfer curve.
-pub const SP_DISPLAY_TABLE_MAX: usize = TABLE_MAX;
+pub const SP_DISPLAY_TABLE_MAX: usize = 64;
+const _: () = assert!(SP_DISPLAY_TABLE_MAX == TABLE_MAX);
 
 /// How a colour outside the gamut is brought inside (the `map` argument).
 #[repr(i32)]
@@ -303,14 +304,7 @@ pub unsafe extern "C" fn sp_calibration_load(
 }
 
 fn load(bytes: &[u8]) -> Status<SpDisplay> {
-    let p = blob::parts(bytes).map_err(|e| match e {
-        Error::BlobVersion => SpStatus::BlobVersion,
-        Error::BlobChecksum => SpStatus::BlobChecksum,
-        Error::BlobTruncated => SpStatus::BlobTruncated,
-        Error::NonFinite(_) => SpStatus::NotFinite,
-        Error::NotIncreasing(_) => SpStatus::Domain,
-        _ => SpStatus::Size,
-    })?;
+    let p = blob::parts(bytes).map_err(status::core)?;
     let mut d = SpDisplay {
         primaries: p.primaries,
         luminance: p.luminance,

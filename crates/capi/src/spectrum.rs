@@ -11,14 +11,15 @@
 //! device.
 
 use crate::display::SpXyz;
-use crate::status::{finite, of, Status};
+use crate::status::{self, finite, of, Status};
 use crate::{lights, ptr, SpStatus};
-use specpoly_core::{DefaultSpectrum, Error, Moments, Tabulated, DEFAULT_COEFFS, DEFAULT_SPANS};
+use specpoly_core::{DefaultSpectrum, Moments, Tabulated, DEFAULT_COEFFS, DEFAULT_SPANS};
 
 /// Spans of a spectrum (uniform over 380–780 nm: 50 nm each).
-pub const SP_SPECTRUM_SPANS: usize = DEFAULT_SPANS;
+pub const SP_SPECTRUM_SPANS: usize = 8;
 /// Chebyshev coefficients per span (cubic).
-pub const SP_SPECTRUM_COEFFS: usize = DEFAULT_COEFFS;
+pub const SP_SPECTRUM_COEFFS: usize = 4;
+const _: () = assert!(SP_SPECTRUM_SPANS == DEFAULT_SPANS && SP_SPECTRUM_COEFFS == DEFAULT_COEFFS);
 
 /// A spectrum: span `s` covers `380 + 50 s` to `430 + 50 s` nm and is `Σₖ coef[k][s] Tₖ(t)`,
 /// `t = (2λ − (a + b)) / (b − a)` (128 bytes).
@@ -104,19 +105,9 @@ pub unsafe extern "C" fn sp_spectrum_fit(
 }
 
 fn fit(nm: &[f32], value: &[f32]) -> Status<SpSpectrum> {
-    let data = Tabulated::new(nm, value).map_err(core_status)?;
-    let s = DefaultSpectrum::fit(&data).map_err(core_status)?;
+    let data = Tabulated::new(nm, value).map_err(status::core)?;
+    let s = DefaultSpectrum::fit(&data).map_err(status::core)?;
     Ok(SpSpectrum::from_core(&s))
-}
-
-/// The status of a core error.
-fn core_status(e: Error) -> SpStatus {
-    match e {
-        Error::Empty | Error::Capacity | Error::LengthMismatch => SpStatus::Size,
-        Error::NonFinite(_) => SpStatus::NotFinite,
-        Error::NotIncreasing(_) | Error::OutOfRange => SpStatus::Domain,
-        Error::Singular => SpStatus::Singular,
-    }
 }
 
 /// The spectrum's value at `nm` (380–780 nm; on an interior breakpoint the mean of the two

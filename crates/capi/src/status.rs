@@ -55,3 +55,17 @@ pub(crate) fn finite(values: &[f32]) -> Status<()> {
         Err(SpStatus::NotFinite)
     }
 }
+
+/// The status of a core error.
+pub(crate) fn core(e: specpoly_core::Error) -> SpStatus {
+    use specpoly_core::Error;
+    match e {
+        Error::Empty | Error::Capacity | Error::LengthMismatch => SpStatus::Size,
+        Error::NonFinite(_) => SpStatus::NotFinite,
+        Error::NotIncreasing(_) | Error::OutOfRange => SpStatus::Domain,
+        Error::Singular => SpStatus::Singular,
+        Error::BlobVersion => SpStatus::BlobVersion,
+        Error::BlobChecksum => SpStatus::BlobChecksum,
+        Error::BlobTruncated => SpStatus::BlobTruncated,
+    }
+}
