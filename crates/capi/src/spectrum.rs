@@ -226,7 +226,11 @@ fn xyz(s: &SpSpectrum, observer: i32, illuminant: i32) -> Status<SpXyz> {
 /// # Safety
 /// `out` is NULL or points to a writable `SpXyz`.
 #[no_mangle]
-pub unsafe extern "C" fn sp_light_white(observer: i32, illuminant: i32, out: *mut SpXyz) -> SpStatus {
+pub unsafe extern "C" fn sp_light_white(
+    observer: i32,
+    illuminant: i32,
+    out: *mut SpXyz,
+) -> SpStatus {
     // SAFETY: forwarded contract.
     of(unsafe { ptr::get_mut(out) }.and_then(|out| {
         *out = SpXyz::from(moments(observer, illuminant)?.white());

@@ -332,7 +332,11 @@ fn display_model(l: &mut Lines) {
     for (name, t, map) in [
         ("inverse_grey", [20.0, 21.0, 23.0], GamutMap::Clip),
         ("inverse_cyan_clip", [20.0, 40.0, 70.0], GamutMap::Clip),
-        ("inverse_cyan_desaturate", [20.0, 40.0, 70.0], GamutMap::Desaturate),
+        (
+            "inverse_cyan_desaturate",
+            [20.0, 40.0, 70.0],
+            GamutMap::Desaturate,
+        ),
     ] {
         let e = d.encode(Xyz::new(t[0], t[1], t[2]), map);
         let v = floats(&e.device) + &floats(&e.linear) + &ints([e.out_of_gamut as i32]);
@@ -389,14 +393,17 @@ fn check_references(got: &str, target: &str) {
         let tol = if f[1] == "r" { 0.02 } else { 0.05 };
         for (g, w) in v.iter().zip(&f[4..7]) {
             let w: f32 = w.parse().unwrap();
-            assert!((g - w).abs() <= tol, "{target}: {name}: {g} vs colour-science {w}");
+            assert!(
+                (g - w).abs() <= tol,
+                "{target}: {name}: {g} vs colour-science {w}"
+            );
         }
         n += 1;
     }
     assert_eq!(n, 36);
 }
 
-fn crate_dir() -> &'static Path {
+pub(crate) fn crate_dir() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
@@ -427,7 +434,7 @@ fn staticlib(args: &[&str], lib: &[&str]) -> PathBuf {
     p
 }
 
-fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
+pub(crate) fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
     let out = cmd.output().unwrap_or_else(|e| {
         panic!("{what}: {e} (./test.sh installs it; Debian: apt-get install gcc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm)")
     });
@@ -440,7 +447,7 @@ fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
     out.stdout
 }
 
-fn out_dir(name: &str) -> PathBuf {
+pub(crate) fn out_dir(name: &str) -> PathBuf {
     let d = target_dir().join("capi-c").join(name);
     std::fs::create_dir_all(&d).unwrap();
     d

@@ -81,13 +81,19 @@ fn the_compiled_in_moments_are_the_cores() {
         std::fs::write(&tmp, lights_source()).unwrap();
         std::fs::rename(&tmp, &path).unwrap();
     }
-    assert_eq!(Illuminant::ALL.map(|i| i.name()), LIGHTS.map(|(_, i)| i.name()));
+    assert_eq!(
+        Illuminant::ALL.map(|i| i.name()),
+        LIGHTS.map(|(_, i)| i.name())
+    );
     for (so, o) in OBSERVERS {
         for (si, i) in LIGHTS {
             let m = Moments::<8, 4>::new(o, &i.tabulated());
             let mut white = SpXyz::default();
             // SAFETY: a valid pointer.
-            assert_eq!(unsafe { sp_light_white(so as i32, si as i32, &mut white) }, SpStatus::Ok);
+            assert_eq!(
+                unsafe { sp_light_white(so as i32, si as i32, &mut white) },
+                SpStatus::Ok
+            );
             let w = m.white();
             assert_eq!(
                 [white.x, white.y, white.z].map(f32::to_bits),
@@ -100,7 +106,11 @@ fn the_compiled_in_moments_are_the_cores() {
                     let (st, v) = xyz(&unit, so, si);
                     assert_eq!(st, SpStatus::Ok);
                     let want = [0, 1, 2].map(|a| m.moments()[a][k][s].to_bits());
-                    assert_eq!([v.x, v.y, v.z].map(f32::to_bits), want, "{o:?} {i:?} T{k} span {s}");
+                    assert_eq!(
+                        [v.x, v.y, v.z].map(f32::to_bits),
+                        want,
+                        "{o:?} {i:?} T{k} span {s}"
+                    );
                 }
             }
         }
@@ -111,7 +121,13 @@ fn the_compiled_in_moments_are_the_cores() {
 pub fn samples() -> (Vec<f32>, Vec<(String, Vec<f32>)>) {
     let text = include_str!("data/spectra_samples.csv");
     let mut lines = text.lines();
-    let names: Vec<String> = lines.next().unwrap().split(',').skip(1).map(String::from).collect();
+    let names: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .skip(1)
+        .map(String::from)
+        .collect();
     let mut nm = Vec::new();
     let mut cols = vec![Vec::new(); names.len()];
     for l in lines {
@@ -156,7 +172,11 @@ fn fitted_spectra_give_colour_sciences_xyz_within_the_fits_error() {
             }
         };
         let light = LIGHTS.iter().find(|(_, i)| i.name() == f[2]).unwrap().0;
-        let o = if f[3] == "1931" { SpObserver::Cie1931 } else { SpObserver::Cie1964 };
+        let o = if f[3] == "1931" {
+            SpObserver::Cie1931
+        } else {
+            SpObserver::Cie1964
+        };
         let (st, v) = xyz(&s, o, light);
         assert_eq!(st, SpStatus::Ok);
         let want: Vec<f32> = f[4..7].iter().map(|x| x.parse().unwrap()).collect();
@@ -207,26 +227,50 @@ fn spectra_functions_return_their_status_codes() {
     };
     assert_eq!(fit_st(&nm, &v, 3, &mut s), SpStatus::Ok);
     assert_eq!(fit_st(&nm, &v, 0, &mut s), SpStatus::Size);
-    assert_eq!(fit_st(&nm, &v, 3, std::ptr::null_mut()), SpStatus::NullPointer);
-    assert_eq!(fit_st(&[400.0, nan, 600.0], &v, 3, &mut s), SpStatus::NotFinite);
-    assert_eq!(fit_st(&nm, &[0.1, f32::INFINITY, 0.2], 3, &mut s), SpStatus::NotFinite);
-    assert_eq!(fit_st(&[400.0, 400.0, 600.0], &v, 3, &mut s), SpStatus::Domain);
-    assert_eq!(fit_st(&[800.0, 900.0, 1000.0], &v, 3, &mut s), SpStatus::Domain);
+    assert_eq!(
+        fit_st(&nm, &v, 3, std::ptr::null_mut()),
+        SpStatus::NullPointer
+    );
+    assert_eq!(
+        fit_st(&[400.0, nan, 600.0], &v, 3, &mut s),
+        SpStatus::NotFinite
+    );
+    assert_eq!(
+        fit_st(&nm, &[0.1, f32::INFINITY, 0.2], 3, &mut s),
+        SpStatus::NotFinite
+    );
+    assert_eq!(
+        fit_st(&[400.0, 400.0, 600.0], &v, 3, &mut s),
+        SpStatus::Domain
+    );
+    assert_eq!(
+        fit_st(&[800.0, 900.0, 1000.0], &v, 3, &mut s),
+        SpStatus::Domain
+    );
     // SAFETY: NULL or valid pointers throughout.
     unsafe {
         assert_eq!(
             sp_spectrum_fit(std::ptr::null(), v.as_ptr(), 3, &mut s),
             SpStatus::NullPointer
         );
-        assert_eq!(sp_spectrum_fit(nm.as_ptr(), v.as_ptr(), usize::MAX, &mut s), SpStatus::Size);
+        assert_eq!(
+            sp_spectrum_fit(nm.as_ptr(), v.as_ptr(), usize::MAX, &mut s),
+            SpStatus::Size
+        );
         assert_eq!(sp_spectrum_eval(&s, 379.9, &mut x), SpStatus::Domain);
         assert_eq!(sp_spectrum_eval(&s, nan, &mut x), SpStatus::NotFinite);
-        assert_eq!(sp_spectrum_eval(std::ptr::null(), 500.0, &mut x), SpStatus::NullPointer);
+        assert_eq!(
+            sp_spectrum_eval(std::ptr::null(), 500.0, &mut x),
+            SpStatus::NullPointer
+        );
         assert_eq!(sp_spectrum_xyz(&s, 2, 0, &mut out), SpStatus::Domain);
         assert_eq!(sp_spectrum_xyz(&s, 0, 7, &mut out), SpStatus::Domain);
         assert_eq!(sp_spectrum_xyz(&s, -1, 0, &mut out), SpStatus::Domain);
         assert_eq!(sp_light_white(0, -1, &mut out), SpStatus::Domain);
-        assert_eq!(sp_spectrum_xyz(&s, 0, 0, std::ptr::null_mut()), SpStatus::NullPointer);
+        assert_eq!(
+            sp_spectrum_xyz(&s, 0, 0, std::ptr::null_mut()),
+            SpStatus::NullPointer
+        );
         let mut bad = s;
         bad.coef[3][7] = nan;
         assert_eq!(sp_spectrum_xyz(&bad, 0, 0, &mut out), SpStatus::NotFinite);

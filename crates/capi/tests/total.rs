@@ -4,8 +4,7 @@
 
 use specpoly_c::cct::{sp_cct_to_xy, sp_xy_to_cct, SpCct, SpXy};
 use specpoly_c::display::{
-    sp_display_drive, sp_display_forward, sp_display_inverse, SpDisplay, SpDrive, SpEncoded,
-    SpXyz,
+    sp_display_drive, sp_display_forward, sp_display_inverse, SpDisplay, SpDrive, SpEncoded, SpXyz,
 };
 use specpoly_c::mix::{
     sp_mix_step, sp_mix_target_cct, sp_mix_target_xy, SpChannel, SpMixResult, SpMixStep, SpMixer,

@@ -117,7 +117,12 @@ pub fn write_parts(parts: &Parts, out: &mut [u8]) -> Result<usize, Error> {
     o.bytes(&VERSION.to_le_bytes())?;
     o.bytes(&0u16.to_le_bytes())?;
     o.u32(0)?; // the length, set below
-    for v in parts.primaries.as_flattened().iter().chain(&parts.luminance) {
+    for v in parts
+        .primaries
+        .as_flattened()
+        .iter()
+        .chain(&parts.luminance)
+    {
         o.f32(*v)?;
     }
     let k = parts.black;
@@ -155,7 +160,10 @@ struct In<'a> {
 
 impl In<'_> {
     fn word(&mut self) -> Result<[u8; 4], Error> {
-        let w = self.buf.get(self.at..self.at + 4).ok_or(Error::BlobTruncated)?;
+        let w = self
+            .buf
+            .get(self.at..self.at + 4)
+            .ok_or(Error::BlobTruncated)?;
         self.at += 4;
         let mut b = [0u8; 4];
         b.copy_from_slice(w);
@@ -197,7 +205,10 @@ pub fn parts(bytes: &[u8]) -> Result<Parts, Error> {
         return Err(Error::BlobVersion);
     }
     let body = &bytes[..len - 4];
-    let mut crc = In { buf: bytes, at: len - 4 };
+    let mut crc = In {
+        buf: bytes,
+        at: len - 4,
+    };
     if crc.u32()? != crc32(body) {
         return Err(Error::BlobChecksum);
     }

@@ -55,7 +55,10 @@ fn a_display_survives_the_blob() {
     for rgb in [[1.0, 1.0, 1.0], [0.2, 0.7, 0.4], [0.0, 0.0, 1.0]] {
         let (a, b) = (d.device_to_xyz(rgb), back.device_to_xyz(rgb));
         for (x, y) in a.to_array().iter().zip(b.to_array()) {
-            assert!((x - y).abs() <= 1e-5 * x.abs().max(1.0), "{rgb:?}: {a:?} {b:?}");
+            assert!(
+                (x - y).abs() <= 1e-5 * x.abs().max(1.0),
+                "{rgb:?}: {a:?} {b:?}"
+            );
         }
     }
     // the largest blob: three tables of 64 points
@@ -82,7 +85,11 @@ fn cut_corrupted_and_foreign_blobs_are_refused() {
             // magic, version, flags: not ours; length: longer than the slice, or not the
             // checksummed length
             0..8 => &[Error::BlobVersion],
-            8..12 => &[Error::BlobTruncated, Error::BlobVersion, Error::BlobChecksum],
+            8..12 => &[
+                Error::BlobTruncated,
+                Error::BlobVersion,
+                Error::BlobChecksum,
+            ],
             _ => &[Error::BlobChecksum],
         };
         assert!(want.contains(&e), "bit {bit}: {e:?}");
@@ -122,5 +129,8 @@ fn well_formed_blobs_of_bad_displays_give_the_cores_errors() {
     assert_eq!(blob::read(&reseal(over)).unwrap_err(), Error::BlobTruncated);
     let mut falling = b;
     falling[at + 8 + 4..at + 8 + 8].copy_from_slice(&(-1.0f32).to_le_bytes());
-    assert_eq!(blob::read(&reseal(falling)).unwrap_err(), Error::NotIncreasing(1));
+    assert_eq!(
+        blob::read(&reseal(falling)).unwrap_err(),
+        Error::NotIncreasing(1)
+    );
 }
