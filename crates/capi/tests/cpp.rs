@@ -14,13 +14,28 @@ fn the_cpp_wrapper_compiles_for_a_cortex_m4f_and_an_rv32imc() {
     for (gxx, flags) in [
         (
             "arm-none-eabi-g++",
-            &["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16"][..],
+            &[
+                "-mcpu=cortex-m4",
+                "-mthumb",
+                "-mfloat-abi=hard",
+                "-mfpu=fpv4-sp-d16",
+            ][..],
         ),
-        ("riscv64-unknown-elf-g++", &["-march=rv32imc", "-mabi=ilp32"][..]),
+        (
+            "riscv64-unknown-elf-g++",
+            &["-march=rv32imc", "-mabi=ilp32"][..],
+        ),
     ] {
         run(
             Command::new(gxx)
-                .args(["-std=c++11", "-Wall", "-Wextra", "-Werror", "-O2", "-ffreestanding"])
+                .args([
+                    "-std=c++11",
+                    "-Wall",
+                    "-Wextra",
+                    "-Werror",
+                    "-O2",
+                    "-ffreestanding",
+                ])
                 .args(["-fno-exceptions", "-fno-rtti", "-c"])
                 .args(flags)
                 .arg("-I")
