@@ -165,8 +165,20 @@ fn c_blob_holds_the_calibrations_display_model() {
         }
     }
 
-    // the Acer's default fit keeps a lattice (cross-validation finds the channels interact)
-    let lattice = acer_calibration(dir.path());
+    // a 3³ lattice, asked for (the default `auto` keeps one too, after a costlier
+    // cross-validation)
+    let lattice = dir.path().join("lattice.toml");
+    let r = cli::run(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        cli::ACER,
+        "--interaction",
+        "3",
+        "-o",
+        s(&lattice),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
     let refused = dir.path().join("refused.bin");
     let out = export(&lattice, &["--format", "c-blob"], &refused);
     assert_eq!(out.code, 1, "{}", out.stderr);
