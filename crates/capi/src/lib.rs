@@ -4,8 +4,9 @@
 //! mixing 3–6 LED channels to an `xy` or CCT/Duv target with the fade stepper, the display
 //! model (the drive step: target XYZ → device levels → emitted XYZ; forward and inverse) read
 //! from a versioned, checksummed calibration blob, and spectra (fit, evaluate, multiply, → XYZ
-//! under the built-in lights and observers). `include/specpoly.hpp` wraps it for C++. The header `include/specpoly.h` is
-//! generated from this crate by `cbindgen` (`cbindgen.toml`); `docs/c.md` shows how to link it.
+//! under the built-in lights and observers). `include/specpoly.hpp` wraps it for C++. The
+//! header `include/specpoly.h` is generated from this crate by `cbindgen` (`cbindgen.toml`);
+//! `docs/c.md` shows how to link it.
 //!
 //! Rules of the ABI:
 //!

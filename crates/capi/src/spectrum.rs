@@ -5,10 +5,10 @@
 //!
 //! The XYZ is the core's [`Moments::xyz`]: three dot products with the moments of the light
 //! and observer, `Mₐ[k][s] = K Σ_λ w(λ) Tₖ(t(λ)) S(λ) ā(λ)` at 1 nm, `K = 100 / Σ S ȳ`
-//! (`specpoly_core::moments`). The moments of the 7 lights × 2 observers are compiled in ([`crate::lights`],
-//! 5.5 KiB of flash, linked only when `sp_spectrum_xyz` or `sp_light_white` is called), the
-//! values of [`Moments::new`] to the bit (a test checks), so no f64 integration runs on the
-//! device.
+//! (`specpoly_core::moments`). The moments of the 7 lights × 2 observers are compiled in
+//! (`src/lights.rs`, 5.5 KiB of flash, linked only when `sp_spectrum_xyz` or `sp_light_white`
+//! is called), the values of [`Moments::new`] to the bit (a test checks), so no f64
+//! integration runs on the device.
 
 use crate::display::SpXyz;
 use crate::status::{self, finite, of, Status};

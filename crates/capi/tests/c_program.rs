@@ -374,8 +374,9 @@ fn display_model(l: &mut Lines) {
 }
 
 /// The C program's XYZ lines against colour-science's (`tests/data/spectra_references.csv`):
-/// within the fit's error, as `spectra::fitted_spectra_give_colour_sciences_xyz_within_the_fits_error`
-/// bounds it (0.02 for a reflectance, 0.05 for its square).
+/// within the fit's error, as
+/// `spectra::fitted_spectra_give_colour_sciences_xyz_within_the_fits_error` bounds it (0.02
+/// for a reflectance, 0.05 for its square).
 fn check_references(got: &str, target: &str) {
     let mut n = 0;
     for r in include_str!("data/spectra_references.csv").lines().skip(1) {
