@@ -34,7 +34,8 @@ pub enum CalibrateCommand {
     /// Export an ICC display profile (v2.4 or v4.4; matrix/TRC, `vcgt`, tables for models with
     /// channel interaction).
     Icc(IccArgs),
-    /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
+    /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables, or
+    /// write the display model as a calibration blob for the C library (`--format c-blob`).
     Export(ExportArgs),
     /// Write a 3D LUT (.cube, .3dl, madVR .3dlut) from a source colour space (sRGB, Rec. 709,
     /// Display P3, Rec. 2020) to the display, inverted through its model.
@@ -134,7 +135,7 @@ pub struct ExportArgs {
     /// The colour space the firmware's UI draws in.
     #[arg(long, value_enum, default_value_t = SourceValue::Srgb)]
     pub source: SourceValue,
-    /// C header or Rust source.
+    /// C header or Rust source, or the C library's calibration blob.
     #[arg(long, value_enum)]
     pub format: FormatValue,
     /// The panel's bits per channel.
@@ -398,6 +399,19 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
+    if a.format == FormatValue::CBlob {
+        let bytes = export::blob(&cal)?;
+        specpoly_formats::atomic::write(&a.output, &bytes)?;
+        crate::cli::wrote::wrote(
+            &a.output,
+            &format!(
+                " ({} bytes: calibration blob version {}, for sp_calibration_load)",
+                bytes.len(),
+                specpoly_core::blob::VERSION
+            ),
+        );
+        return Ok(());
+    }
     let p = export::transform(&cal, a.source.into(), a.white.into(), a.bits.into())?;
     let origin = format!(
         "calibration {}, source {}, white {}, {}",
