@@ -40,7 +40,7 @@ impl Drift {
     pub fn note(&self) -> String {
         let list: Vec<String> = self.patches.iter().map(|p| p.to_string()).collect();
         format!(
-            "the {} was read {} times (patches {}) and drifted: luminance {:.4}–{:.4} ({:.1} %), up to {:.2} ΔE00 apart, beyond an instrument's repeatability ({DRIFT_DE} ΔE00, {} %): the display changed while it was measured (let it warm up; calibrate run re-reads white and black; ArgyllCMS dispread -I b,w); no model fits readings that disagree",
+            "the {} was read {} times (patches {}) and drifted: luminance {:.3}–{:.3} ({:.1} %), up to {:.2} ΔE00 apart, beyond an instrument's repeatability ({DRIFT_DE} ΔE00, {} %): the display changed while it was measured (let it warm up for 30 minutes; through --instrument argyll, drift=bw has dispread re-read white and black); no model fits readings that disagree",
             self.what,
             self.patches.len(),
             list.join(", "),
