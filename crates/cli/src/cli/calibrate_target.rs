@@ -63,7 +63,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         c.devices.ti3.display()
     ))?;
-    crate::cli::wrote::wrote(&c.devices.ti3, " (native readings)");
+    crate::cli::wrote::wrote(c.devices.ti3, " (native readings)");
     let (fit_set, verify_set) = split(c.set, &taken);
     let opts = FitOptions {
         matrix: a.matrix.into(),
