@@ -185,6 +185,15 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         &a.ti3.display().to_string(),
     )?;
     let (meas, absolute) = ti3.best_units();
+    // repeated white and black readings that disagree (patches numbered in the file)
+    let drift = specpoly_calibrate::drift::check(&meas);
+    // the fit numbers its outliers by position in what it is given: with --hold-out that is
+    // the fit set, renumbered below as positions in the file (one numbering for fit and verify)
+    let fit_positions = if a.hold_out {
+        fit::hold_out_indices(&meas).0
+    } else {
+        (0..meas.len()).collect()
+    };
     let (fit_set, verify_set) = if a.hold_out {
         fit::hold_out(meas)
     } else {
@@ -201,9 +210,15 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     };
     let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
         .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
-    let (_, prov) = cal.report_mut();
+    let (report, prov) = cal.report_mut();
+    for o in &mut report.outliers {
+        if let Some(p) = o.patch.checked_sub(1).and_then(|i| fit_positions.get(i)) {
+            o.patch = p + 1;
+        }
+    }
     prov.source = a.ti3.display().to_string();
     prov.readings_sha256 = readings_sha256;
+    prov.notes.extend(drift.iter().map(|d| d.note()));
     prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
     prov.instrument = ti3
         .keyword("TARGET_INSTRUMENT")
