@@ -17,14 +17,14 @@ def sd_to_XYZ(
     values: ArrayLike,
     wavelengths: ArrayLike,
     illuminant: Light = None,
-    observer: str = "1931",
+    observer: str = "1964",
     repr: str = "poly",
     scale: float = 1.0,
     product: bool = False,
 ) -> Float:
     """CIE XYZ of reflectances (n, k) or (k,) on `wavelengths` (k,) nm under `illuminant`
     (a built-in name, default D65, a FILE.csv#COLUMN or a tuple (wavelengths, values)) and
-    `observer` ("1931"/"2" or "1964"/"10"), in representation `repr` ("poly", "paper",
+    `observer` ("1964"/"10", the default as in the CLI, or "1931"/"2"), in representation `repr` ("poly", "paper",
     "poly:SxD", "sampled:N", "rgb", "exact"); the white has Y = 100. Returns (n, 3), or (3,)
     for one spectrum or with `product=True` (the product of all rows)."""
 
@@ -32,7 +32,7 @@ def sd_to_xy(
     values: ArrayLike,
     wavelengths: ArrayLike,
     illuminant: Light = None,
-    observer: str = "1931",
+    observer: str = "1964",
     repr: str = "poly",
     scale: float = 1.0,
     product: bool = False,
@@ -43,14 +43,14 @@ def sd_to_Lab(
     values: ArrayLike,
     wavelengths: ArrayLike,
     illuminant: Light = None,
-    observer: str = "1931",
+    observer: str = "1964",
     repr: str = "poly",
     scale: float = 1.0,
     product: bool = False,
 ) -> Float:
     """CIELAB against the light's exact white: (n, 3) or (3,)."""
 
-def white_XYZ(illuminant: Light = None, observer: str = "1931") -> Float:
+def white_XYZ(illuminant: Light = None, observer: str = "1964") -> Float:
     """XYZ of the light's white (perfect reflector, Y = 100): (3,)."""
 
 def illuminants() -> List[str]:
@@ -61,7 +61,7 @@ def sd_fit(
     wavelengths: ArrayLike,
     repr: str = "poly",
     illuminant: Light = None,
-    observer: str = "1931",
+    observer: str = "1964",
     scale: float = 1.0,
 ) -> Dict[str, Union[Float, float]]:
     """Piecewise-polynomial fit: {"coefficients": (n, spans, coeffs), "breaks": (spans + 1,),

@@ -188,7 +188,7 @@ fn batch<'py>(
 /// increasing, covering 380–780 nm or held at the ends. Returns (n, 3), or (3,) for one
 /// spectrum or with `product=True` (the product of all rows: an inter-reflection chain).
 #[pyfunction]
-#[pyo3(name = "sd_to_XYZ", signature = (values, wavelengths, illuminant=None, observer="1931", repr="poly", scale=1.0, product=false))]
+#[pyo3(name = "sd_to_XYZ", signature = (values, wavelengths, illuminant=None, observer="1964", repr="poly", scale=1.0, product=false))]
 #[allow(clippy::too_many_arguments)]
 fn sd_to_xyz<'py>(
     py: Python<'py>,
@@ -216,7 +216,7 @@ fn sd_to_xyz<'py>(
 
 /// CIE xy chromaticity of reflectances under a light: (n, 2) or (2,).
 #[pyfunction]
-#[pyo3(signature = (values, wavelengths, illuminant=None, observer="1931", repr="poly", scale=1.0, product=false))]
+#[pyo3(signature = (values, wavelengths, illuminant=None, observer="1964", repr="poly", scale=1.0, product=false))]
 #[allow(clippy::too_many_arguments)]
 fn sd_to_xy<'py>(
     py: Python<'py>,
@@ -244,7 +244,7 @@ fn sd_to_xy<'py>(
 
 /// CIELAB of reflectances against the light's exact white: (n, 3) or (3,).
 #[pyfunction]
-#[pyo3(name = "sd_to_Lab", signature = (values, wavelengths, illuminant=None, observer="1931", repr="poly", scale=1.0, product=false))]
+#[pyo3(name = "sd_to_Lab", signature = (values, wavelengths, illuminant=None, observer="1964", repr="poly", scale=1.0, product=false))]
 #[allow(clippy::too_many_arguments)]
 fn sd_to_lab<'py>(
     py: Python<'py>,
@@ -275,7 +275,7 @@ fn sd_to_lab<'py>(
 
 /// XYZ of the light's white (the perfect reflector, `Y = 100`, 1 nm sum): (3,).
 #[pyfunction]
-#[pyo3(name = "white_XYZ", signature = (illuminant=None, observer="1931"))]
+#[pyo3(name = "white_XYZ", signature = (illuminant=None, observer="1964"))]
 fn white_xyz<'py>(
     py: Python<'py>,
     illuminant: Option<&Bound<'py, PyAny>>,
@@ -300,7 +300,7 @@ fn illuminants() -> Vec<&'static str> {
 /// span), `breaks` (spans + 1,) nm, `rms` and `max` (n, spans) fit errors, `delta_E00` (n,) the
 /// fit's colour error under the light.
 #[pyfunction]
-#[pyo3(signature = (values, wavelengths, repr="poly", illuminant=None, observer="1931", scale=1.0))]
+#[pyo3(signature = (values, wavelengths, repr="poly", illuminant=None, observer="1964", scale=1.0))]
 fn sd_fit<'py>(
     py: Python<'py>,
     values: &Bound<'py, PyAny>,

@@ -57,7 +57,7 @@ def test_poly_colours_are_within_the_fits_error_of_colour_science(colorchecker):
     light = linear_1nm(lwl, lv[0])[0]
     want = colour_xyz(linear_1nm(wl, r), light, "1931")
     white = colour_xyz(np.ones((1, NM.size)), light, "1931")[0]
-    got = specpoly.sd_to_Lab(r, wl, illuminant="D65")
+    got = specpoly.sd_to_Lab(r, wl, illuminant="D65", observer="1931")
     d = colour.delta_E(got, colour.XYZ_to_Lab(want / 100, colour.XYZ_to_xy(white / 100)))
     # the 8-span cubic fit of the ColorChecker (docs/accuracy.md): well below 0.5 ΔE00
     assert d.max() < 0.5, d.max()
