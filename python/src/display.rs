@@ -95,8 +95,8 @@ fn fit_ti3(path: &Path, opts: FitOptions, hold_out: bool) -> Result<Calibration,
         (meas, Vec::new())
     };
     let opts = FitOptions { absolute, ..opts };
-    let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
-        .map_err(|e| format!("{shown}: {e}"))?;
+    let mut cal =
+        fit::fit_and_verify(&fit_set, &verify_set, &opts).map_err(|e| format!("{shown}: {e}"))?;
     let (_, prov) = cal.report_mut();
     prov.source = shown.clone();
     prov.readings_sha256 = sha;
@@ -106,11 +106,9 @@ fn fit_ti3(path: &Path, opts: FitOptions, hold_out: bool) -> Result<Calibration,
         .unwrap_or_default()
         .to_string();
     if let Some(rows) = &ti3.video_lut {
-        let lut = specpoly_display::video_lut::VideoLut::from_rows(
-            rows,
-            &format!("{shown}: CAL table"),
-        )
-        .map_err(|e| e.to_string())?;
+        let lut =
+            specpoly_display::video_lut::VideoLut::from_rows(rows, &format!("{shown}: CAL table"))
+                .map_err(|e| e.to_string())?;
         cal.set_video_lut(Some(lut)).map_err(|e| e.to_string())?;
     }
     Ok(cal)

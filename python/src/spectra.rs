@@ -313,7 +313,9 @@ fn sd_fit<'py>(
     let (rows, wl) = sampled(values, wavelengths)?;
     let light = light(illuminant)?;
     let obs = self::observer(observer)?;
-    let repr = self::repr(repr)?.polynomial_for("sd_fit").map_err(lib_err)?;
+    let repr = self::repr(repr)?
+        .polynomial_for("sd_fit")
+        .map_err(lib_err)?;
     let reports = py
         .detach(|| {
             let named = reflectances(&rows, &wl, scale)?;
