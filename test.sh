@@ -5,9 +5,10 @@
 # Chromium for the web patch display, ArgyllCMS for the
 # `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test, ffmpeg and
 # OpenColorIO's tools for the 3D LUT tests, OpenEXR's and OpenImageIO's tools for the EXR
-# tests), then formatting, lints
+# tests, a Python virtual environment with maturin, NumPy, pytest and colour-science for the
+# Python package's tests), then formatting, lints
 # (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
-# firmware under QEMU). Stops with a clear message if something cannot be installed; never
+# firmware under QEMU, the Python package's pytest). Stops with a clear message if something cannot be installed; never
 # skips a test.
 set -euo pipefail
 cd "$(dirname "$0")"
