@@ -5,9 +5,10 @@
 # Chromium for the web patch display, ArgyllCMS for the
 # `--instrument argyll` tests, Xvfb for `dispwin`'s video-LUT load test, ffmpeg and
 # OpenColorIO's tools for the 3D LUT tests, OpenEXR's and OpenImageIO's tools for the EXR
-# tests), then formatting, lints
+# tests, a Python virtual environment with maturin, NumPy, pytest and colour-science for the
+# Python package's tests), then formatting, lints
 # (clippy, inside the builds), the microcontroller builds and all tests (host, core, cross-crate,
-# firmware under QEMU). Stops with a clear message if something cannot be installed; never
+# firmware under QEMU, the Python package's pytest). Stops with a clear message if something cannot be installed; never
 # skips a test.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -72,6 +73,21 @@ await() {
     exit 1
   fi
 }
+# The Python package's test environment (python/tests/requirements.txt: maturin, NumPy,
+# pytest, colour-science, pinned), made in the background under target/ while cargo compiles.
+py=$(command -v python3 || true)
+[ -n "$py" ] || { echo "test.sh: python3 is missing (the Python package's tests need it)" >&2; exit 1; }
+py=$("$py" -c 'import sys; print(sys.executable)')
+venv="$PWD/target/python-venv"
+mkdir -p target && rm -rf "$venv"
+( "$py" -m venv "$venv" && "$venv/bin/pip" install -q --disable-pip-version-check \
+    -r python/tests/requirements.txt ) >"$logs/venv.log" 2>&1 &
+venv_pid=$!
+# maturin builds pyo3 with these variables: set for every build here, the workspace build
+# below compiles pyo3 as maturin wants it, and the wheel's build reuses that compilation
+export PYO3_PYTHON="$py" PYTHON_SYS_EXECUTABLE="$py" PYO3_BUILD_EXTENSION_MODULE=1
+PYO3_ENVIRONMENT_SIGNATURE=$("$py" -c 'import struct, sys; print("cpython-%d.%d-%dbit" % (sys.version_info[0], sys.version_info[1], 8 * struct.calcsize("P")))')
+export PYO3_ENVIRONMENT_SIGNATURE
 # the host build links with `cc`: without it, wait for the install now
 if ! command -v cc >/dev/null 2>&1; then
   await "$apt_pid" "${missing[*]}" "$logs/apt.log"
@@ -129,5 +145,13 @@ else
 fi
 # the controller's unit tests as the 32 KiB build compiles it (no settings, mixing, lut)
 cargo test -p specpoly-device --no-default-features --lib
+
+say "Python package: its wheel from the build above (maturin), installed in a virtual environment, pytest"
+await "$venv_pid" "the Python test environment" "$logs/venv.log"
+rm -rf target/wheels
+"$venv/bin/maturin" build --quiet --profile dev -m python/Cargo.toml -i "$py" -o target/wheels
+"$venv/bin/pip" install -q --disable-pip-version-check --no-deps target/wheels/specpoly-*.whl
+# against colour-science and the CLI this build made
+SPECPOLY_CLI="$PWD/target/debug/specpoly" "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
 
 say "all tests passed"

@@ -29,6 +29,8 @@ pub enum Given {
     },
     /// In a scene file's materials (fixed by `{ spectrum = NAME, scale = K }`).
     Scene,
+    /// As an array to the Python package (fixed by its `scale=` and `illuminant=` keywords).
+    Python,
 }
 
 impl Given {
@@ -36,6 +38,7 @@ impl Given {
         match self {
             Given::Argument { .. } => "percent data? add --scale 0.01",
             Given::Scene => "percent data? give it as { spectrum = NAME, scale = 0.01 }",
+            Given::Python => "percent data? pass scale=0.01",
         }
     }
 
@@ -50,6 +53,7 @@ impl Given {
             Given::Scene => {
                 "it is an illuminant, not a reflectance: lights go in [[light]], or use { spectrum = NAME, normalize = true }"
             }
+            Given::Python => "it is an illuminant, not a reflectance: pass it as illuminant=",
         }
     }
 }
