@@ -8,6 +8,7 @@ mod light_colour_science;
 mod light_mix_leds;
 mod light_published;
 mod light_references;
+mod light_standards;
 mod moments_1nm;
 mod multiply_reduce;
 mod paper_eq6;
