@@ -5,6 +5,7 @@ mod bradford_lindbloom;
 mod ciede2000_sharma;
 mod common;
 mod light_colour_science;
+mod light_luxpy;
 mod light_mix_leds;
 mod light_published;
 mod light_references;

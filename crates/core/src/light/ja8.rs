@@ -26,6 +26,14 @@ pub const CCT_MAX: f64 = 4000.0;
 /// Greatest |Duv| (JA8-2016).
 pub const DUV_MAX: f64 = 0.0033;
 
+/// The clauses: key and text with the limit.
+pub const CLAUSES: [(&str, &str); 4] = [
+    ("ra", "CRI Ra >= 90 (Table JA-8)"),
+    ("r9", "R9 >= 50 (Table JA-8)"),
+    ("cct", "CCT <= 4000 K (Table JA-8, 2019 on)"),
+    ("duv", "Duv within +-0.0033 (Table JA-8, 2016)"),
+];
+
 /// One clause's figure, limit and verdict.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Clause {
@@ -44,32 +52,19 @@ pub fn ja8(ra: f64, r9: f64, cct: f64, duv: f64) -> Result<[Clause; 4], LightErr
     if ![ra, r9, cct, duv].iter().all(|v| v.is_finite()) {
         return Err(LightError::BadTarget);
     }
-    Ok([
-        Clause {
-            key: "ra",
-            text: "CRI Ra >= 90 (Table JA-8)",
-            value: ra,
-            pass: ra >= RA_MIN,
-        },
-        Clause {
-            key: "r9",
-            text: "R9 >= 50 (Table JA-8)",
-            value: r9,
-            pass: r9 >= R9_MIN,
-        },
-        Clause {
-            key: "cct",
-            text: "CCT <= 4000 K (Table JA-8, 2019 on)",
-            value: cct,
-            pass: cct <= CCT_MAX,
-        },
-        Clause {
-            key: "duv",
-            text: "Duv within +-0.0033 (Table JA-8, 2016)",
-            value: duv,
-            pass: duv.abs() <= DUV_MAX,
-        },
-    ])
+    let value = [ra, r9, cct, duv];
+    let pass = [
+        ra >= RA_MIN,
+        r9 >= R9_MIN,
+        cct <= CCT_MAX,
+        duv.abs() <= DUV_MAX,
+    ];
+    Ok(core::array::from_fn(|i| Clause {
+        key: CLAUSES[i].0,
+        text: CLAUSES[i].1,
+        value: value[i],
+        pass: pass[i],
+    }))
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@
 //!   fidelity);
 //! - [`mix`]: duties of 3–6 channels for a chromaticity or CCT target, the freedom spent on Rf,
 //!   Ra, luminous efficacy or least drive.
+//! - [`mix_limits`]: the same with lower limits on Ra, R9, Rf, Rg (mixing to a specification);
 //! - [`locus`]: the Planckian locus as a 25-node table (f32, cubic Hermite in mired), for
 //!   devices;
 //! - [`spectral`]: peak wavelength, FWHM, dominant wavelength and excitation purity;
@@ -39,6 +40,7 @@ pub mod design_intent;
 pub mod ja8;
 pub mod locus;
 pub mod mix;
+pub mod mix_limits;
 pub mod reference;
 pub mod samples;
 pub mod source;
