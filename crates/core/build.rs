@@ -111,12 +111,20 @@ fn main() {
     let p = data.join("cmf/cie_s026_2018_alpha_opic_1nm.csv");
     println!("cargo:rerun-if-changed={}", p.display());
     let rows = read_csv(&p);
-    assert_eq!(rows.len(), 401, "cie_s026_2018_alpha_opic_1nm.csv: 380-780 nm at 1 nm");
+    assert_eq!(
+        rows.len(),
+        401,
+        "cie_s026_2018_alpha_opic_1nm.csv: 380-780 nm at 1 nm"
+    );
     out.push_str("pub(crate) static S026: [[f32; 401]; 5] = [\n");
     for c in 1..=5 {
         out.push_str("    [");
         for (i, r) in rows.iter().enumerate() {
-            assert_eq!(r[0] as usize, 380 + i, "cie_s026_2018_alpha_opic_1nm.csv: row {i}");
+            assert_eq!(
+                r[0] as usize,
+                380 + i,
+                "cie_s026_2018_alpha_opic_1nm.csv: row {i}"
+            );
             assert_eq!(r.len(), 6, "cie_s026_2018_alpha_opic_1nm.csv: row {i}");
             let _ = write!(out, "{:e}, ", r[c]);
         }

@@ -2,7 +2,7 @@
 //! binary: the white LED's spectrum figures and α-opic DER against colour-science / SciPy /
 //! luxpy (`crates/core/tests/data/light_standards*.csv`), its ANSI and JA8 verdicts, the same
 //! figures in the CSV, a 4-channel mix that meets JA8 at 3000 K and 4000 K after 16-bit
-//! quantisation (its chromaticity by an independent 1 nm sum against the ANSI centres; its Ra
+//! quantisation (red, green, white, amber of `rgbwa.csv`; its chromaticity by an independent 1 nm sum against the ANSI centres; its Ra
 //! and R9 are `light`'s sums, checked against colour-science in `light_cli.rs`), and the closest
 //! mix when limits cannot be met.
 
@@ -21,9 +21,7 @@ fn reference(file: &str, name: &str) -> std::collections::HashMap<String, String
     .unwrap();
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let row = lines
-        .find(|l| l.starts_with(&format!("{name},")))
-        .unwrap();
+    let row = lines.find(|l| l.starts_with(&format!("{name},"))).unwrap();
     head.iter()
         .zip(row.split(','))
         .map(|(h, v)| (h.to_string(), v.to_string()))
@@ -37,7 +35,8 @@ fn light_reports_the_standards_checks() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let f = |k: &str| v[k].as_f64().unwrap();
     let cs = reference("light_standards.csv", "rgbwa#white");
-    let num = |m: &std::collections::HashMap<String, String>, k: &str| -> f64 { m[k].parse().unwrap() };
+    let num =
+        |m: &std::collections::HashMap<String, String>, k: &str| -> f64 { m[k].parse().unwrap() };
     assert_eq!(f("peak_nm"), num(&cs, "peak_nm"));
     assert!((f("fwhm_nm") - num(&cs, "fwhm_nm")).abs() < 1e-4);
     assert!((f("dominant_nm") - num(&cs, "dominant_nm")).abs() <= 0.5);
@@ -62,7 +61,10 @@ fn light_reports_the_standards_checks() {
     assert!(out.contains("ANSI C78.377-2017 4000 K quadrangle"), "{out}");
     let ja8: Vec<&str> = out.lines().filter(|l| l.starts_with("JA8 ")).collect();
     assert_eq!(ja8.len(), 4, "{out}");
-    assert!(ja8[0].ends_with("fail") && ja8[3].ends_with("pass"), "{out}");
+    assert!(
+        ja8[0].ends_with("fail") && ja8[3].ends_with("pass"),
+        "{out}"
+    );
     // the CSV carries the same figures; a red LED has no CCT, so no JA8 verdict, and a
     // complementary wavelength is negative only for purples
     let (code, out, err) = specpoly(&["light", "data/leds/rgbwa.csv#*", "--csv"]);
@@ -75,13 +77,16 @@ fn light_reports_the_standards_checks() {
     assert_eq!(red[col("ja8")], "");
     assert_eq!(red[col("ansi_c78377")], "");
     let red_ref = reference("light_standards.csv", "rgbwa#red");
-    assert!((red[col("dominant_nm")].parse::<f64>().unwrap() - num(&red_ref, "dominant_nm")).abs() <= 0.5);
+    assert!(
+        (red[col("dominant_nm")].parse::<f64>().unwrap() - num(&red_ref, "dominant_nm")).abs()
+            <= 0.5
+    );
     let white = &rows[3];
     assert_eq!(white[col("ja8_fails")], "ra;r9;cct");
     assert_eq!(white[col("peak_nm")].parse::<f64>().unwrap(), f("peak_nm"));
 }
 
-/// Δu′v′ of the mix of `rgbwa.csv`'s red, green, blue, white at duties `d`, by a 1 nm f64 sum
+/// Δu′v′ of the mix of `rgbwa.csv`'s red, green, white, amber at duties `d`, by a 1 nm f64 sum
 /// here, to (x, y).
 fn duv_prime(d: &[f64], xy: [f64; 2]) -> f64 {
     let read = |p: &str| -> Vec<Vec<f64>> {
@@ -92,11 +97,14 @@ fn duv_prime(d: &[f64], xy: [f64; 2]) -> f64 {
             .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
             .collect()
     };
-    let (leds, cmf) = (read("data/leds/rgbwa.csv"), read("data/cmf/cie1931_2deg_1nm.csv"));
+    let (leds, cmf) = (
+        read("data/leds/rgbwa.csv"),
+        read("data/cmf/cie1931_2deg_1nm.csv"),
+    );
     let mut xyz = [0.0f64; 3];
     for r in &leds {
         let m = cmf.iter().find(|m| m[0] == r[0]).unwrap();
-        let s: f64 = (0..4).map(|i| d[i] * r[1 + i]).sum();
+        let s: f64 = [1, 2, 4, 5].iter().zip(d).map(|(c, di)| di * r[*c]).sum();
         for k in 0..3 {
             xyz[k] += s * m[1 + k];
         }
@@ -113,7 +121,7 @@ fn duv_prime(d: &[f64], xy: [f64; 2]) -> f64 {
 #[test]
 fn a_four_channel_mix_meets_ja8() {
     let ch = |c: &str| format!("{c}=data/leds/rgbwa.csv#{c}");
-    let chans = [ch("red"), ch("green"), ch("blue"), ch("white")];
+    let chans = [ch("red"), ch("green"), ch("white"), ch("amber")];
     // the ANSI nominal CCTs' centres as the standard tabulates them
     for (k, centre) in [("3000", [0.4339, 0.4033]), ("4000", [0.3818, 0.3797])] {
         let mut args = vec!["mix"];
@@ -132,7 +140,10 @@ fn a_four_channel_mix_meets_ja8() {
         assert!(v["ra"].as_f64().unwrap() >= 90.0 && v["r9"].as_f64().unwrap() >= 50.0);
         let d = cli::numbers(&v["duties"]);
         let e = duv_prime(&d, centre);
-        println!("ja8 at {k} K: Ra {} R9 {}, Δu'v' to the ANSI centre {e:.1e}", v["ra"], v["r9"]);
+        println!(
+            "ja8 at {k} K: Ra {} R9 {}, Δu'v' to the ANSI centre {e:.1e}",
+            v["ra"], v["r9"]
+        );
         assert!(e < 5e-4, "{k}: Δu′v′ {e}");
     }
 }
@@ -140,9 +151,20 @@ fn a_four_channel_mix_meets_ja8() {
 #[test]
 fn limits_no_mix_can_meet_give_the_closest() {
     let ch = |c: &str| format!("{c}=data/leds/rgb.csv#{c}");
+    let (r, g, b) = (ch("red"), ch("green"), ch("blue"));
     let (code, out, err) = specpoly(&[
-        "mix", "--channel", &ch("red"), "--channel", &ch("green"), "--channel", &ch("blue"),
-        "--target", "cct:4000", "--min", "ra=90", "--json",
+        "mix",
+        "--channel",
+        &r,
+        "--channel",
+        &g,
+        "--channel",
+        &b,
+        "--target",
+        "cct:4000",
+        "--min",
+        "ra=90",
+        "--json",
     ]);
     assert_eq!(code, 1, "{out}");
     assert_eq!(err.lines().count(), 1, "{err}");
@@ -152,11 +174,14 @@ fn limits_no_mix_can_meet_give_the_closest() {
     // target-level limits and bad limits are usage errors
     for (more, code_want) in [
         (vec!["--target", "cct:5000", "--target", "ja8"], 2),
-        (vec!["--target", "cct:3000,duv:0.004", "--max", "duv=0.003"], 2),
+        (
+            vec!["--target", "cct:3000,duv:0.004", "--max", "duv=0.003"],
+            2,
+        ),
         (vec!["--target", "cct:3000", "--min", "cri=90"], 2),
         (vec!["--target", "ja8"], 2),
     ] {
-        let mut args = vec!["mix", "--channel", &ch("red"), "--channel", &ch("green"), "--channel", &ch("blue")];
+        let mut args = vec!["mix", "--channel", &r, "--channel", &g, "--channel", &b];
         args.extend(more.iter().copied());
         let (code, out, err) = specpoly(&args);
         assert_eq!(code, code_want, "{more:?}: {err}");

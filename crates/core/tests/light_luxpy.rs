@@ -45,7 +45,10 @@ fn agrees_with_luxpy_on_118_lights() {
         }
     }
     for k in 0..6 {
-        println!("luxpy {:14} worst {:.3e} ({})", names[k], worst[k].0, worst[k].1);
+        println!(
+            "luxpy {:14} worst {:.3e} ({})",
+            names[k], worst[k].0, worst[k].1
+        );
     }
     for k in 0..6 {
         assert!(worst[k].0 <= tol[k], "{}: {:?}", names[k], worst[k]);

@@ -41,9 +41,16 @@ fn lights() -> Vec<(String, Spd)> {
 fn peak_fwhm_dominant_wavelength_and_purity_agree_with_colour_science() {
     let lights = lights();
     let (head, refs) = csv(include_str!("data/light_standards.csv"));
-    assert_eq!(head, ["name", "peak_nm", "fwhm_nm", "dominant_nm", "purity"]);
+    assert_eq!(
+        head,
+        ["name", "peak_nm", "fwhm_nm", "dominant_nm", "purity"]
+    );
     assert_eq!((lights.len(), refs.len()), (142, 142));
-    let (mut w_fwhm, mut w_dom, mut w_pur) = ((0.0, String::new()), (0.0f64, String::new()), (0.0, String::new()));
+    let (mut w_fwhm, mut w_dom, mut w_pur) = (
+        (0.0, String::new()),
+        (0.0f64, String::new()),
+        (0.0, String::new()),
+    );
     let mut purples = 0;
     for ((name, s), r) in lights.iter().zip(&refs) {
         assert_eq!(name, &r[0]);
@@ -60,11 +67,18 @@ fn peak_fwhm_dominant_wavelength_and_purity_agree_with_colour_science() {
         let (wl, pe) = (want[2].unwrap(), want[3].unwrap());
         if pe < 1e-3 {
             // illuminant E itself: no direction, no dominant wavelength
-            assert!(dominant(s.xy(), WHITE_E).map_or(true, |d| d.purity < 1e-3), "{name}");
+            assert!(
+                dominant(s.xy(), WHITE_E).map_or(true, |d| d.purity < 1e-3),
+                "{name}"
+            );
             continue;
         }
         let d = dominant(s.xy(), WHITE_E).unwrap();
-        assert_eq!(d.wavelength < 0.0, wl < 0.0, "{name}: dominant or complementary");
+        assert_eq!(
+            d.wavelength < 0.0,
+            wl < 0.0,
+            "{name}: dominant or complementary"
+        );
         purples += (wl < 0.0) as usize;
         // colour-science returns the 1 nm locus node nearest the intersection
         if (d.wavelength - wl).abs() > w_dom.0 {
@@ -129,7 +143,12 @@ fn d65_has_the_standards_alpha_opic_efficacies() {
     let a = alpha_opic(&Spd::new(&t).unwrap());
     for k in 0..5 {
         let rel = (a.elr[k] - K_D65[k]) / K_D65[k];
-        println!("D65 {}: {:.5} mW/lm, {:+.1e}", NAMES[k], a.elr[k] * 1e3, rel);
+        println!(
+            "D65 {}: {:.5} mW/lm, {:+.1e}",
+            NAMES[k],
+            a.elr[k] * 1e3,
+            rel
+        );
         assert!(rel.abs() < 5e-4, "{} {rel}", NAMES[k]);
         assert!((a.der[k] - 1.0).abs() < 5e-4);
     }
@@ -163,6 +182,9 @@ fn ansi_quadrangles_follow_the_standards_targets() {
         // the target point meets its own nominal CCT
         assert_eq!(nominal_cct(c).map(|m| m.nominal), Some(n.nominal));
     }
-    println!("ANSI C78.377: centres within {:.1e}, corners within {:.1e} in x, y", worst[0], worst[1]);
+    println!(
+        "ANSI C78.377: centres within {:.1e}, corners within {:.1e} in x, y",
+        worst[0], worst[1]
+    );
     assert!(worst[0] < 2e-4 && worst[1] < 3e-4, "{worst:?}");
 }

@@ -417,7 +417,8 @@ pub fn mix(
             .map(|l| figure(&r, l.metric).map_or(f64::INFINITY, |v| (l.min - v).max(0.0)))
             .collect();
         rounds += 1;
-        if misses.iter().all(|m| *m == 0.0) || rounds == 4 || misses.iter().any(|m| m.is_infinite()) {
+        if misses.iter().all(|m| *m == 0.0) || rounds == 4 || misses.iter().any(|m| m.is_infinite())
+        {
             break (driven, r);
         }
         for (a, m) in asked.iter_mut().zip(&misses) {
@@ -475,7 +476,10 @@ mod tests {
                 duv: 0.0001
             })
         );
-        assert_eq!(parse_target("ansi:6500").unwrap(), parse_target("cct:6532,duv:0.0031").unwrap());
+        assert_eq!(
+            parse_target("ansi:6500").unwrap(),
+            parse_target("cct:6532,duv:0.0031").unwrap()
+        );
     }
 
     #[test]

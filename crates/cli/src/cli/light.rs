@@ -124,7 +124,8 @@ fn details(r: &LightReport) -> String {
         o,
         "# spectrum: peak {:.0} nm, FWHM {}, {dom}, excitation purity {} (CIE 015, against E)",
         c.peak_nm,
-        c.fwhm_nm.map_or("- (broad band)".into(), |w| format!("{w:.1} nm")),
+        c.fwhm_nm
+            .map_or("- (broad band)".into(), |w| format!("{w:.1} nm")),
         opt(c.purity, 4)
     );
     if let Some(ri) = c.ri {
@@ -240,7 +241,19 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
         "rf",
         "rg",
         "extrapolated_from_nm",
-        "r1", "r2", "r3", "r4", "r5", "r6", "r7", "r8", "r10", "r11", "r12", "r13", "r14",
+        "r1",
+        "r2",
+        "r3",
+        "r4",
+        "r5",
+        "r6",
+        "r7",
+        "r8",
+        "r10",
+        "r11",
+        "r12",
+        "r13",
+        "r14",
         "peak_nm",
         "fwhm_nm",
         "dominant_nm",

@@ -67,7 +67,12 @@ fn target_arg(s: &str) -> std::result::Result<TargetArg, String> {
 fn limit_arg(s: &str) -> std::result::Result<(String, f64), String> {
     let bad = || format!("`{s}`: a limit is NAME=VALUE, e.g. r9=50");
     let (k, v) = s.split_once('=').ok_or_else(bad)?;
-    let v: f64 = v.trim().parse().ok().filter(|v: &f64| v.is_finite()).ok_or_else(bad)?;
+    let v: f64 = v
+        .trim()
+        .parse()
+        .ok()
+        .filter(|v: &f64| v.is_finite())
+        .ok_or_else(bad)?;
     Ok((k.trim().to_ascii_lowercase(), v))
 }
 
@@ -157,7 +162,11 @@ pub fn run(a: &MixArgs) -> Result<()> {
     };
     if a.json {
         print_json(&r)?;
-        return if missed.is_empty() { Ok(()) } else { Err(unmet()) };
+        return if missed.is_empty() {
+            Ok(())
+        } else {
+            Err(unmet())
+        };
     }
     let mut o = String::new();
     let _ = writeln!(
@@ -218,11 +227,13 @@ fn specification(a: &MixArgs) -> Result<(Target, Vec<Limit>)> {
         TargetArg::Chromaticity(c) => Some(*c),
         TargetArg::Ja8 => None,
     });
-    let target = chroma
-        .next()
-        .ok_or_else(|| CliError::usage("--target ja8 needs a chromaticity --target too (e.g. cct:3000)"))?;
+    let target = chroma.next().ok_or_else(|| {
+        CliError::usage("--target ja8 needs a chromaticity --target too (e.g. cct:3000)")
+    })?;
     if chroma.next().is_some() {
-        return Err(CliError::usage("one chromaticity --target (plus ja8 if wanted)"));
+        return Err(CliError::usage(
+            "one chromaticity --target (plus ja8 if wanted)",
+        ));
     }
     let ja8 = a.target.contains(&TargetArg::Ja8);
     let mut limits = vec![];
@@ -237,27 +248,36 @@ fn specification(a: &MixArgs) -> Result<(Target, Vec<Limit>)> {
             "r9" => Metric::R9,
             "rf" => Metric::Rf,
             "rg" => Metric::Rg,
-            _ => return Err(CliError::usage(format!("--min {k}: a least value is of ra, r9, rf or rg"))),
+            _ => {
+                return Err(CliError::usage(format!(
+                    "--min {k}: a least value is of ra, r9, rf or rg"
+                )))
+            }
         };
         min(m, *v);
     }
-    let (cct, duv) = match target {
-        Target::Cct(c) => (c.cct, c.duv),
-        Target::Xy(xy) => {
-            let c = cct::cct_duv(cct::xy_to_uv(xy)).map_err(|e| CliError::usage(format!("--target {}: {e}", describe(&target))))?;
-            (c.cct, c.duv)
-        }
-    };
     let mut most: Vec<(&str, f64)> = a.max.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     if ja8 {
         most.push(("cct", ja8::CCT_MAX));
         most.push(("duv", ja8::DUV_MAX));
     }
     for (k, v) in most {
+        let (cct, duv) = match target {
+            Target::Cct(c) => (c.cct, c.duv),
+            Target::Xy(xy) => {
+                let c = cct::cct_duv(cct::xy_to_uv(xy))
+                    .map_err(|e| CliError::usage(format!("--target {}: {e}", describe(&target))))?;
+                (c.cct, c.duv)
+            }
+        };
         let (have, ok) = match k {
             "cct" => (cct, cct <= v),
             "duv" => (duv, duv.abs() <= v),
-            _ => return Err(CliError::usage(format!("--max {k}: a greatest value is of cct or duv"))),
+            _ => {
+                return Err(CliError::usage(format!(
+                    "--max {k}: a greatest value is of cct or duv"
+                )))
+            }
         };
         if !ok {
             return Err(CliError::usage(format!(

@@ -38,6 +38,7 @@ pub struct Nominal {
 pub const DUV_TOLERANCE: f64 = 0.006;
 
 /// The ten nominal CCTs, warmest first.
+#[allow(clippy::approx_constant)] // tabulated coordinates (0.4342), not log10(e)
 pub const NOMINAL: [Nominal; 10] = [
     Nominal {
         nominal: 2200,

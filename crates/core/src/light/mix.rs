@@ -302,13 +302,16 @@ pub fn solve_mix(
     make(channels, &d[..n])
 }
 
+/// The vertices of the polytope of duties.
+pub(super) type Vertices = Vec<[f64; MAX_CHANNELS], MAX_VERTICES>;
+
 /// The problem of a target at a relative luminance: the channels' matrix, the target
 /// tristimulus values `t` and the vertices of the polytope `A·d = t`, `0 ≤ d ≤ 1`.
 pub(super) fn setup<'c>(
     channels: &'c [Source],
     target: Target,
     luminance: f64,
-) -> Result<(Problem<'c>, [f64; 3], Vec<[f64; MAX_CHANNELS], MAX_VERTICES>), LightError> {
+) -> Result<(Problem<'c>, [f64; 3], Vertices), LightError> {
     if !(luminance > 0.0 && luminance <= 1.0) {
         return Err(LightError::BadTarget);
     }
