@@ -106,6 +106,31 @@ fn main() {
         out.push_str("],\n");
     }
     out.push_str("];\n");
+    // CIE S 026:2018 action spectra at 1 nm, one row of 401 values per photoreceptor
+    // (s-cone, m-cone, l-cone, rhodopic, melanopic; `light/alpha_opic.rs`).
+    let p = data.join("cmf/cie_s026_2018_alpha_opic_1nm.csv");
+    println!("cargo:rerun-if-changed={}", p.display());
+    let rows = read_csv(&p);
+    assert_eq!(
+        rows.len(),
+        401,
+        "cie_s026_2018_alpha_opic_1nm.csv: 380-780 nm at 1 nm"
+    );
+    out.push_str("pub(crate) static S026: [[f32; 401]; 5] = [\n");
+    for c in 1..=5 {
+        out.push_str("    [");
+        for (i, r) in rows.iter().enumerate() {
+            assert_eq!(
+                r[0] as usize,
+                380 + i,
+                "cie_s026_2018_alpha_opic_1nm.csv: row {i}"
+            );
+            assert_eq!(r.len(), 6, "cie_s026_2018_alpha_opic_1nm.csv: row {i}");
+            let _ = write!(out, "{:e}, ", r[c]);
+        }
+        out.push_str("],\n");
+    }
+    out.push_str("];\n");
     let dest = PathBuf::from(env::var("OUT_DIR").unwrap()).join("tables.rs");
     fs::write(dest, out).expect("write tables.rs");
 }

@@ -44,7 +44,38 @@ fn light_json_matches_colour_science() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
     let mut want = vec![
-        "X", "Y", "Z", "x", "y", "u_prime", "v_prime", "cct", "duv", "ra", "r9", "rf", "rg",
+        "X",
+        "Y",
+        "Z",
+        "x",
+        "y",
+        "u_prime",
+        "v_prime",
+        "cct",
+        "duv",
+        "ra",
+        "r9",
+        "rf",
+        "rg",
+        // the standards' checks (light_standards_cli.rs)
+        "ri",
+        "peak_nm",
+        "fwhm_nm",
+        "dominant_nm",
+        "purity",
+        "edi_sc",
+        "edi_mc",
+        "edi_lc",
+        "edi_rh",
+        "edi_mel",
+        "der_sc",
+        "der_mc",
+        "der_lc",
+        "der_rh",
+        "der_mel",
+        "ansi_c78377",
+        "ja8",
+        "ja8_fails",
     ];
     let mut got = keys.clone();
     got.sort();

@@ -31,6 +31,7 @@ mod led_cli;
 mod led_lut;
 mod led_table;
 mod light_cli;
+mod light_standards_cli;
 mod light_tm30_cli;
 #[path = "../../core/tests/common/reference_1nm.rs"]
 mod reference_1nm;

@@ -18,6 +18,7 @@ pub mod data;
 pub mod error;
 pub mod hero;
 pub mod light;
+pub mod light_checks;
 pub mod light_tm30;
 pub mod plausible;
 pub mod repr;

@@ -16,9 +16,10 @@ pub struct LightArgs {
     /// one row each.
     #[arg(value_name = "SPD", required = true, num_args = 1..)]
     pub spd: Vec<String>,
-    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg} (and
-    /// extrapolated_from_nm when --extrapolate was needed); several lights as JSON Lines, one
-    /// object a light with its "name" first.
+    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg, ri (R1-R14),
+    /// peak_nm, fwhm_nm, dominant_nm, purity, edi_* and der_* (CIE S 026: sc, mc, lc, rh, mel),
+    /// ansi_c78377, ja8, ja8_fails} (and extrapolated_from_nm when --extrapolate was needed);
+    /// several lights as JSON Lines, one object a light with its "name" first.
     #[arg(long, conflicts_with = "csv")]
     pub json: bool,
     /// Print CSV (RFC 4180): a header, then one row a light with its name first; an empty cell
@@ -106,6 +107,46 @@ pub fn text(name: &str, r: &LightReport) -> String {
         opt(r.rf, 1),
         opt(r.rg, 1)
     );
+    o += &details(r);
+    o
+}
+
+/// The spectrum's shape and hue, CIE 13.3 R1-R14, CIE S 026 and the standards' checks.
+fn details(r: &LightReport) -> String {
+    let c = &r.checks;
+    let mut o = String::new();
+    let dom = match c.dominant_nm {
+        Some(d) if d < 0.0 => format!("complementary wavelength {:.1} nm", -d),
+        Some(d) => format!("dominant wavelength {d:.1} nm"),
+        None => "no dominant wavelength".into(),
+    };
+    let _ = writeln!(
+        o,
+        "# spectrum: peak {:.0} nm, FWHM {}, {dom}, excitation purity {} (CIE 015, against E)",
+        c.peak_nm,
+        c.fwhm_nm
+            .map_or("- (broad band)".into(), |w| format!("{w:.1} nm")),
+        opt(c.purity, 4)
+    );
+    if let Some(ri) = c.ri {
+        let list: Vec<String> = ri
+            .iter()
+            .enumerate()
+            .map(|(i, v)| format!("R{} {v:.1}", i + 1))
+            .collect();
+        let _ = writeln!(o, "# CIE 13.3: {}", list.join(", "));
+    }
+    let _ = writeln!(
+        o,
+        "# CIE S 026 (the SPD as W/m2/nm): alpha-opic EDI (lx) and DER: s-cone {:.4} / {:.4}, \
+         m-cone {:.4} / {:.4}, l-cone {:.4} / {:.4}, rhodopic {:.4} / {:.4}, melanopic {:.4} / {:.4}",
+        c.edi_sc, c.der_sc, c.edi_mc, c.der_mc, c.edi_lc, c.der_lc, c.edi_rh, c.der_rh, c.edi_mel,
+        c.der_mel
+    );
+    let _ = writeln!(o, "{:<62} {:>22}  result", "check", "figure");
+    for [clause, figure, result] in specpoly_spectra::light_checks::check_lines(r) {
+        let _ = writeln!(o, "{clause:<62} {figure:>22}  {result}");
+    }
     o
 }
 
@@ -129,18 +170,26 @@ pub fn table(rows: &[(Named, LightReport)]) -> String {
     let _ = writeln!(
         o,
         "# XYZ = Km·ΣS·x̄Δλ (CIE 1931); CCT, Duv; CIE 13.3 Ra, R9; CIE 224:2017 Rf, TM-30 Rg \
-         ('-': more than 0.05 Duv from the Planckian locus; '*': extrapolated to 380-780 nm)"
+         ('-': more than 0.05 Duv from the Planckian locus; '*': extrapolated to 380-780 nm); \
+         peak, FWHM, dominant wavelength (nm; negative: complementary); CIE S 026 melanopic \
+         DER; the ANSI C78.377-2017 quadrangle; JA8's colour clauses"
     );
     let _ = writeln!(
         o,
-        "{:width$} {:>12} {} {:>6} {:>7} {:>6} {:>6}",
+        "{:width$} {:>12} {} {:>6} {:>7} {:>6} {:>6} {:>5} {:>6} {:>7} {:>7} {:>5} {:>4}",
         "name",
         "Y",
         chromaticity_head(),
         "ra",
         "r9",
         "rf",
-        "rg"
+        "rg",
+        "peak",
+        "fwhm",
+        "dom",
+        "mel_der",
+        "ansi",
+        "ja8"
     );
     for (n, r) in rows {
         let name = format!(
@@ -154,13 +203,19 @@ pub fn table(rows: &[(Named, LightReport)]) -> String {
         );
         let _ = writeln!(
             o,
-            "{name:width$} {:>12.4} {} {:>6} {:>7} {:>6} {:>6}",
+            "{name:width$} {:>12.4} {} {:>6} {:>7} {:>6} {:>6} {:>5.0} {:>6} {:>7} {:>7.4} {:>5} {:>4}",
             r.big_y,
             chromaticity_cells([r.x, r.y, r.u_prime, r.v_prime], r.cct, r.duv),
             opt(r.ra, 1),
             opt(r.r9, 1),
             opt(r.rf, 1),
-            opt(r.rg, 1)
+            opt(r.rg, 1),
+            r.checks.peak_nm,
+            opt(r.checks.fwhm_nm, 1),
+            opt(r.checks.dominant_nm, 1),
+            r.checks.der_mel,
+            r.checks.ansi_c78377.map_or("-".into(), |k| k.to_string()),
+            r.checks.ja8.map_or("-", |p| if p { "pass" } else { "fail" })
         );
     }
     o
@@ -186,6 +241,36 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
         "rf",
         "rg",
         "extrapolated_from_nm",
+        "r1",
+        "r2",
+        "r3",
+        "r4",
+        "r5",
+        "r6",
+        "r7",
+        "r8",
+        "r10",
+        "r11",
+        "r12",
+        "r13",
+        "r14",
+        "peak_nm",
+        "fwhm_nm",
+        "dominant_nm",
+        "purity",
+        "edi_sc",
+        "edi_mc",
+        "edi_lc",
+        "edi_rh",
+        "edi_mel",
+        "der_sc",
+        "der_mc",
+        "der_lc",
+        "der_rh",
+        "der_mel",
+        "ansi_c78377",
+        "ja8",
+        "ja8_fails",
     ];
     let io = |e: csv::Error| crate::error::CliError::Data(e.to_string());
     w.write_record(head).map_err(io)?;
@@ -193,7 +278,32 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
         let ext = r
             .extrapolated_from_nm
             .map_or(String::new(), |[lo, hi]| format!("{lo}-{hi}"));
-        w.write_record([
+        let c = &r.checks;
+        let mut ri: Vec<String> = (0..14)
+            .filter(|i| *i != 8)
+            .map(|i| cell(c.ri.map(|ri| ri[i])))
+            .collect();
+        let more = [
+            c.peak_nm.to_string(),
+            cell(c.fwhm_nm),
+            cell(c.dominant_nm),
+            cell(c.purity),
+            c.edi_sc.to_string(),
+            c.edi_mc.to_string(),
+            c.edi_lc.to_string(),
+            c.edi_rh.to_string(),
+            c.edi_mel.to_string(),
+            c.der_sc.to_string(),
+            c.der_mc.to_string(),
+            c.der_lc.to_string(),
+            c.der_rh.to_string(),
+            c.der_mel.to_string(),
+            c.ansi_c78377.map_or(String::new(), |k| k.to_string()),
+            c.ja8.map_or(String::new(), |p| p.to_string()),
+            c.ja8_fails.join(";"),
+        ];
+        ri.extend(more);
+        let mut record = vec![
             n.name.clone(),
             r.big_x.to_string(),
             r.big_y.to_string(),
@@ -209,8 +319,9 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
             cell(r.rf),
             cell(r.rg),
             ext,
-        ])
-        .map_err(io)?;
+        ];
+        record.extend(ri);
+        w.write_record(record).map_err(io)?;
     }
     let bytes = w
         .into_inner()

@@ -4,7 +4,11 @@
 use crate::cli::args::{transfer, Curve};
 use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
 use crate::error::{CliError, Result};
-use specpoly_core::light::Target;
+use specpoly_core::light::{
+    cct, ja8,
+    mix_limits::{Limit, Metric},
+    Target,
+};
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{self, describe, load_channel, parse_target};
 use std::fmt::Write as _;
@@ -43,6 +47,35 @@ impl From<Optimize> for light::Optimize {
     }
 }
 
+/// One `--target`: a chromaticity, or the `ja8` specification.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TargetArg {
+    /// Where the mix is.
+    Chromaticity(Target),
+    /// California JA8's colour clauses: Ra >= 90 and R9 >= 50 on the mix, CCT <= 4000 K and
+    /// |Duv| <= 0.0033 on the target.
+    Ja8,
+}
+
+fn target_arg(s: &str) -> std::result::Result<TargetArg, String> {
+    if s.trim().eq_ignore_ascii_case("ja8") {
+        return Ok(TargetArg::Ja8);
+    }
+    parse_target(s).map(TargetArg::Chromaticity)
+}
+
+fn limit_arg(s: &str) -> std::result::Result<(String, f64), String> {
+    let bad = || format!("`{s}`: a limit is NAME=VALUE, e.g. r9=50");
+    let (k, v) = s.split_once('=').ok_or_else(bad)?;
+    let v: f64 = v
+        .trim()
+        .parse()
+        .ok()
+        .filter(|v: &f64| v.is_finite())
+        .ok_or_else(bad)?;
+    Ok((k.trim().to_ascii_lowercase(), v))
+}
+
 /// Arguments of `specpoly mix`.
 #[derive(Debug, clap::Args)]
 pub struct MixArgs {
@@ -53,9 +86,19 @@ pub struct MixArgs {
         value_name = "NAME=FILE.csv[#COLUMN]"
     )]
     pub channels: Vec<String>,
-    /// The target: xy:X,Y (CIE 1931), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv offset).
-    #[arg(long, value_parser = parse_target, value_name = "xy:X,Y|cct:K[,duv:D]")]
-    pub target: Target,
+    /// The target: xy:X,Y (CIE 1931), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv
+    /// offset), ansi:K (an ANSI C78.377-2017 nominal CCT's target, e.g. ansi:3000K); given
+    /// twice, `ja8` adds California JA8's colour clauses (Ra >= 90, R9 >= 50 on the mix; CCT
+    /// <= 4000 K, |Duv| <= 0.0033 on the target).
+    #[arg(long, required = true, value_parser = target_arg, value_name = "xy:X,Y|cct:K[,duv:D]|ansi:K|ja8")]
+    pub target: Vec<TargetArg>,
+    /// A least value of the mix's ra, r9, rf or rg (repeatable): the mix meets it, or the
+    /// closest the channels get is printed and the exit code is 1.
+    #[arg(long = "min", value_parser = limit_arg, value_name = "ra|r9|rf|rg=VALUE")]
+    pub min: Vec<(String, f64)>,
+    /// A greatest value of the target's cct (K) or |duv| (repeatable; checked on the target).
+    #[arg(long = "max", value_parser = limit_arg, value_name = "cct|duv=VALUE")]
+    pub max: Vec<(String, f64)>,
     /// Relative luminance: the fraction of the most the channels give at that chromaticity.
     #[arg(long, default_value = "1", value_parser = luminance, value_name = "0..1")]
     pub luminance: f64,
@@ -69,7 +112,8 @@ pub struct MixArgs {
     /// Quantise the duties to this many PWM bits (and report what the quantised mix makes).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub bits: Option<u32>,
-    /// Print JSON: {channels, duties, x, y, u_prime, v_prime, cct, duv, ra, rf, rg, efficacy}.
+    /// Print JSON: {channels, duties, x, y, u_prime, v_prime, cct, duv, ra, rf, rg, efficacy,
+    /// r9} and, with limits, limits: [{metric, min, value, met}].
     #[arg(long)]
     pub json: bool,
 }
@@ -87,22 +131,48 @@ pub fn run(a: &MixArgs) -> Result<()> {
         .iter()
         .map(|c| load_channel(c))
         .collect::<Result<Vec<_>, _>>()?;
+    let (target, limits) = specification(a)?;
     let r = light::mix(
         &channels,
-        a.target,
+        target,
         a.luminance,
         a.optimize.into(),
         &a.trc.into(),
         a.bits,
+        &limits,
     )?;
+    let missed: Vec<String> = r
+        .limits
+        .iter()
+        .filter(|l| !l.met)
+        .map(|l| {
+            format!(
+                "{} >= {} (best {})",
+                l.metric,
+                l.min,
+                l.value.map_or("undefined".into(), |v| format!("{v:.2}"))
+            )
+        })
+        .collect();
+    let unmet = || {
+        CliError::Data(format!(
+            "no mix of these channels meets {}; the closest is printed",
+            missed.join(", ")
+        ))
+    };
     if a.json {
-        return Ok(print_json(&r)?);
+        print_json(&r)?;
+        return if missed.is_empty() {
+            Ok(())
+        } else {
+            Err(unmet())
+        };
     }
     let mut o = String::new();
     let _ = writeln!(
         o,
         "# target {} at {} of the most the channels give there; optimize {}; {}",
-        describe(&a.target),
+        describe(&target),
         a.luminance,
         crate::cli::args::name(&a.optimize),
         a.bits.map_or("unquantised duties".to_string(), |b| format!(
@@ -132,5 +202,89 @@ pub fn run(a: &MixArgs) -> Result<()> {
         opt(r.rg, 1),
         r.efficacy
     );
-    Ok(specpoly_formats::stdout::print(&o)?)
+    for l in &r.limits {
+        let _ = writeln!(
+            o,
+            "# {} >= {}: {} {}",
+            l.metric,
+            l.min,
+            opt(l.value, 2),
+            if l.met { "met" } else { "MISSED" }
+        );
+    }
+    specpoly_formats::stdout::print(&o)?;
+    if missed.is_empty() {
+        Ok(())
+    } else {
+        Err(unmet())
+    }
+}
+
+/// The chromaticity target and the mix's lower limits from `--target`, `--min` and `--max`;
+/// the target-level limits (JA8's CCT and Duv, `--max`) are checked here.
+fn specification(a: &MixArgs) -> Result<(Target, Vec<Limit>)> {
+    let mut chroma = a.target.iter().filter_map(|t| match t {
+        TargetArg::Chromaticity(c) => Some(*c),
+        TargetArg::Ja8 => None,
+    });
+    let target = chroma.next().ok_or_else(|| {
+        CliError::usage("--target ja8 needs a chromaticity --target too (e.g. cct:3000)")
+    })?;
+    if chroma.next().is_some() {
+        return Err(CliError::usage(
+            "one chromaticity --target (plus ja8 if wanted)",
+        ));
+    }
+    let ja8 = a.target.contains(&TargetArg::Ja8);
+    let mut limits = vec![];
+    let mut min = |m: Metric, v: f64| limits.push(Limit { metric: m, min: v });
+    if ja8 {
+        min(Metric::Ra, ja8::RA_MIN);
+        min(Metric::R9, ja8::R9_MIN);
+    }
+    for (k, v) in &a.min {
+        let m = match k.as_str() {
+            "ra" => Metric::Ra,
+            "r9" => Metric::R9,
+            "rf" => Metric::Rf,
+            "rg" => Metric::Rg,
+            _ => {
+                return Err(CliError::usage(format!(
+                    "--min {k}: a least value is of ra, r9, rf or rg"
+                )))
+            }
+        };
+        min(m, *v);
+    }
+    let mut most: Vec<(&str, f64)> = a.max.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    if ja8 {
+        most.push(("cct", ja8::CCT_MAX));
+        most.push(("duv", ja8::DUV_MAX));
+    }
+    for (k, v) in most {
+        let (cct, duv) = match target {
+            Target::Cct(c) => (c.cct, c.duv),
+            Target::Xy(xy) => {
+                let c = cct::cct_duv(cct::xy_to_uv(xy))
+                    .map_err(|e| CliError::usage(format!("--target {}: {e}", describe(&target))))?;
+                (c.cct, c.duv)
+            }
+        };
+        let (have, ok) = match k {
+            "cct" => (cct, cct <= v),
+            "duv" => (duv, duv.abs() <= v),
+            _ => {
+                return Err(CliError::usage(format!(
+                    "--max {k}: a greatest value is of cct or duv"
+                )))
+            }
+        };
+        if !ok {
+            return Err(CliError::usage(format!(
+                "--target {} has {k} {have:.5}, beyond the limit {v}",
+                describe(&target)
+            )));
+        }
+    }
+    Ok((target, limits))
 }

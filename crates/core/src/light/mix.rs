@@ -28,7 +28,7 @@ use heapless::Vec;
 
 /// Most channels in a mix.
 pub const MAX_CHANNELS: usize = 6;
-const MAX_VERTICES: usize = 160; // C(6,3)·2³
+pub(super) const MAX_VERTICES: usize = 160; // C(6,3)·2³
 
 /// A chromaticity target.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,7 +129,7 @@ impl Driven {
     }
 }
 
-fn make(channels: &[Source], d: &[f64]) -> Result<Mix, LightError> {
+pub(super) fn make(channels: &[Source], d: &[f64]) -> Result<Mix, LightError> {
     let mut parts: Vec<(f64, &Source), MAX_CHANNELS> = Vec::new();
     for (di, c) in d.iter().zip(channels) {
         let _ = parts.push((*di, c));
@@ -161,9 +161,9 @@ fn in_unit(v: f64) -> bool {
 }
 
 /// The problem for one set of channels and one chromaticity.
-struct Problem<'c> {
+pub(super) struct Problem<'c> {
     channels: &'c [Source],
-    n: usize,
+    pub(super) n: usize,
     /// Rows: X, Y, Z of each channel, scaled so the largest |entry| is 1.
     a: [[f64; MAX_CHANNELS]; 3],
     /// Chromaticity constraint rows.
@@ -277,22 +277,8 @@ pub fn solve_mix(
     luminance: f64,
     objective: Objective<'_>,
 ) -> Result<Mix, LightError> {
-    if !(luminance > 0.0 && luminance <= 1.0) {
-        return Err(LightError::BadTarget);
-    }
-    let xy = target.xy()?;
-    let p = Problem::new(channels, xy)?;
-    let y_max = p.max_luminance();
-    if y_max <= 1e-9 {
-        return Err(LightError::OutOfGamut);
-    }
-    let y = luminance * y_max;
-    let t = [xy[0] / xy[1] * y, y, (1.0 - xy[0] - xy[1]) / xy[1] * y];
-    let verts = p.vertices(t);
+    let (p, t, verts) = setup(channels, target, luminance)?;
     let n = p.n;
-    if verts.is_empty() {
-        return Err(LightError::OutOfGamut);
-    }
     let linear = |cost: &dyn Fn(usize) -> f64| -> [f64; MAX_CHANNELS] {
         let mut best = (f64::INFINITY, verts[0]);
         for v in &verts {
@@ -316,8 +302,36 @@ pub fn solve_mix(
     make(channels, &d[..n])
 }
 
+/// The vertices of the polytope of duties.
+pub(super) type Vertices = Vec<[f64; MAX_CHANNELS], MAX_VERTICES>;
+
+/// The problem of a target at a relative luminance: the channels' matrix, the target
+/// tristimulus values `t` and the vertices of the polytope `A·d = t`, `0 ≤ d ≤ 1`.
+pub(super) fn setup<'c>(
+    channels: &'c [Source],
+    target: Target,
+    luminance: f64,
+) -> Result<(Problem<'c>, [f64; 3], Vertices), LightError> {
+    if !(luminance > 0.0 && luminance <= 1.0) {
+        return Err(LightError::BadTarget);
+    }
+    let xy = target.xy()?;
+    let p = Problem::new(channels, xy)?;
+    let y_max = p.max_luminance();
+    if y_max <= 1e-9 {
+        return Err(LightError::OutOfGamut);
+    }
+    let y = luminance * y_max;
+    let t = [xy[0] / xy[1] * y, y, (1.0 - xy[0] - xy[1]) / xy[1] * y];
+    let verts = p.vertices(t);
+    if verts.is_empty() {
+        return Err(LightError::OutOfGamut);
+    }
+    Ok((p, t, verts))
+}
+
 /// Compass search for the greatest `score` over the polytope (see the module docs).
-fn search(
+pub(super) fn search(
     p: &Problem<'_>,
     t: [f64; 3],
     verts: &[[f64; MAX_CHANNELS]],

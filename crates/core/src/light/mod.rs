@@ -20,22 +20,32 @@
 //!   fidelity);
 //! - [`mix`]: duties of 3–6 channels for a chromaticity or CCT target, the freedom spent on Rf,
 //!   Ra, luminous efficacy or least drive.
+//! - [`mix_limits`]: the same with lower limits on Ra, R9, Rf, Rg (mixing to a specification);
 //! - [`locus`]: the Planckian locus as a 25-node table (f32, cubic Hermite in mired), for
 //!   devices;
+//! - [`spectral`]: peak wavelength, FWHM, dominant wavelength and excitation purity;
+//! - [`alpha_opic`]: CIE S 026:2018 α-opic irradiances, ELR, DER and EDI;
+//! - [`ansi_c78377`]: ANSI C78.377-2017 nominal CCTs and their quadrangles;
+//! - [`ja8`]: California Title 24 JA8's colour clauses;
 //! - [`channels`]: the device's mixer (f32): 3–`M` channels' XYZ, `xy`/CCT targets, the least
 //!   weighted drive, fades.
 
+pub mod alpha_opic;
+pub mod ansi_c78377;
 pub mod cam02;
 pub mod cct;
 pub mod channels;
 pub mod cri;
 pub mod design_intent;
+pub mod ja8;
 pub mod locus;
 pub mod mix;
+pub mod mix_limits;
 pub mod reference;
 pub mod samples;
 pub mod source;
 pub mod spd;
+pub mod spectral;
 pub mod sprague;
 pub mod tm30;
 
