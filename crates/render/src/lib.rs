@@ -45,12 +45,14 @@ pub mod upsample;
 // meshes and emitters
 pub mod lights;
 pub mod mesh;
+pub mod mesh_gltf;
 pub mod mesh_ply;
 // the scene file and the resolved scene
 pub mod budget;
 pub mod scene;
 pub mod scene_file;
 pub mod scene_geometry;
+pub mod scene_gltf;
 pub mod scene_value;
 pub mod sections;
 // the compiled scene
@@ -94,10 +96,13 @@ pub struct Image {
     pub rays: u64,
 }
 
-/// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`) or a TOML file.
-/// Returns the scene and the name used in messages.
+/// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`), a TOML file or
+/// a glTF file (`.gltf`, `.glb`: [`scene_gltf`]).
 pub fn load(spec: &str) -> Result<Scene> {
     let path = std::path::Path::new(spec);
+    if scene_gltf::is_gltf(spec) {
+        return scene_gltf::load(path, spec);
+    }
     let looks_like_file = spec.ends_with(".toml") || spec.contains('/');
     if path.exists() && (looks_like_file || builtin::find(spec).is_none()) {
         let text = specpoly_formats::read::text(path)?;
