@@ -24,9 +24,9 @@
 //! together may not exceed that limit. Every buffer view and accessor is checked to lie inside
 //! its data before it is read (the `gltf` crate's own readers index without checking), a GLB
 //! header shorter than itself is refused before the crate reads it (its length arithmetic
-//! would underflow), node trees are walked at most [`MAX_NODE_VISITS`] node visits deep in
-//! total (cycles and shared subtrees in malformed files), and a non-finite transform is
-//! refused. Every error is one line naming the file and the JSON path (`accessors[3]`,
+//! would underflow), children that form a cycle are refused, node trees are walked at most
+//! [`MAX_NODE_VISITS`] node visits in total (subtrees shared many times in malformed files),
+//! and a non-finite transform is refused. Every error is one line naming the file and the JSON path (`accessors[3]`,
 //! `nodes[2].matrix`, `buffers[0].uri`).
 
 use crate::error::{Error, Result};
@@ -206,7 +206,7 @@ impl GltfFile {
         }
         for v in document.views() {
             let end = v.offset().checked_add(v.length());
-            if !end.is_some_and(|e| e <= v.buffer().length()) {
+            if end.is_none_or(|e| e > v.buffer().length()) {
                 return Err(bad(format!(
                     "bufferViews[{}]: bytes {}..{} lie outside buffers[{}] ({} bytes)",
                     v.index(),
@@ -259,7 +259,8 @@ impl GltfFile {
                 view.length()
             )));
         }
-        let data = &self.buffers[view.buffer().index()][view.offset()..view.offset() + view.length()];
+        let data =
+            &self.buffers[view.buffer().index()][view.offset()..view.offset() + view.length()];
         Ok((&data[a.offset().min(data.len())..], stride, size))
     }
 
@@ -274,7 +275,9 @@ impl GltfFile {
             )));
         }
         let (data, stride, _) = self.elements(a, what)?;
-        let f = |b: &[u8], k: usize| f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]]);
+        let f = |b: &[u8], k: usize| {
+            f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+        };
         Ok((0..a.count())
             .map(|i| {
                 let e = &data[i * stride..i * stride + 12];
@@ -306,7 +309,11 @@ impl GltfFile {
     /// The nodes of the scene to render with their world matrices, parents before children:
     /// the default scene's, else the first scene's, else every root node's.
     pub fn placed_nodes(&self) -> Result<Vec<Placed>> {
-        let roots: Vec<usize> = match self.doc.default_scene().or_else(|| self.doc.scenes().next()) {
+        let roots: Vec<usize> = match self
+            .doc
+            .default_scene()
+            .or_else(|| self.doc.scenes().next())
+        {
             Some(s) => s.nodes().map(|n| n.index()).collect(),
             None => {
                 let mut child = vec![false; self.doc.nodes().len()];
@@ -320,11 +327,19 @@ impl GltfFile {
         };
         let nodes: Vec<gltf::Node<'_>> = self.doc.nodes().collect();
         let mut out = Vec::new();
-        let mut stack: Vec<(usize, Mat4)> = roots.iter().rev().map(|&r| (r, Mat4::IDENTITY)).collect();
-        while let Some((i, parent)) = stack.pop() {
+        let mut stack: Vec<(usize, Mat4, usize)> = roots
+            .iter()
+            .rev()
+            .map(|&r| (r, Mat4::IDENTITY, 0))
+            .collect();
+        while let Some((i, parent, depth)) = stack.pop() {
+            // a path longer than the node count repeats a node: the children form a cycle
+            if depth > nodes.len() {
+                return Err(self.bad(format!("nodes[{i}]: the children form a cycle")));
+            }
             if out.len() >= MAX_NODE_VISITS {
                 return Err(self.bad(format!(
-                    "the node trees visit more than {MAX_NODE_VISITS} nodes (a cycle among children?)"
+                    "the node trees visit more than {MAX_NODE_VISITS} nodes (subtrees shared many times)"
                 )));
             }
             let n = &nodes[i];
@@ -351,7 +366,7 @@ impl GltfFile {
             }
             out.push(Placed { node: i, world });
             for c in n.children().collect::<Vec<_>>().into_iter().rev() {
-                stack.push((c.index(), world));
+                stack.push((c.index(), world, depth + 1));
             }
         }
         Ok(out)
@@ -373,7 +388,10 @@ impl GltfFile {
             for prim in mesh.primitives() {
                 let at = format!("meshes[{}].primitives[{}]", mesh.index(), prim.index());
                 let mode = prim.mode();
-                if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+                if !matches!(
+                    mode,
+                    Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+                ) {
                     continue;
                 }
                 let pos = prim
@@ -425,9 +443,7 @@ impl GltfFile {
                         })
                     };
                     let t = [get(c[0])?, get(c[1])?, get(c[2])?];
-                    let n = world_n
-                        .as_ref()
-                        .map(|ns| c.map(|k| ns[k as usize]));
+                    let n = world_n.as_ref().map(|ns| c.map(|k| ns[k as usize]));
                     f(t, n, prim.material().index())?;
                 }
             }
@@ -454,7 +470,10 @@ pub fn load_gltf(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup)
         .collect();
     let before = soup.tris.len();
     file.triangles(|t, n, m| {
-        let material = m.and_then(|i| materials.get(i)).copied().unwrap_or(place.default);
+        let material = m
+            .and_then(|i| materials.get(i))
+            .copied()
+            .unwrap_or(place.default);
         let mut placed = [V3::default(); 3];
         for k in 0..3 {
             placed[k] = crate::mesh::placed(t[k], place).map_err(|why| mesh_error(path, why))?;

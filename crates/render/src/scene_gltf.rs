@@ -69,9 +69,8 @@ fn extras<T: serde::de::DeserializeOwned>(
     file: &Path,
 ) -> Result<Option<T>> {
     let Some(raw) = raw else { return Ok(None) };
-    let e: Extras<T> = serde_json::from_str(raw.get()).map_err(|e| {
-        crate::mesh::mesh_error(file, format!("{at}.extras.specpoly: {e}"))
-    })?;
+    let e: Extras<T> = serde_json::from_str(raw.get())
+        .map_err(|e| crate::mesh::mesh_error(file, format!("{at}.extras.specpoly: {e}")))?;
     Ok(e.specpoly)
 }
 
@@ -156,6 +155,18 @@ pub fn scene_file(path: &Path) -> Result<SceneFile> {
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     file.triangles(|t, _, _| {
         for v in t {
+            if ![v.x, v.y, v.z]
+                .iter()
+                .all(|c| c.is_finite() && c.abs() <= crate::mesh::MAX_COORDINATE)
+            {
+                return Err(bad(format!(
+                    "a vertex at ({}, {}, {}) once placed by its nodes is beyond ±{:e}",
+                    v.x,
+                    v.y,
+                    v.z,
+                    crate::mesh::MAX_COORDINATE
+                )));
+            }
             let v = Vec3::new(v.x, v.y, v.z);
             lo = lo.min(v);
             hi = hi.max(v);
@@ -217,10 +228,7 @@ pub fn scene_file(path: &Path) -> Result<SceneFile> {
         let Some(l) = nodes[p.node].light() else {
             continue;
         };
-        let at = format!(
-            "extensions.KHR_lights_punctual.lights[{}]",
-            l.index()
-        );
+        let at = format!("extensions.KHR_lights_punctual.lights[{}]", l.index());
         let spectrum = match extras::<LightExtras>(l.extras(), &at, path)? {
             Some(e) => e.spectrum,
             None => {

@@ -60,7 +60,10 @@ fn a_glb_renders_as_its_obj_twin() {
         std::fs::write(&path, text).unwrap();
         let s = render::load(path.to_str().unwrap()).unwrap();
         assert_eq!(s.triangles.len(), 320 + 12, "{name}");
-        (render::render(&s, Repr::DEFAULT, None).unwrap(), render::scene_white(&s))
+        (
+            render::render(&s, Repr::DEFAULT, None).unwrap(),
+            render::scene_white(&s),
+        )
     };
     let (a, white) = render(&glb, "glb.toml");
     let (b, _) = render(&obj, "obj.toml");
@@ -71,9 +74,10 @@ fn a_glb_renders_as_its_obj_twin() {
         .map(|(p, q)| delta_e2000(Lab::from_xyz(*p, white), Lab::from_xyz(*q, white)))
         .collect();
     let mean = de.iter().sum::<f64>() / de.len() as f64;
-    let close = de.iter().filter(|&&e| e < 0.05).count();
-    assert!(mean < 0.02, "mean ΔE00 {mean}");
-    assert!(close >= de.len() * 99 / 100, "{close} of {} within 0.05", de.len());
+    let max = de.iter().cloned().fold(0.0, f64::max);
+    // the same triangles up to float rounding (f32 node matrices here, float64 in the script):
+    // measured mean 1.3e-6, max below 0.001
+    assert!(mean < 1e-3 && max < 0.01, "mean ΔE00 {mean}, max {max}");
     // both objects are in view: reddish and bluish pixels (a* > 20, b* < −20)
     let lab: Vec<Lab> = a.xyz.iter().map(|p| Lab::from_xyz(*p, white)).collect();
     assert!(lab.iter().filter(|l| l.a > 20.0).count() > 100);
@@ -104,15 +108,19 @@ fn the_box_sample_asset_renders_its_closed_form() {
     assert_eq!(img.xyz[0], Xyz::default());
 }
 
-/// The largest ΔE00 the RGB → spectrum upsampling may leave on a gamut-edge colour.
-const UPSAMPLE_DE: f64 = 6.0;
+/// The ΔE00 allowed at the centre pixel: the upsampling's round trip (within 0.01 over the
+/// sRGB cube, `upsample.rs`) and the renderer's f32 sums; the earlier three-band upsampling
+/// missed this colour by ≈ 2.5.
+const UPSAMPLE_DE: f64 = 0.02;
 
 /// Base64 (RFC 4648), written here for the test files.
 fn b64(data: &[u8]) -> String {
     const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut s = String::new();
     for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
         for k in 0..4 {
             if k <= c.len() {
                 s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
@@ -162,13 +170,19 @@ fn load_text(text: &[u8], name: &str) -> Result<render::scene::Scene, String> {
 fn a_well_formed_triangle_loads() {
     let s = load_text(triangle(|_| ()).as_bytes(), "t.gltf").unwrap();
     assert_eq!(s.triangles.len(), 1);
+    // its buffer in a .bin file beside it
+    let s = render::load(data().join("tri.gltf").to_str().unwrap()).unwrap();
+    assert_eq!(s.triangles.len(), 1);
 }
 
 #[test]
 fn malformed_files_are_one_line_errors_with_the_json_path() {
     use serde_json::json;
     let cases: Vec<(String, &str)> = vec![
-        (triangle(|d| d["buffers"][0]["uri"] = json!("absent.bin")), "buffers[0].uri"),
+        (
+            triangle(|d| d["buffers"][0]["uri"] = json!("absent.bin")),
+            "buffers[0].uri",
+        ),
         // an index beyond the three vertices
         (
             triangle(|d| {
@@ -181,28 +195,56 @@ fn malformed_files_are_one_line_errors_with_the_json_path() {
                     bin.extend_from_slice(&i.to_le_bytes());
                 }
                 assert!(uri.starts_with("data:"));
-                d["buffers"][0]["uri"] = json!(format!("data:application/octet-stream;base64,{}", b64(&bin)));
+                d["buffers"][0]["uri"] = json!(format!(
+                    "data:application/octet-stream;base64,{}",
+                    b64(&bin)
+                ));
             }),
             "index 9",
         ),
         // a 2 GB buffer claimed over 42 bytes of data
-        (triangle(|d| d["buffers"][0]["byteLength"] = json!(2_147_483_648u64)), "byteLength"),
+        (
+            triangle(|d| d["buffers"][0]["byteLength"] = json!(2_147_483_648u64)),
+            "byteLength",
+        ),
         // an accessor reaching past its view
-        (triangle(|d| d["accessors"][0]["count"] = json!(1_000_000)), "accessors[0]"),
+        (
+            triangle(|d| d["accessors"][0]["count"] = json!(1_000_000)),
+            "accessors[0]",
+        ),
         // a view reaching past its buffer
-        (triangle(|d| d["bufferViews"][1]["byteLength"] = json!(4000)), "bufferViews[1]"),
+        (
+            triangle(|d| d["bufferViews"][1]["byteLength"] = json!(4000)),
+            "bufferViews[1]",
+        ),
         // a transform that overflows f32
-        (triangle(|d| d["nodes"][0]["scale"] = json!([1e39, 1.0, 1.0])), "nodes"),
-        (triangle(|d| d["nodes"][0]["matrix"] = json!([1e38, 0, 0, 0, 0, 1e38, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])), "nodes"),
+        (
+            triangle(|d| d["nodes"][0]["scale"] = json!([1e39, 1.0, 1.0])),
+            "nodes",
+        ),
+        // a finite transform that takes the vertices beyond the coordinate bound
+        (
+            triangle(|d| {
+                d["nodes"][0]["matrix"] =
+                    json!([1e38, 0, 0, 0, 0, 1e38, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+            }),
+            "beyond",
+        ),
         // a node that is its own child
         (triangle(|d| d["nodes"][0]["children"] = json!([0])), "node"),
         // a reference to a missing accessor
-        (triangle(|d| d["meshes"][0]["primitives"][0]["indices"] = json!(7)), "indices"),
+        (
+            triangle(|d| d["meshes"][0]["primitives"][0]["indices"] = json!(7)),
+            "indices",
+        ),
         ("{ not json".to_string(), "not a valid glTF"),
     ];
     for (text, want) in cases {
         let e = load_text(text.as_bytes(), "bad.gltf").expect_err(want);
-        assert!(e.contains(want) && !e.contains('\n') && e.contains("bad.gltf"), "want `{want}` in: {e}");
+        assert!(
+            e.contains(want) && !e.contains('\n') && e.contains("bad.gltf"),
+            "want `{want}` in: {e}"
+        );
     }
     // GLB: a header whose length is below its own size, a truncated file, a chunk longer than
     // the file
@@ -217,4 +259,58 @@ fn malformed_files_are_one_line_errors_with_the_json_path() {
         let e = load_text(&bytes, "bad.glb").expect_err(what);
         assert!(!e.contains('\n') && e.contains("bad.glb"), "{what}: {e}");
     }
+}
+
+/// A glTF scene's camera (glTF's −Z at a node 5 units along +Z: the scene's +z from z = −5),
+/// its `KHR_lights_punctual` lights (intensities relative; a spectrum from `extras`, D65 for a
+/// white light, a directional one far against its direction) and a spectral material from
+/// `extras`; a coloured light without a spectrum is refused with its path.
+#[test]
+fn cameras_lights_and_extras_are_read() {
+    use serde_json::json;
+    let doc = triangle(|d| {
+        d["nodes"] = json!([
+            {"mesh": 0},
+            {"camera": 0, "translation": [0.0, 0.0, 5.0]},
+            {"translation": [0.0, 2.0, 1.0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            {"extensions": {"KHR_lights_punctual": {"light": 1}}}
+        ]);
+        d["scenes"] = json!([{"nodes": [0, 1, 2, 3]}]);
+        d["cameras"] = json!([{"type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1}}]);
+        d["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        d["extensions"] = json!({"KHR_lights_punctual": {"lights": [
+            {"type": "point", "intensity": 5.0, "extras": {"specpoly": {"spectrum": "A"}}},
+            {"type": "directional", "intensity": 10.0}
+        ]}});
+        d["materials"] = json!([{"name": "paint", "extras": {"specpoly": {"diffuse": "colorchecker#red", "phong": 60}}}]);
+        d["meshes"][0]["primitives"][0]["material"] = json!(0);
+    });
+    let s = load_text(doc.as_bytes(), "lit.gltf").unwrap();
+    assert_eq!((s.render.width, s.render.height), (512, 256));
+    let r = s.camera.ray(0.5, 0.5, 2.0);
+    assert!(
+        (r.origin.z + 5.0).abs() < 1e-6 && (r.dir.z - 1.0).abs() < 1e-6,
+        "{r:?}"
+    );
+    assert_eq!(s.lights.len(), 2);
+    assert_eq!(s.lights[0].spd.name, "A");
+    assert!((s.lights[0].intensity - 0.5).abs() < 1e-6);
+    assert!(
+        (s.lights[0].position.y - 2.0).abs() < 1e-6 && (s.lights[0].position.z + 1.0).abs() < 1e-6
+    );
+    assert_eq!(s.lights[1].spd.name, "D65");
+    assert!(
+        s.lights[1].position.z < -100.0,
+        "{:?}",
+        s.lights[1].position
+    );
+    let paint = s.materials.iter().find(|m| m.name == "gltf#0").unwrap();
+    assert!(paint.diffuse.as_ref().unwrap().name.contains("red") && paint.phong == 60.0);
+    let coloured = triangle(|d| {
+        d["nodes"] = json!([{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}]);
+        d["scenes"] = json!([{"nodes": [0, 1]}]);
+        d["extensions"] = json!({"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1.0, 0.5, 0.2]}]}});
+    });
+    let e = load_text(coloured.as_bytes(), "c.gltf").unwrap_err();
+    assert!(e.contains("lights[0].color") && !e.contains('\n'), "{e}");
 }

@@ -57,11 +57,15 @@ fn round_trip_over_the_srgb_cube_is_within_a_hundredth_of_de00() {
             }
         }
     }
-    eprintln!("upsampling round trip over {n} colours: mean ΔE00 {:.2e}, max {worst:.2e}", sum / n as f64);
+    eprintln!(
+        "upsampling round trip over {n} colours: mean ΔE00 {:.2e}, max {worst:.2e}",
+        sum / n as f64
+    );
 }
 
 /// The reflectances agree with colour-science 0.4.7's `find_coefficients_Jakob2019` (the same
-/// model, observer, illuminant and grid; an independent optimiser) within 0.005 at every 10 nm.
+/// model, observer, illuminant and grid; an independent optimiser) within 0.002 at every 10 nm
+/// to 730 nm (the largest difference is 0.0005), 0.01 beyond.
 #[test]
 fn spectra_agree_with_colour_science() {
     let text = include_str!("data/jakob2019_references.csv");
@@ -72,7 +76,14 @@ fn spectra_agree_with_colour_science() {
         let ours = upsample::rgb_to_reflectance(rgb);
         for (k, want) in v[4..].iter().enumerate() {
             let got = ours[10 * k] as f64;
-            assert!((got - want).abs() < 5e-3, "{rgb:?} at {} nm: {got} vs {want}", 380 + 10 * k);
+            // beyond 730 nm the observer sees under 0.1 % of its peak: the optimum is loose
+            // there, and the two sides interpolate the 5 nm D65 table to 1 nm differently
+            let tol = if 380 + 10 * k <= 730 { 2e-3 } else { 1e-2 };
+            assert!(
+                (got - want).abs() < tol,
+                "{rgb:?} at {} nm: {got} vs {want}",
+                380 + 10 * k
+            );
         }
         rows += 1;
     }
