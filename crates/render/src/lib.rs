@@ -11,12 +11,13 @@
 //! 1. **Leaves**: [`geometry`] (vectors, rays, shapes, the camera), [`upsample`] (sRGB to a
 //!    reflectance), [`builtin`] (the built-in scenes' text), [`cpu_time`], [`error`].
 //! 2. **Meshes and emitters**: [`mesh`] (triangles, their BVH, OBJ files), [`mesh_ply`] (PLY
-//!    files, on [`mesh`]), [`lights`] (area lights, the environment, their sampling).
+//!    files, on [`mesh`]), [`mesh_gltf`] (glTF files, on [`mesh`]), [`lights`] (area lights,
+//!    the environment, their sampling).
 //! 3. **The scene file**: [`sections`] (the TOML sections as written, with the
 //!    [`sections::Integrator`]) → [`scene_value`] (spectra and points resolved) →
 //!    [`scene`] (the resolved [`scene::Scene`]) → [`budget`] (the work a scene may ask for) and
 //!    [`scene_geometry`] (quads, mesh files, emitters) → [`scene_file`] (the whole file,
-//!    parsed and resolved).
+//!    parsed and resolved) → [`scene_gltf`] (a glTF file as a scene file).
 //! 4. **The compiled scene**: `material` (a scene's materials in representation `T`) →
 //!    `filter` (what shadow rays pass through) → [`compiled`] ([`compiled::Compiled`]: every
 //!    spectrum converted once, and the queries the integrators share: nearest hit, shadow
