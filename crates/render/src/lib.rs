@@ -11,12 +11,13 @@
 //! 1. **Leaves**: [`geometry`] (vectors, rays, shapes, the camera), [`upsample`] (sRGB to a
 //!    reflectance), [`builtin`] (the built-in scenes' text), [`cpu_time`], [`error`].
 //! 2. **Meshes and emitters**: [`mesh`] (triangles, their BVH, OBJ files), [`mesh_ply`] (PLY
-//!    files, on [`mesh`]), [`lights`] (area lights, the environment, their sampling).
+//!    files, on [`mesh`]), [`mesh_gltf`] (glTF files, on [`mesh`]), [`lights`] (area lights,
+//!    the environment, their sampling).
 //! 3. **The scene file**: [`sections`] (the TOML sections as written, with the
 //!    [`sections::Integrator`]) → [`scene_value`] (spectra and points resolved) →
 //!    [`scene`] (the resolved [`scene::Scene`]) → [`budget`] (the work a scene may ask for) and
 //!    [`scene_geometry`] (quads, mesh files, emitters) → [`scene_file`] (the whole file,
-//!    parsed and resolved).
+//!    parsed and resolved) → [`scene_gltf`] (a glTF file as a scene file).
 //! 4. **The compiled scene**: `material` (a scene's materials in representation `T`) →
 //!    `filter` (what shadow rays pass through) → [`compiled`] ([`compiled::Compiled`]: every
 //!    spectrum converted once, and the queries the integrators share: nearest hit, shadow
@@ -46,12 +47,14 @@ pub mod upsample;
 // meshes and emitters
 pub mod lights;
 pub mod mesh;
+pub mod mesh_gltf;
 pub mod mesh_ply;
 // the scene file and the resolved scene
 pub mod budget;
 pub mod scene;
 pub mod scene_file;
 pub mod scene_geometry;
+pub mod scene_gltf;
 pub mod scene_value;
 pub mod sections;
 // the compiled scene
@@ -95,10 +98,13 @@ pub struct Image {
     pub rays: u64,
 }
 
-/// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`) or a TOML file.
-/// Returns the scene and the name used in messages.
+/// Loads a scene: a built-in name (`example1`, `example2`, `interreflection`), a TOML file or
+/// a glTF file (`.gltf`, `.glb`: [`scene_gltf`]).
 pub fn load(spec: &str) -> Result<Scene> {
     let path = std::path::Path::new(spec);
+    if scene_gltf::is_gltf(spec) {
+        return scene_gltf::load(path, spec);
+    }
     let looks_like_file = spec.ends_with(".toml") || spec.contains('/');
     if path.exists() && (looks_like_file || builtin::find(spec).is_none()) {
         let text = specpoly_formats::read::text(path)?;

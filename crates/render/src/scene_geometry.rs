@@ -94,16 +94,17 @@ pub fn triangles(
     Ok(soup.build())
 }
 
-/// Reads a mesh file into `soup`: PLY for a `.ply` name ([`crate::mesh_ply`]), else OBJ
-/// ([`mesh::load_obj`]); returns how many triangles it added.
+/// Reads a mesh file into `soup`: PLY for a `.ply` name ([`crate::mesh_ply`]), glTF for
+/// `.gltf` and `.glb` ([`crate::mesh_gltf`]), else OBJ ([`mesh::load_obj`]); returns how many
+/// triangles it added.
 fn load_mesh(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    if path
+    let ext = path
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
-    {
-        crate::mesh_ply::load_ply(path, place, soup)
-    } else {
-        mesh::load_obj(path, place, soup)
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("ply") => crate::mesh_ply::load_ply(path, place, soup),
+        Some("gltf" | "glb") => crate::mesh_gltf::load_gltf(path, place, soup),
+        _ => mesh::load_obj(path, place, soup),
     }
 }
 
