@@ -7,11 +7,11 @@
 //! squared, `(0.2·ΔL*)² + (ΔC*/S_C)² + (ΔH*/S_H)²` with `S_C = 1 + 0.048·C̄`,
 //! `S_H = 1 + 0.014·C̄`, `C̄ = √(C*₁C*₂)` (lightness weighted down by 5), in CIELAB relative to the
 //! reference's brightest patch (taken as the white, and weighted `n/4` times, a quarter of the
-//! whole). ArgyllCMS minimises it with Powell's method from the identity; here
-//! Levenberg–Marquardt on the residuals `(0.2ΔL*, ΔC*/S_C, ΔH*/S_H)` with the signed hue
-//! difference `ΔH* = 2√(C*₁C*₂)·sin(Δh/2)` (whose square is ArgyllCMS's `ΔE² − ΔL² − ΔC²`),
-//! started from the least-squares matrix, to a relative change of the sum below 1e-14 —
-//! the same minimum.
+//! whole). ArgyllCMS minimises it with Powell's method from the identity; here BFGS with
+//! central-difference gradients from the least-squares matrix, to a gradient below 1e-11 (the
+//! hue term is written `ΔH* = 2√(C*₁C*₂)·sin(Δh/2)`, whose square is ArgyllCMS's
+//! `ΔE² − ΔL² − ΔC²`) — the same minimum. (Gauss–Newton crawls here: `ΔC*` of the greys is a
+//! cone at the neutral axis.)
 //!
 //! **The simulated colorimeter** has three filters shaped like the CIE 1931 functions as
 //! Wyman, Sloan & Shirley fit them (JCGT 2(2), 2013: piecewise Gaussians, negative lobe of
@@ -173,47 +173,162 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     Some(x)
 }
 
+/// The central-difference gradient of `f` at `x`.
+fn gradient(f: &dyn Fn(&[f64]) -> f64, x: &[f64]) -> Vec<f64> {
+    (0..x.len())
+        .map(|k| {
+            let h = 1e-6 * x[k].abs().max(1e-2);
+            let mut a = x.to_vec();
+            let mut b = x.to_vec();
+            a[k] += h;
+            b[k] -= h;
+            (f(&a) - f(&b)) / (2.0 * h)
+        })
+        .collect()
+}
+
+/// The minimum of `f` from `x` by BFGS with a backtracking (Armijo) line search, to a gradient
+/// below 1e-11 or no further decrease (at most 5000 steps).
+fn bfgs(f: &dyn Fn(&[f64]) -> f64, mut x: Vec<f64>) -> Vec<f64> {
+    let n = x.len();
+    let mut h: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect();
+    let mut fx = f(&x);
+    let mut g = gradient(f, &x);
+    for _ in 0..5000 {
+        if g.iter().map(|v| v.abs()).fold(0.0, f64::max) < 1e-11 {
+            break;
+        }
+        let d: Vec<f64> = (0..n)
+            .map(|i| -(0..n).map(|j| h[i][j] * g[j]).sum::<f64>())
+            .collect();
+        let mut slope: f64 = d.iter().zip(&g).map(|(a, b)| a * b).sum();
+        let d = if slope < 0.0 {
+            d
+        } else {
+            // not a descent direction: restart along the gradient
+            for (i, row) in h.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v = if i == j { 1.0 } else { 0.0 };
+                }
+            }
+            slope = -g.iter().map(|v| v * v).sum::<f64>();
+            g.iter().map(|v| -v).collect()
+        };
+        let mut alpha = 1.0;
+        let mut next = None;
+        for _ in 0..60 {
+            let xn: Vec<f64> = x.iter().zip(&d).map(|(a, b)| a + alpha * b).collect();
+            let fn_ = f(&xn);
+            if fn_.is_finite() && fn_ <= fx + 1e-4 * alpha * slope {
+                next = Some((xn, fn_));
+                break;
+            }
+            alpha *= 0.5;
+        }
+        let Some((xn, fn_)) = next else { break };
+        let gn = gradient(f, &xn);
+        let s: Vec<f64> = xn.iter().zip(&x).map(|(a, b)| a - b).collect();
+        let y: Vec<f64> = gn.iter().zip(&g).map(|(a, b)| a - b).collect();
+        let sy: f64 = s.iter().zip(&y).map(|(a, b)| a * b).sum();
+        if sy > 1e-300 {
+            // H ← (I − ρsyᵀ) H (I − ρysᵀ) + ρssᵀ
+            let rho = 1.0 / sy;
+            let hy: Vec<f64> = (0..n)
+                .map(|i| (0..n).map(|j| h[i][j] * y[j]).sum())
+                .collect();
+            let yhy: f64 = y.iter().zip(&hy).map(|(a, b)| a * b).sum();
+            for i in 0..n {
+                for j in 0..n {
+                    h[i][j] += rho * ((1.0 + rho * yhy) * s[i] * s[j] - hy[i] * s[j] - s[i] * hy[j]);
+                }
+            }
+        }
+        let done = fx - fn_ <= 1e-16 * fx.abs();
+        x = xn;
+        fx = fn_;
+        g = gn;
+        if done {
+            break;
+        }
+    }
+    x
+}
+
+/// Paired readings checked, with what the objective needs.
+struct Problem<'a> {
+    cols: &'a [[f64; 3]],
+    targets: Vec<[f64; 3]>,
+    white: [f64; 3],
+    wix: usize,
+}
+
+impl<'a> Problem<'a> {
+    fn new(refs: &[[f64; 3]], cols: &'a [[f64; 3]]) -> Result<Self> {
+        let bad = |why: String| Error::Correction { why };
+        if refs.len() != cols.len() {
+            return Err(bad(format!(
+                "{} reference readings for {} colorimeter readings (the same patches, in the same order)",
+                refs.len(),
+                cols.len()
+            )));
+        }
+        if refs.len() < 3 {
+            return Err(bad(format!(
+                "{} patches (3 at least: white and the primaries)",
+                refs.len()
+            )));
+        }
+        if let Some(v) = refs.iter().chain(cols).flatten().find(|v| !v.is_finite()) {
+            return Err(bad(format!("a reading has the non-finite value {v}")));
+        }
+        let wix = (0..refs.len())
+            .max_by(|&a, &b| refs[a][1].total_cmp(&refs[b][1]))
+            .unwrap_or(0);
+        let white = refs[wix];
+        if !white.iter().all(|v| *v > 0.0) {
+            return Err(bad("the brightest reference patch has no positive XYZ".into()));
+        }
+        Ok(Self {
+            cols,
+            targets: refs.iter().map(|r| lab(*r, white)).collect(),
+            white,
+            wix,
+        })
+    }
+
+    /// ArgyllCMS's objective at the matrix `m` (by rows, 9 entries).
+    fn objective(&self, m: &[f64]) -> f64 {
+        let n = self.cols.len();
+        let mm = [[m[0], m[1], m[2]], [m[3], m[4], m[5]], [m[6], m[7], m[8]]];
+        (0..n)
+            .map(|i| {
+                let q = lab(mat_vec(&mm, self.cols[i]), self.white);
+                let w = if i == self.wix { n as f64 / 4.0 } else { 1.0 };
+                w * residuals(&self.targets[i], &q)
+                    .iter()
+                    .map(|v| v * v)
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            / n as f64
+    }
+}
+
+/// ArgyllCMS's fit objective (see the module docs) of `matrix` on paired readings: what
+/// [`fit_ccmx`] minimises, to compare a matrix made elsewhere (`ccxxmake`'s) with ours.
+pub fn ccmx_objective(refs: &[[f64; 3]], cols: &[[f64; 3]], matrix: &[[f64; 3]; 3]) -> Result<f64> {
+    let p = Problem::new(refs, cols)?;
+    Ok(p.objective(&matrix.concat()))
+}
+
 /// The correction matrix of paired readings (see the module docs): `refs[i]` the reference
 /// (spectrometer) XYZ of patch `i`, `cols[i]` the colorimeter's, both in the same units.
 pub fn fit_ccmx(refs: &[[f64; 3]], cols: &[[f64; 3]]) -> Result<CcmxFit> {
-    let bad = |why: String| Error::Correction { why };
-    if refs.len() != cols.len() {
-        return Err(bad(format!(
-            "{} reference readings for {} colorimeter readings (the same patches, in the same order)",
-            refs.len(),
-            cols.len()
-        )));
-    }
-    if refs.len() < 3 {
-        return Err(bad(format!(
-            "{} patches (3 at least: white and the primaries)",
-            refs.len()
-        )));
-    }
-    if let Some(v) = refs.iter().chain(cols).flatten().find(|v| !v.is_finite()) {
-        return Err(bad(format!("a reading has the non-finite value {v}")));
-    }
+    let problem = Problem::new(refs, cols)?;
     let n = refs.len();
-    let wix = (0..n)
-        .max_by(|&a, &b| refs[a][1].total_cmp(&refs[b][1]))
-        .unwrap_or(0);
-    let white = refs[wix];
-    if !white.iter().all(|v| *v > 0.0) {
-        return Err(bad("the brightest reference patch has no positive XYZ".into()));
-    }
-    let targets: Vec<[f64; 3]> = refs.iter().map(|r| lab(*r, white)).collect();
-    let weight = |i: usize| if i == wix { (n as f64 / 4.0).sqrt() } else { 1.0 };
-    let resid = |m: &[f64]| -> Vec<f64> {
-        let mut r = Vec::with_capacity(3 * n);
-        for i in 0..n {
-            let mm = [[m[0], m[1], m[2]], [m[3], m[4], m[5]], [m[6], m[7], m[8]]];
-            let q = lab(mat_vec(&mm, cols[i]), white);
-            let w = weight(i);
-            r.extend(residuals(&targets[i], &q).map(|v| v * w));
-        }
-        r
-    };
-    let cost = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
+    let objective = |m: &[f64]| problem.objective(m);
     // start: the least-squares matrix in XYZ (each row: Σ cols·colsᵀ m_r = Σ cols·ref_r)
     let mut ata = vec![vec![0.0; 3]; 3];
     let mut atb = [[0.0; 3]; 3];
@@ -229,71 +344,24 @@ pub fn fit_ccmx(refs: &[[f64; 3]], cols: &[[f64; 3]]) -> Result<CcmxFit> {
     }
     let mut p = vec![1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
     let mut ls = Vec::new();
-    for row in 0..3 {
-        match solve(ata.clone(), atb[row].to_vec()) {
+    for row in atb {
+        match solve(ata.clone(), row.to_vec()) {
             Some(x) => ls.extend(x),
             None => break,
         }
     }
-    if ls.len() == 9 && ls.iter().all(|v| v.is_finite()) {
+    if ls.len() == 9 && ls.iter().all(|v| v.is_finite()) && objective(&ls) < objective(&p) {
         p = ls;
     }
-    let mut r = resid(&p);
-    let mut c0 = cost(&r);
-    let mut mu = 1e-3;
-    for _ in 0..500 {
-        // forward-difference Jacobian
-        let mut jac = vec![vec![0.0; 9]; r.len()];
-        for k in 0..9 {
-            let h = 1e-7 * p[k].abs().max(1e-3);
-            let mut q = p.clone();
-            q[k] += h;
-            let rq = resid(&q);
-            for (row, (a, b)) in jac.iter_mut().zip(rq.iter().zip(&r)) {
-                row[k] = (a - b) / h;
-            }
-        }
-        let mut jtj = vec![vec![0.0; 9]; 9];
-        let mut jtr = vec![0.0; 9];
-        for (row, ri) in jac.iter().zip(&r) {
-            for a in 0..9 {
-                jtr[a] -= row[a] * ri;
-                for b in 0..9 {
-                    jtj[a][b] += row[a] * row[b];
-                }
-            }
-        }
-        let mut improved = false;
-        for _ in 0..30 {
-            let mut a = jtj.clone();
-            for d in 0..9 {
-                a[d][d] += mu * jtj[d][d].max(1e-12);
-            }
-            let Some(step) = solve(a, jtr.clone()) else {
-                mu *= 10.0;
-                continue;
-            };
-            let q: Vec<f64> = p.iter().zip(&step).map(|(a, b)| a + b).collect();
-            let rq = resid(&q);
-            let c1 = cost(&rq);
-            if c1.is_finite() && c1 <= c0 {
-                let rel = (c0 - c1) / c0.max(1e-300);
-                p = q;
-                r = rq;
-                c0 = c1;
-                mu = (mu / 10.0).max(1e-12);
-                improved = rel > 1e-14;
-                break;
-            }
-            mu *= 10.0;
-        }
-        if !improved {
-            break;
-        }
-    }
+    let p = bfgs(&objective, p);
     let matrix = [[p[0], p[1], p[2]], [p[3], p[4], p[5]], [p[6], p[7], p[8]]];
     let des: Vec<f64> = (0..n)
-        .map(|i| cie94(targets[i], lab(mat_vec(&matrix, cols[i]), white)))
+        .map(|i| {
+            cie94(
+                problem.targets[i],
+                lab(mat_vec(&matrix, cols[i]), problem.white),
+            )
+        })
         .collect();
     Ok(CcmxFit {
         matrix,

@@ -2,10 +2,12 @@
 //! installed by test.sh): a simulated WLED display read by the simulated spectrometer and
 //! colorimeter, written as the two `.ti3` files `dispread` would write; `ccxxmake -f` makes its
 //! `.ccmx` and `.ccss` from them, and ours must agree: matrix entries within 1e-4, spectral
-//! samples within print precision. `ccxxmake` reading our spectral `.ti3` is also the check
+//! samples within print precision. Where `ccxxmake`'s Powell search stops short of the minimum
+//! of its own objective (the QD-OLED pair with the colorimeter's repeatability error: its
+//! matrix is 5e-3 from the minimum), ours must reach a lower value of that objective instead. `ccxxmake` reading our spectral `.ti3` is also the check
 //! that ArgyllCMS reads it.
 
-use specpoly_calibrate::corrections::{fit_ccmx, Colorimeter};
+use specpoly_calibrate::corrections::{ccmx_objective, fit_ccmx, Colorimeter};
 use specpoly_calibrate::sim::{spectrum_xyz, SimModel};
 use specpoly_calibrate::Measurement;
 use specpoly_core::Observer;
@@ -35,7 +37,7 @@ fn patches() -> Vec<[f64; 3]> {
 
 /// The two `.ti3` files (spectrometer with spectra, colorimeter) of `display`, written into
 /// `dir` as `ref.ti3` and `col.ti3`.
-fn write_pair(display: &str, dir: &Path) {
+fn write_pair(display: &str, noise: f64, dir: &Path) {
     let m = SimModel::parse(&format!("{display},black=0.2")).unwrap();
     let c = Colorimeter::simulated();
     let ps = patches();
@@ -49,12 +51,18 @@ fn write_pair(display: &str, dir: &Path) {
             xyz: spectrum_xyz(Observer::Cie1931, s),
         })
         .collect();
+    // the colorimeter's readings with a deterministic ±`noise` repeatability error: with one,
+    // no matrix fits exactly and the fit's objective decides the answer
     let colorimeter: Vec<Measurement> = ps
         .iter()
         .zip(&spectra)
-        .map(|(p, s)| Measurement {
-            device: *p,
-            xyz: c.read(s),
+        .enumerate()
+        .map(|(i, (p, s))| {
+            let xyz = c.read(s);
+            Measurement {
+                device: *p,
+                xyz: [0, 1, 2].map(|k| xyz[k] * (1.0 + noise * ((7 * i + 3 * k) as f64).sin())),
+            }
         })
         .collect();
     let set = SpectralSet {
@@ -113,44 +121,64 @@ fn readings(path: &Path) -> Vec<[f64; 3]> {
     t.best_units().0.iter().map(|m| m.xyz).collect()
 }
 
+/// `ccxxmake`'s matrix and ours on the pair of `display` with repeatability error `noise`;
+/// the objective's values at both.
+fn both(display: &str, noise: f64) -> ([[f64; 3]; 3], [[f64; 3]; 3], f64, f64, f64) {
+    let dir = tempfile::tempdir().unwrap();
+    write_pair(display, noise, dir.path());
+    ccxxmake(dir.path(), &["-f", "ref.ti3,col.ti3", "-t", "e", "argyll.ccmx"]);
+    let theirs = ccmx::read(
+        &std::fs::read_to_string(dir.path().join("argyll.ccmx")).unwrap(),
+        "argyll.ccmx",
+    )
+    .unwrap()
+    .matrix;
+    let (refs, cols) = (
+        readings(&dir.path().join("ref.ti3")),
+        readings(&dir.path().join("col.ti3")),
+    );
+    let ours = fit_ccmx(&refs, &cols).unwrap();
+    let f_ours = ccmx_objective(&refs, &cols, &ours.matrix).unwrap();
+    let f_theirs = ccmx_objective(&refs, &cols, &theirs).unwrap();
+    (ours.matrix, theirs, f_ours, f_theirs, ours.mean_de94)
+}
+
+fn largest_difference(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> f64 {
+    (0..9)
+        .map(|k| (a[k / 3][k % 3] - b[k / 3][k % 3]).abs())
+        .fold(0.0, f64::max)
+}
+
 #[test]
 fn ccmx_matches_ccxxmake_within_1e_4() {
-    for display in ["wled", "qdoled"] {
-        let dir = tempfile::tempdir().unwrap();
-        write_pair(display, dir.path());
-        ccxxmake(dir.path(), &["-f", "ref.ti3,col.ti3", "-t", "e", "argyll.ccmx"]);
-        let theirs = ccmx::read(
-            &std::fs::read_to_string(dir.path().join("argyll.ccmx")).unwrap(),
-            "argyll.ccmx",
-        )
-        .unwrap();
-        let ours = fit_ccmx(
-            &readings(&dir.path().join("ref.ti3")),
-            &readings(&dir.path().join("col.ti3")),
-        )
-        .unwrap();
-        for r in 0..3 {
-            for c in 0..3 {
-                assert!(
-                    (ours.matrix[r][c] - theirs.matrix[r][c]).abs() <= 1e-4,
-                    "{display}: ours {:?}\nArgyllCMS {:?}",
-                    ours.matrix,
-                    theirs.matrix
-                );
-            }
-        }
-        let worst = (0..9).map(|k| (ours.matrix[k / 3][k % 3] - theirs.matrix[k / 3][k % 3]).abs()).fold(0.0, f64::max);
-        eprintln!("{display}: largest difference from ccxxmake {worst:.2e}; matrix {:?}; mean ΔE94 {:.3}", ours.matrix, ours.mean_de94);
+    for (display, noise) in [("wled", 0.005), ("wled", 0.0), ("qdoled", 0.0)] {
+        let (ours, theirs, _, _, de) = both(display, noise);
+        let d = largest_difference(&ours, &theirs);
+        assert!(
+            d <= 1e-4,
+            "{display} noise {noise}: {d:.1e}\nours {ours:?}\nArgyllCMS {theirs:?}"
+        );
         // the correction is needed (the colorimeter is off on this display) and works
-        assert!((ours.matrix[0][0] - 1.0).abs() > 1e-3, "{:?}", ours.matrix);
-        assert!(ours.mean_de94 < 1.0, "{ours:?}");
+        assert!((ours[0][0] - 1.0).abs() > 1e-3, "{ours:?}");
+        assert!(de < 1.0, "{de}");
     }
+}
+
+#[test]
+fn ccmx_reaches_the_minimum_where_ccxxmake_stops_short() {
+    let (ours, theirs, f_ours, f_theirs, _) = both("qdoled", 0.005);
+    assert!(
+        f_ours <= f_theirs,
+        "ours {f_ours} at {ours:?}, ccxxmake's {f_theirs} at {theirs:?}"
+    );
+    // the two are close all the same
+    assert!(largest_difference(&ours, &theirs) < 0.01);
 }
 
 #[test]
 fn ccss_matches_ccxxmake_to_print_precision() {
     let dir = tempfile::tempdir().unwrap();
-    write_pair("qdoled", dir.path());
+    write_pair("qdoled", 0.005, dir.path());
     ccxxmake(dir.path(), &["-S", "-f", "ref.ti3", "-t", "e", "argyll.ccss"]);
     let theirs = ccss::read(
         &std::fs::read_to_string(dir.path().join("argyll.ccss")).unwrap(),
