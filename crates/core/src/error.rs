@@ -19,6 +19,10 @@ pub enum Error {
     Singular,
     /// A table (transfer curve) holds too many or too few points for its capacity.
     Capacity,
+    /// A negative value where only non-negative ones make sense (a sensitivity), at this index.
+    Negative(usize),
+    /// One of three channels (sensitivities) is zero everywhere: channel 0, 1 or 2.
+    ZeroChannel(usize),
 }
 
 impl fmt::Display for Error {
@@ -33,6 +37,8 @@ impl fmt::Display for Error {
             Error::OutOfRange => write!(f, "data lie outside 380-780 nm"),
             Error::Singular => write!(f, "singular matrix"),
             Error::Capacity => write!(f, "table size outside its capacity"),
+            Error::Negative(i) => write!(f, "negative value at sample {i}"),
+            Error::ZeroChannel(k) => write!(f, "channel {} is zero everywhere", k + 1),
         }
     }
 }
