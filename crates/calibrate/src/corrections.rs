@@ -68,9 +68,13 @@ impl Colorimeter {
         let xyz = [0, 1, 2].map(|i| spectrum_xyz(Observer::Cie1931, &reference.spectra[i]));
         // factory = XYZ_cols · raw_cols⁻¹
         let rc = specpoly_core::Mat3([0, 1, 2].map(|r| [raw[0][r], raw[1][r], raw[2][r]]));
-        let inv = rc.inverse().expect("the broadband primaries are independent").0;
+        let inv = rc
+            .inverse()
+            .expect("the broadband primaries are independent")
+            .0;
         let xc = [0, 1, 2].map(|r| [xyz[0][r], xyz[1][r], xyz[2][r]]);
-        c.factory = [0, 1, 2].map(|r| [0, 1, 2].map(|k| (0..3).map(|j| xc[r][j] * inv[j][k]).sum()));
+        c.factory =
+            [0, 1, 2].map(|r| [0, 1, 2].map(|k| (0..3).map(|j| xc[r][j] * inv[j][k]).sum()));
         c
     }
 
@@ -241,7 +245,8 @@ fn bfgs(f: &dyn Fn(&[f64]) -> f64, mut x: Vec<f64>) -> Vec<f64> {
             let yhy: f64 = y.iter().zip(&hy).map(|(a, b)| a * b).sum();
             for i in 0..n {
                 for j in 0..n {
-                    h[i][j] += rho * ((1.0 + rho * yhy) * s[i] * s[j] - hy[i] * s[j] - s[i] * hy[j]);
+                    h[i][j] +=
+                        rho * ((1.0 + rho * yhy) * s[i] * s[j] - hy[i] * s[j] - s[i] * hy[j]);
                 }
             }
         }
@@ -288,7 +293,9 @@ impl<'a> Problem<'a> {
             .unwrap_or(0);
         let white = refs[wix];
         if !white.iter().all(|v| *v > 0.0) {
-            return Err(bad("the brightest reference patch has no positive XYZ".into()));
+            return Err(bad(
+                "the brightest reference patch has no positive XYZ".into()
+            ));
         }
         Ok(Self {
             cols,

@@ -77,7 +77,11 @@ pub struct Matched {
 }
 
 /// Makes B's white match A's under `observer` (see the module docs).
-pub fn match_white(a: &SpectralDisplay, b: &SpectralDisplay, observer: Observer) -> Result<Matched> {
+pub fn match_white(
+    a: &SpectralDisplay,
+    b: &SpectralDisplay,
+    observer: Observer,
+) -> Result<Matched> {
     let w = a.xyz([1.0; 3], observer);
     let p = b.primaries_xyz(observer);
     let k = b.black_xyz(observer);
@@ -101,9 +105,7 @@ pub fn match_white(a: &SpectralDisplay, b: &SpectralDisplay, observer: Observer)
             ),
         });
     }
-    let t = (0..3)
-        .map(|i| (1.0 + sk[i]) / sw[i])
-        .fold(1.0f64, f64::min);
+    let t = (0..3).map(|i| (1.0 + sk[i]) / sw[i]).fold(1.0f64, f64::min);
     let light = [0, 1, 2].map(|i| (t * sw[i] - sk[i]).clamp(0.0, 1.0));
     let white_codes = light.map(|l| encode(&b.transfer, l));
     let q = |x: f64| (x.clamp(0.0, 1.0) * 65535.0).round() as u16;

@@ -93,11 +93,9 @@ fn write_pair(display: &str, noise: f64, dir: &Path) {
     };
     let text = write_spectral_ti3(&reference, &set, &info("Simulated spectrometer", true)).unwrap();
     std::fs::write(dir.join("ref.ti3"), text).unwrap();
-    let text = specpoly_formats::cgats::write_ti3(
-        &colorimeter,
-        &info("Simulated colorimeter", false),
-    )
-    .unwrap();
+    let text =
+        specpoly_formats::cgats::write_ti3(&colorimeter, &info("Simulated colorimeter", false))
+            .unwrap();
     std::fs::write(dir.join("col.ti3"), text).unwrap();
 }
 
@@ -126,7 +124,10 @@ fn readings(path: &Path) -> Vec<[f64; 3]> {
 fn both(display: &str, noise: f64) -> ([[f64; 3]; 3], [[f64; 3]; 3], f64, f64, f64) {
     let dir = tempfile::tempdir().unwrap();
     write_pair(display, noise, dir.path());
-    ccxxmake(dir.path(), &["-f", "ref.ti3,col.ti3", "-t", "e", "argyll.ccmx"]);
+    ccxxmake(
+        dir.path(),
+        &["-f", "ref.ti3,col.ti3", "-t", "e", "argyll.ccmx"],
+    );
     let theirs = ccmx::read(
         &std::fs::read_to_string(dir.path().join("argyll.ccmx")).unwrap(),
         "argyll.ccmx",
@@ -179,7 +180,10 @@ fn ccmx_reaches_the_minimum_where_ccxxmake_stops_short() {
 fn ccss_matches_ccxxmake_to_print_precision() {
     let dir = tempfile::tempdir().unwrap();
     write_pair("qdoled", 0.005, dir.path());
-    ccxxmake(dir.path(), &["-S", "-f", "ref.ti3", "-t", "e", "argyll.ccss"]);
+    ccxxmake(
+        dir.path(),
+        &["-S", "-f", "ref.ti3", "-t", "e", "argyll.ccss"],
+    );
     let theirs = ccss::read(
         &std::fs::read_to_string(dir.path().join("argyll.ccss")).unwrap(),
         "argyll.ccss",

@@ -81,7 +81,10 @@ pub fn write(c: &Ccmx) -> Result<String> {
         let _ = writeln!(s, "CREATED \"{}\"", quoted(t));
     }
     let _ = writeln!(s, "COLOR_REP \"XYZ\"");
-    let _ = writeln!(s, "\nNUMBER_OF_FIELDS 3\nBEGIN_DATA_FORMAT\nXYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\n");
+    let _ = writeln!(
+        s,
+        "\nNUMBER_OF_FIELDS 3\nBEGIN_DATA_FORMAT\nXYZ_X XYZ_Y XYZ_Z\nEND_DATA_FORMAT\n"
+    );
     let _ = writeln!(s, "NUMBER_OF_SETS 3\nBEGIN_DATA");
     for r in &c.matrix {
         let _ = writeln!(s, "{:.6} {:.6} {:.6}", r[0], r[1], r[2]);
@@ -105,8 +108,8 @@ pub fn read(text: &str, source: &str) -> Result<Ccmx> {
         return Err(bad(source, t.lines.identifier, "COLOR_REP is not \"XYZ\""));
     }
     let kw = |k: &str| t.keyword(k).map(str::to_string);
-    let instrument = kw("INSTRUMENT")
-        .ok_or_else(|| bad(source, t.lines.identifier, "no INSTRUMENT keyword"))?;
+    let instrument =
+        kw("INSTRUMENT").ok_or_else(|| bad(source, t.lines.identifier, "no INSTRUMENT keyword"))?;
     if kw("DISPLAY").is_none() && kw("TECHNOLOGY").is_none() {
         return Err(bad(
             source,

@@ -38,8 +38,7 @@ impl Bands {
         if !(2..=MAX_BANDS).contains(&count) {
             return Err(format!("{count} bands (2–{MAX_BANDS} are read)"));
         }
-        if !(start_nm.is_finite() && end_nm.is_finite() && start_nm > 0.0 && start_nm < end_nm)
-        {
+        if !(start_nm.is_finite() && end_nm.is_finite() && start_nm > 0.0 && start_nm < end_nm) {
             return Err(format!(
                 "bands from {start_nm} to {end_nm} nm (need 0 < start < end)"
             ));
@@ -275,19 +274,48 @@ mod tests {
             let t = GOOD.replace("SPEC_", p);
             assert_eq!(read(&t).unwrap().unwrap(), s, "{p}");
         }
-        assert_eq!(read(&GOOD.replace("SPEC_", "X_").replace("SPECTRAL_BANDS \"3\"\n", "")).unwrap(), None);
+        assert_eq!(
+            read(
+                &GOOD
+                    .replace("SPEC_", "X_")
+                    .replace("SPECTRAL_BANDS \"3\"\n", "")
+            )
+            .unwrap(),
+            None
+        );
     }
 
     #[test]
     fn bad_spectral_fields_are_one_line_errors() {
         let cases = [
-            (GOOD.replace("BANDS \"3\"", "BANDS \"4\""), "f:7: SPECTRAL_BANDS is 4 but the data format has 3 spectral fields"),
-            (GOOD.replace("BANDS \"3\"", "BANDS \"x\""), "f:3: SPECTRAL_BANDS `x` is not a whole number"),
-            (GOOD.replace("START_NM \"400.000000\"", "START_NM \"nan\""), "f:4: SPECTRAL_START_NM `nan` is not a number"),
-            (GOOD.replace("SPEC_550", "SPEC_551"), "f:7: no field SPEC_550 for band 2 of 3 (400–700 nm)"),
-            (GOOD.replace("2 -0.5", "2 NaN"), "f:13: SPEC_400 `NaN` is not a number"),
-            (GOOD.replace("SPECTRAL_BANDS \"3\"\n", ""), "f:6: spectral fields (SPEC_…) without the keyword SPECTRAL_BANDS"),
-            (GOOD.replace("END_NM \"700.000000\"", "END_NM \"300\""), "f:3: bands from 400 to 300 nm (need 0 < start < end)"),
+            (
+                GOOD.replace("BANDS \"3\"", "BANDS \"4\""),
+                "f:7: SPECTRAL_BANDS is 4 but the data format has 3 spectral fields",
+            ),
+            (
+                GOOD.replace("BANDS \"3\"", "BANDS \"x\""),
+                "f:3: SPECTRAL_BANDS `x` is not a whole number",
+            ),
+            (
+                GOOD.replace("START_NM \"400.000000\"", "START_NM \"nan\""),
+                "f:4: SPECTRAL_START_NM `nan` is not a number",
+            ),
+            (
+                GOOD.replace("SPEC_550", "SPEC_551"),
+                "f:7: no field SPEC_550 for band 2 of 3 (400–700 nm)",
+            ),
+            (
+                GOOD.replace("2 -0.5", "2 NaN"),
+                "f:13: SPEC_400 `NaN` is not a number",
+            ),
+            (
+                GOOD.replace("SPECTRAL_BANDS \"3\"\n", ""),
+                "f:6: spectral fields (SPEC_…) without the keyword SPECTRAL_BANDS",
+            ),
+            (
+                GOOD.replace("END_NM \"700.000000\"", "END_NM \"300\""),
+                "f:3: bands from 400 to 300 nm (need 0 < start < end)",
+            ),
         ];
         for (text, want) in cases {
             let e = read(&text).unwrap_err().to_string();

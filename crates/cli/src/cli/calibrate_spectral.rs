@@ -249,10 +249,11 @@ pub fn ccss_cmd(a: &CcssArgs) -> Result<()> {
 pub fn ccmx_cmd(a: &CcmxArgs) -> Result<()> {
     let r = cgats::read_ti3_file(&a.reference)?;
     let c = cgats::read_ti3_file(&a.colorimeter)?;
-    let xyz = |t: &cgats::Ti3| -> Vec<[f64; 3]> { t.best_units().0.iter().map(|m| m.xyz).collect() };
+    let xyz =
+        |t: &cgats::Ti3| -> Vec<[f64; 3]> { t.best_units().0.iter().map(|m| m.xyz).collect() };
     let (refs, cols) = (xyz(&r), xyz(&c));
-    if let Some(i) =
-        (0..refs.len().min(cols.len())).find(|&i| r.measurements[i].device != c.measurements[i].device)
+    if let Some(i) = (0..refs.len().min(cols.len()))
+        .find(|&i| r.measurements[i].device != c.measurements[i].device)
     {
         return Err(CliError::Data(format!(
             "patch {}: the reference measured device {:?}, the colorimeter {:?}: the same patches, in the same order",
@@ -371,7 +372,12 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
     // every output checked before any is written
     let figure_format = match &a.figure {
         None => None,
-        Some(p) => match p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some(p) => match p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
             Some("svg") => Some(false),
             Some("png") => Some(true),
             _ => {
@@ -402,10 +408,7 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
     )?;
     let cal = lut.to_cal(
         "specpoly calibrate match",
-        &[(
-            "TARGET_OBSERVER".to_string(),
-            a.observer.name().to_string(),
-        )],
+        &[("TARGET_OBSERVER".to_string(), a.observer.name().to_string())],
     );
     let fig = match figure_format {
         None => None,
@@ -471,7 +474,11 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
             r.b_uv[1],
             r.delta_uv,
             r.delta_e00,
-            if r.observer == a.observer { "  (matched)" } else { "" }
+            if r.observer == a.observer {
+                "  (matched)"
+            } else {
+                ""
+            }
         );
     }
     Ok(())
