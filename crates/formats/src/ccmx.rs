@@ -104,7 +104,7 @@ pub fn read(text: &str, source: &str) -> Result<Ccmx> {
             format!("a `{}` file, not a CCMX", t.kind),
         ));
     }
-    if !t.keyword("COLOR_REP").is_some_and(|v| v == "XYZ") {
+    if t.keyword("COLOR_REP") != Some("XYZ") {
         return Err(bad(source, t.lines.identifier, "COLOR_REP is not \"XYZ\""));
     }
     let kw = |k: &str| t.keyword(k).map(str::to_string);
