@@ -192,6 +192,26 @@ pub enum Error {
         /// Its columns, comma-separated.
         columns: String,
     },
+    /// A spectral `.ti3` that cannot make a spectral display model.
+    #[error("{file}: {why}")]
+    SpectralTi3 {
+        /// The file.
+        file: String,
+        /// Why.
+        why: String,
+    },
+    /// Paired readings a colorimeter correction cannot be made from.
+    #[error("cannot make a colorimeter correction: {why}")]
+    Correction {
+        /// Why.
+        why: String,
+    },
+    /// Two displays that cannot be matched.
+    #[error("cannot match the displays: {why}")]
+    Match {
+        /// Why.
+        why: String,
+    },
 
     /// The patch display failed.
     #[error(transparent)]

@@ -6,6 +6,7 @@
 //! verification ([`verify`], [`criteria`]) and its report ([`report_html`]). The calibration file and its exports are in `specpoly-display`.
 #![forbid(unsafe_code)]
 
+pub mod corrections;
 pub mod criteria;
 pub mod drift;
 pub mod error;
@@ -13,6 +14,8 @@ pub mod fit;
 pub mod instrument;
 pub mod interrupt;
 pub mod lock;
+pub mod matching;
+pub mod model_spectra;
 pub mod patch_display;
 pub mod patches;
 pub mod progress;
@@ -21,6 +24,7 @@ pub mod report_html;
 pub mod run;
 pub mod session;
 pub mod sim;
+pub mod spectral_display;
 pub mod verify;
 
 pub use error::{Error, InstrumentError, PatchDisplayError, Result};

@@ -5,7 +5,7 @@
 //!
 //! | key | default | meaning |
 //! |---|---|---|
-//! | `SPD` | — | `crt` (built-in, Brainard 1997) or a spectral CSV with `red`, `green`, `blue` columns (or exactly three columns, in that order) |
+//! | `SPD` | — | `crt` (built-in, Brainard 1997), `qdoled`, `wled` or `broadband` (built-in model spectra, [`crate::model_spectra`]) or a spectral CSV with `red`, `green`, `blue` columns (or exactly three columns, in that order) |
 //! | `white` | `100` | luminance of full white (primaries only), cd/m² |
 //! | `gamma` | `2.2` | transfer curve: a number (pure power law), `srgb` (IEC 61966-2-1) or `linear` |
 //! | `black` | `0` | black level, cd/m², with the chromaticity of the display's white |
@@ -19,6 +19,13 @@
 //! against the CIE 1931 2° observer at 1 nm over 380–780 nm (core's `exact_xyz`), and the three
 //! are scaled together so full white has `Y = white`. A device triple `rgb ∈ [0, 1]³` gives
 //! `XYZ = Σᵢ Lᵢ · Pᵢ + black + flare`, with `Lᵢ` the transfer curve of `rgbᵢ` after crosstalk.
+//!
+//! The model keeps the spectra too ([`SimModel::spectrum`]): each primary's SPD at 1 nm over
+//! 380–780 nm scaled by the same factor as its XYZ, in W·sr⁻¹·m⁻²·nm⁻¹ (so that
+//! `683.002 lm/W · Σ S(λ) ȳ(λ) Δλ` is its luminance in cd/m²), the black as the white's
+//! spectrum scaled to `black`, the flare as D65's scaled to `flare`. A patch's spectrum is
+//! `Σᵢ Lᵢ Sᵢ(λ) + black(λ) + flare(λ)`: its XYZ under any observer, and what a spectrometer
+//! reads.
 
 use crate::error::{Error, Result};
 use specpoly_core::{exact_xyz, Illuminant, Observer, Tabulated, Transfer};
@@ -143,6 +150,25 @@ pub struct SimModel {
     pub primaries: [[f64; 3]; 3],
     /// Constant XYZ added to every patch: black level + flare.
     pub offset: [f64; 3],
+    /// Each primary's spectrum at full drive, 1 nm over 380–780 nm, W·sr⁻¹·m⁻²·nm⁻¹.
+    pub spectra: [Vec<f64>; 3],
+    /// The spectrum added to every patch (black level + flare), same grid and unit.
+    pub offset_spectrum: Vec<f64>,
+}
+
+/// The luminous efficacy of radiation at 555 nm used with the CIE observers, lm/W (CIE 015).
+pub const KM: f64 = 683.002;
+
+/// `KM · Σ S(λ) c̄(λ)` over 1 nm steps of 380–780 nm: the XYZ (cd/m² when `S` is in
+/// W·sr⁻¹·m⁻²·nm⁻¹) of a spectrum sampled at 380, 381, … 780 nm under `observer`.
+pub fn spectrum_xyz(observer: Observer, s: &[f64]) -> [f64; 3] {
+    let mut xyz = [0.0; 3];
+    for (v, c) in s.iter().zip(observer.table().iter()) {
+        for k in 0..3 {
+            xyz[k] += v * c[k] as f64;
+        }
+    }
+    xyz.map(|v| v * KM)
 }
 
 /// XYZ of a spectral power distribution under the CIE 1931 observer, on the scale where the
@@ -214,11 +240,37 @@ impl SimModel {
         for j in 0..3 {
             offset[j] = white[j] / white[1] * options.black + d65[j] / d65[1] * options.flare;
         }
+        // the spectra, each scaled so its 1931 luminance is the primary's
+        let mut spectra: [Vec<f64>; 3] = Default::default();
+        for (i, s) in spds.iter().enumerate() {
+            let t = Tabulated::new(wavelengths, s).map_err(|error| Error::SimChannel {
+                spectra: source.to_string(),
+                channel: i,
+                error,
+            })?;
+            let raw: Vec<f64> = (380..=780).map(|nm| t.at(nm as f64)).collect();
+            let y = spectrum_xyz(Observer::Cie1931, &raw)[1];
+            let k = if y > 0.0 { p[i][1] / y } else { 0.0 };
+            spectra[i] = raw.iter().map(|v| v * k).collect();
+        }
+        let d65_spd: Vec<f64> = {
+            let t = Illuminant::D65.tabulated();
+            (380..=780).map(|nm| t.at(nm as f64)).collect()
+        };
+        let d65_y = spectrum_xyz(Observer::Cie1931, &d65_spd)[1];
+        let offset_spectrum = (0..401)
+            .map(|j| {
+                let w: f64 = spectra.iter().map(|s| s[j]).sum();
+                w / white[1] * options.black + d65_spd[j] / d65_y * options.flare
+            })
+            .collect();
         Ok(Self {
             source: source.to_string(),
             options,
             primaries: p,
             offset,
+            spectra,
+            offset_spectrum,
         })
     }
 
@@ -234,6 +286,10 @@ impl SimModel {
             "sim:crt` or `sim:FILE.csv` (columns red, green, blue)",
         )?;
         let o = SimOptions::from_spec(spec)?;
+        if let Some(p) = crate::model_spectra::primaries(base) {
+            let wl = crate::model_spectra::wavelengths();
+            return Self::from_spds(base, &wl, [&p[0], &p[1], &p[2]], o);
+        }
         let (source, table) = spectrum_names::load_table(base)?;
         let find = |name: &str| {
             table
@@ -264,14 +320,32 @@ impl SimModel {
         )
     }
 
-    /// The true XYZ (cd/m²) for device values `rgb ∈ [0, 1]³`, without measurement noise.
-    pub fn xyz(&self, rgb: [f64; 3]) -> [f64; 3] {
+    /// Each channel's light (0–1 of its full drive) for device values `rgb`: the transfer
+    /// curve, then crosstalk.
+    pub fn channel_light(&self, rgb: [f64; 3]) -> [f64; 3] {
         let lin = rgb.map(|v| self.options.transfer.decode(v.clamp(0.0, 1.0) as f32) as f64);
         let c = self.options.crosstalk;
-        let eff = [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|i| {
             let others = (lin[(i + 1) % 3] + lin[(i + 2) % 3]) / 2.0;
             lin[i] * (1.0 - c * others)
-        });
+        })
+    }
+
+    /// The true spectrum (W·sr⁻¹·m⁻²·nm⁻¹ at 380, 381, … 780 nm) for device values `rgb`.
+    pub fn spectrum(&self, rgb: [f64; 3]) -> Vec<f64> {
+        let eff = self.channel_light(rgb);
+        let mut out = self.offset_spectrum.clone();
+        for (i, e) in eff.iter().enumerate() {
+            for (o, s) in out.iter_mut().zip(&self.spectra[i]) {
+                *o += e * s;
+            }
+        }
+        out
+    }
+
+    /// The true XYZ (cd/m²) for device values `rgb ∈ [0, 1]³`, without measurement noise.
+    pub fn xyz(&self, rgb: [f64; 3]) -> [f64; 3] {
+        let eff = self.channel_light(rgb);
         let mut out = self.offset;
         for (i, e) in eff.iter().enumerate() {
             for (j, o) in out.iter_mut().enumerate() {
@@ -408,6 +482,19 @@ impl SimHandle {
     pub fn true_xyz(&self) -> [f64; 3] {
         let s = self.lock();
         s.model.xyz(s.current)
+    }
+
+    /// A spectrometer's reading of the patch on screen: the true spectrum times the model's
+    /// measurement noise (one factor for the whole spectrum).
+    pub fn read_spectrum(&self) -> Vec<f64> {
+        let mut s = self.lock();
+        let sp = s.model.spectrum(s.current);
+        let sigma = s.model.options.noise;
+        if sigma == 0.0 {
+            return sp;
+        }
+        let k = 1.0 + sigma * s.noise.normal();
+        sp.into_iter().map(|v| v * k).collect()
     }
 
     /// A reading of the patch on screen: the truth with the model's measurement noise.

@@ -1,6 +1,7 @@
 //! The integration tests of `calibrate`: one test binary, a module per area.
 
 mod common;
+mod corrections;
 mod display_inverse;
 mod displays;
 mod icc;

@@ -455,3 +455,91 @@ fn instrument_error_mid_run_keeps_finished_batches_and_resume_completes() {
         assert_eq!(a.0, b.0);
     }
 }
+
+#[test]
+fn dispread_reads_our_ccss_and_ccmx() {
+    // ArgyllCMS reads a correction with `-X` before it opens the instrument, and refuses one
+    // its reader (xicc/ccss.c, xicc/ccmx.c) cannot parse: with the fake device the run then
+    // completes, with a file it cannot read it stops with "Reading CCMX/CCSS File … failed"
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        vec![
+            "calibrate",
+            "simulate",
+            "--display",
+            "sim:qdoled",
+            "-o",
+            "ref.ti3",
+        ],
+        vec![
+            "calibrate",
+            "simulate",
+            "--display",
+            "sim:qdoled",
+            "--instrument",
+            "colorimeter",
+            "-o",
+            "col.ti3",
+        ],
+        vec![
+            "calibrate",
+            "ccss",
+            "--ti3",
+            "ref.ti3",
+            "--technology",
+            "OLED",
+            "-o",
+            "ours.ccss",
+        ],
+        vec![
+            "calibrate",
+            "ccmx",
+            "--reference",
+            "ref.ti3",
+            "--colorimeter",
+            "col.ti3",
+            "-o",
+            "ours.ccmx",
+        ],
+        vec![
+            "calibrate",
+            "patches",
+            "--ramp-steps",
+            "2",
+            "--verify",
+            "0",
+            "-o",
+            "p.ti1",
+        ],
+    ] {
+        let w = run(
+            command(specpoly(), &args),
+            dir.path(),
+            Duration::from_secs(30),
+        );
+        assert_eq!(w.code, Some(0), "{args:?}: {w:?}");
+    }
+    std::fs::write(dir.path().join("bad.ccmx"), "CCMX\n\nDESCRIPTOR \"x\"\n").unwrap();
+    for (file, ok) in [
+        ("ours.ccss", true),
+        ("ours.ccmx", true),
+        ("bad.ccmx", false),
+    ] {
+        let name = format!("run_{}", file.replace('.', "_"));
+        std::fs::copy(
+            dir.path().join("p.ti1"),
+            dir.path().join(format!("{name}.ti1")),
+        )
+        .unwrap();
+        let mut c = contained(Path::new("/usr/bin/dispread"), &dir.path().join("fakebus"));
+        c.args(["-w", "-dfake", "-X", file, &name]);
+        let d = run(c, dir.path(), Duration::from_secs(60));
+        if ok {
+            assert_eq!(d.code, Some(0), "{file}: {d:?}");
+            assert!(dir.path().join(format!("{name}.ti3")).exists(), "{d:?}");
+        } else {
+            assert_ne!(d.code, Some(0), "{d:?}");
+            assert!(d.stderr.contains("Reading CCMX/CCSS File"), "{d:?}");
+        }
+    }
+}

@@ -10,6 +10,7 @@ mod calibrate_run_sim;
 mod calibrate_serial;
 mod calibrate_serial_noise;
 mod calibrate_session;
+mod calibrate_spectral;
 mod calibrate_target;
 mod calibrate_vcgt_load;
 mod calibrate_verify;

@@ -26,6 +26,10 @@ pub enum Error {
     BlobChecksum,
     /// A calibration blob shorter than its header says, or whose fields do not fill it.
     BlobTruncated,
+    /// A negative value where only non-negative ones make sense (a sensitivity), at this index.
+    Negative(usize),
+    /// One of three channels (sensitivities) is zero everywhere: channel 0, 1 or 2.
+    ZeroChannel(usize),
 }
 
 impl fmt::Display for Error {
@@ -43,6 +47,8 @@ impl fmt::Display for Error {
             Error::BlobVersion => write!(f, "not a calibration blob of a version this build reads"),
             Error::BlobChecksum => write!(f, "calibration blob checksum mismatch (corrupted)"),
             Error::BlobTruncated => write!(f, "calibration blob cut short"),
+            Error::Negative(i) => write!(f, "negative value at sample {i}"),
+            Error::ZeroChannel(k) => write!(f, "channel {} is zero everywhere", k + 1),
         }
     }
 }

@@ -102,7 +102,7 @@ pub use interaction::Interaction;
 pub use layout::{Breaks, Layout, Paper, Uniform, PAPER_BREAKS};
 pub use matrix::{Mat3, Real};
 pub use moments::{exact_xyz, Moments};
-pub use observer::Observer;
+pub use observer::{CmfTable, Observer};
 pub use shade::{Rgb, RgbLight, Sampled, SampledLight, Shade};
 pub use spectrum::{DefaultSpectrum, PaperSpectrum, Spectrum, DEFAULT_COEFFS, DEFAULT_SPANS};
 pub use tabulated::Tabulated;

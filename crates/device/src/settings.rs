@@ -100,9 +100,10 @@ impl Record<'_> {
             GamutMap::Clip => 0,
             GamutMap::Desaturate => 1,
         });
+        // the controller takes only the observers it carries moments for (1931, 1964)
         w.u8(match self.observer {
-            Observer::Cie1931 => 0,
             Observer::Cie1964 => 1,
+            _ => 0,
         });
         (w.at <= w.out.len()).then_some(w.at)
     }

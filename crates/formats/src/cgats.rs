@@ -16,6 +16,7 @@
 //! GPL-3.0, which this project's licence cannot take.
 
 use crate::measurement::Measurement;
+use crate::spectral::SpectralSet;
 use crate::{Error, Result};
 
 /// One CGATS table.
@@ -131,7 +132,7 @@ fn tokens(line: &str, source: &str, n: usize) -> Result<Vec<String>> {
 }
 
 /// [`Error::Cgats`] at `source:line`.
-fn bad(source: &str, line: usize, why: impl Into<String>) -> Error {
+pub(crate) fn bad(source: &str, line: usize, why: impl Into<String>) -> Error {
     Error::Cgats {
         file: source.to_string(),
         line: Some(line),
@@ -316,6 +317,9 @@ pub struct Ti3 {
     /// The video-LUT calibration loaded while measuring (ArgyllCMS's `CAL` table): rows of
     /// `[input, R, G, B]`, all 0–1.
     pub video_lut: Option<Vec<[f64; 4]>>,
+    /// Each measurement's spectrum, when measured with a spectrometer (`SPECTRAL_BANDS` and
+    /// `SPEC_…` fields, [`crate::spectral`]), on the same scale as its XYZ.
+    pub spectra: Option<SpectralSet>,
 }
 
 impl Ti3 {
@@ -362,7 +366,7 @@ impl Ti3 {
     }
 }
 
-fn number(v: &str, source: &str, line: usize, field: &str) -> Result<f64> {
+pub(crate) fn number(v: &str, source: &str, line: usize, field: &str) -> Result<f64> {
     match v.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         _ => Err(Error::CgatsNumber {
@@ -463,6 +467,7 @@ pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
             video_lut = Some(rows);
         }
     }
+    let spectra = crate::spectral::from_table(t, source)?;
     Ok(Ti3 {
         measurements,
         lines,
@@ -470,6 +475,7 @@ pub fn read_ti3(text: &str, source: &str) -> Result<Ti3> {
         normalized,
         white_cdm2,
         video_lut,
+        spectra,
     })
 }
 
@@ -537,7 +543,12 @@ fn check_reading(n: usize, m: &Measurement) -> Result<()> {
 /// The lines of a `.ti3` before its rows, through `BEGIN_DATA`: normalised to `white` (its
 /// absolute XYZ in `LUMINANCE_XYZ_CDM2`) when given, else `NORMALIZED_TO_Y_100 "NO"`;
 /// `NUMBER_OF_SETS` when `sets` is given (it is optional in CGATS).
-fn head(info: &Ti3Info, white: Option<[f64; 3]>, sets: Option<usize>) -> String {
+fn head(
+    info: &Ti3Info,
+    white: Option<[f64; 3]>,
+    sets: Option<usize>,
+    bands: Option<&crate::spectral::Bands>,
+) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let descriptor = if info.descriptor.is_empty() {
@@ -573,9 +584,19 @@ fn head(info: &Ti3Info, white: Option<[f64; 3]>, sets: Option<usize>) -> String 
     for (k, v) in &info.keywords {
         let _ = writeln!(s, "{k} \"{}\"", q(v));
     }
-    let _ = writeln!(s, "\nNUMBER_OF_FIELDS 7");
+    let mut fields = "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z".to_string();
+    let mut n_fields = 7;
+    if let Some(b) = bands {
+        s.push_str(&b.keyword_lines());
+        for j in 0..b.count {
+            fields.push(' ');
+            fields.push_str(&b.field(j));
+        }
+        n_fields += b.count;
+    }
+    let _ = writeln!(s, "\nNUMBER_OF_FIELDS {n_fields}");
     let _ = writeln!(s, "BEGIN_DATA_FORMAT");
-    let _ = writeln!(s, "SAMPLE_ID RGB_R RGB_G RGB_B XYZ_X XYZ_Y XYZ_Z");
+    let _ = writeln!(s, "{fields}");
     let _ = writeln!(s, "END_DATA_FORMAT\n");
     if let Some(n) = sets {
         let _ = writeln!(s, "NUMBER_OF_SETS {n}");
@@ -639,9 +660,65 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
         Some(w) if w[1] > 0.0 => (Some(w), 100.0 / w[1]),
         _ => (None, 1.0),
     };
-    let mut s = head(info, white, Some(meas.len()));
+    let mut s = head(info, white, Some(meas.len()), None);
     for (i, m) in meas.iter().enumerate() {
         s.push_str(&row(i + 1, m, scale)?);
+    }
+    s.push_str(END_DATA);
+    Ok(s)
+}
+
+/// Writes measurements with their spectra as the `.ti3` ArgyllCMS's `dispread` writes with a
+/// spectrometer: the fields of [`write_ti3`] then one `SPEC_nnn` per band, the bands in
+/// `SPECTRAL_BANDS`, `SPECTRAL_START_NM`, `SPECTRAL_END_NM`. Normalised as [`write_ti3`]
+/// normalises (spectra by the same factor as XYZ, as `dispread` does). `spectra` has one
+/// spectrum per measurement; refused (nothing returned) when the counts differ or a value is
+/// not finite.
+pub fn write_spectral_ti3(
+    meas: &[Measurement],
+    spectra: &SpectralSet,
+    info: &Ti3Info,
+) -> Result<String> {
+    const KIND: &str = "spectral .ti3";
+    if spectra.samples.len() != meas.len() {
+        return Err(Error::SpectralWrite {
+            kind: KIND,
+            why: format!(
+                "{} spectra for {} readings",
+                spectra.samples.len(),
+                meas.len()
+            ),
+        });
+    }
+    spectra.check(KIND)?;
+    for (i, m) in meas.iter().enumerate() {
+        check_reading(i + 1, m)?;
+    }
+    let white = if info.absolute {
+        white_patch(meas)
+    } else {
+        None
+    };
+    let (white, scale) = match white {
+        Some(w) if w.iter().all(|v| v.is_finite()) && w[1] > 0.0 => (Some(w), 100.0 / w[1]),
+        _ => (None, 1.0),
+    };
+    let mut s = head(info, white, Some(meas.len()), Some(&spectra.bands));
+    for (i, (m, sp)) in meas.iter().zip(&spectra.samples).enumerate() {
+        let r = row(i + 1, m, scale)?;
+        s.push_str(r.trim_end());
+        for v in sp {
+            let x = v * scale;
+            if !x.is_finite() {
+                return Err(Error::SpectralWrite {
+                    kind: KIND,
+                    why: format!("reading {} overflows when scaled", i + 1),
+                });
+            }
+            s.push(' ');
+            s.push_str(&crate::spectral::value(x));
+        }
+        s.push('\n');
     }
     s.push_str(END_DATA);
     Ok(s)
@@ -653,7 +730,7 @@ pub fn write_ti3(meas: &[Measurement], info: &Ti3Info) -> Result<String> {
 /// ([`ti3_log_row`]) follow, then [`END_DATA`]; every prefix that ends in a whole row plus
 /// `END_DATA` is a `.ti3` that [`read_ti3`] reads.
 pub fn ti3_log_head(info: &Ti3Info) -> String {
-    head(info, None, None)
+    head(info, None, None, None)
 }
 
 /// Row `n` (1-based) of the readings log ([`ti3_log_head`]), with its newline; refused as

@@ -121,6 +121,15 @@ pub enum Error {
         /// Why (names the reading).
         why: String,
     },
+    /// Spectral data (a spectral `.ti3`, a `.ccss`) or a correction matrix (`.ccmx`) that
+    /// cannot be written: `cannot write a KIND: why`.
+    #[error("cannot write a {kind}: {why}")]
+    SpectralWrite {
+        /// `.ccss`, `.ccmx` or `spectral .ti3`.
+        kind: &'static str,
+        /// Why (names the sample or value).
+        why: String,
+    },
     /// A device string without the argument its kind needs ([`crate::device_spec`]).
     #[error("`{spec}` needs {what}: `{example}`")]
     DeviceArgument {

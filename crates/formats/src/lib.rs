@@ -5,7 +5,8 @@
 //! regular files ([`read`]), output files written whole or not at all ([`atomic`]), control
 //! characters escaped for a terminal ([`escape`]), device strings `KIND:ARG,key=value`
 //! ([`device_spec`]), TOML errors on one line ([`toml_error`]), whole outputs to stdout
-//! ([`stdout`]) and one measured patch ([`measurement`]).
+//! ([`stdout`]), one measured patch ([`measurement`]), spectral samples in CGATS
+//! ([`spectral`]) and ArgyllCMS's colorimeter corrections ([`ccss`], [`ccmx`]).
 //!
 //! Its functions return [`Error`] ([`error`]): what went wrong with which file, and where
 //! (`FILE:LINE[:COLUMN]: …`), as data; which errors are usage errors and which exit codes they
@@ -17,6 +18,8 @@
 #![forbid(unsafe_code)]
 
 pub mod atomic;
+pub mod ccmx;
+pub mod ccss;
 pub mod cgats;
 pub mod csv;
 pub mod device_spec;
@@ -24,6 +27,7 @@ pub mod error;
 pub mod escape;
 pub mod measurement;
 pub mod read;
+pub mod spectral;
 pub mod stats;
 pub mod stdout;
 pub mod ti1;

@@ -45,6 +45,17 @@ pub enum CalibrateCommand {
     /// Write the patch set `run` measures as an ArgyllCMS .ti1 (for dispread, or to edit and
     /// give back with `run --patches`).
     Patches(PatchesArgs),
+    /// Measure a simulated display (QD-OLED, WLED, broadband, …) with a simulated
+    /// spectrometer (a spectral .ti3, as dispread writes) or colorimeter.
+    Simulate(crate::cli::calibrate_spectral::SimulateArgs),
+    /// Write an ArgyllCMS .ccss (display spectral samples) from a spectral .ti3.
+    Ccss(crate::cli::calibrate_spectral::CcssArgs),
+    /// Write an ArgyllCMS .ccmx (colorimeter correction matrix) from a spectrometer's and a
+    /// colorimeter's readings of the same patches.
+    Ccmx(crate::cli::calibrate_spectral::CcmxArgs),
+    /// Set display B's white (video LUT) to match display A's under an observer, and report the
+    /// two whites' mismatch under the CIE 1931, 1964, 2015 and the viewer's observers.
+    Match(crate::cli::calibrate_spectral::MatchArgs),
 }
 
 /// `calibrate patches`.
@@ -164,6 +175,10 @@ pub fn run(c: CalibrateCommand) -> Result<()> {
         CalibrateCommand::Lut3d(a) => crate::cli::calibrate_lut3d::run(&a),
         CalibrateCommand::Run(a) => crate::cli::calibrate_run::run(&a),
         CalibrateCommand::Patches(a) => patches_cmd(&a),
+        CalibrateCommand::Simulate(a) => crate::cli::calibrate_spectral::simulate(&a),
+        CalibrateCommand::Ccss(a) => crate::cli::calibrate_spectral::ccss_cmd(&a),
+        CalibrateCommand::Ccmx(a) => crate::cli::calibrate_spectral::ccmx_cmd(&a),
+        CalibrateCommand::Match(a) => crate::cli::calibrate_spectral::match_cmd(&a),
     }
 }
 

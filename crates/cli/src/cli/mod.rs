@@ -9,6 +9,7 @@ pub mod args;
 pub mod calibrate;
 pub mod calibrate_lut3d;
 pub mod calibrate_run;
+pub mod calibrate_spectral;
 pub mod calibrate_target;
 pub mod calibrate_verify;
 pub mod fit;

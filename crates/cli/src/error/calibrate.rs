@@ -52,6 +52,9 @@ impl From<Error> for CliError {
             | Error::SimChannel { .. }
             | Error::SimNoLuminance { .. }
             | Error::SimColumns { .. }
+            | Error::SpectralTi3 { .. }
+            | Error::Correction { .. }
+            | Error::Match { .. }
             | Error::Display(_)
             | Error::Instrument(_)
             | Error::Interrupted

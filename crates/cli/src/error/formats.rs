@@ -25,6 +25,7 @@ impl From<specpoly_formats::Error> for CliError {
             | specpoly_formats::Error::CgatsNumber { .. }
             | specpoly_formats::Error::Toml { .. }
             | specpoly_formats::Error::Ti3Write { .. }
+            | specpoly_formats::Error::SpectralWrite { .. }
             | specpoly_formats::Error::Json(_) => CliError::Data(e.to_string()),
         }
     }
