@@ -184,11 +184,12 @@ impl Observer {
         }
     }
 
-    /// A short description for reports: "CIE 1931 2°", …, or the runtime table's name.
+    /// A short description for reports: "CIE 1931", "CIE 1964", "CIE 2015 2°", "CIE 2015 10°", or
+    /// the runtime table's name.
     pub fn label(self) -> &'static str {
         match self {
-            Observer::Cie1931 => "CIE 1931 2°",
-            Observer::Cie1964 => "CIE 1964 10°",
+            Observer::Cie1931 => "CIE 1931",
+            Observer::Cie1964 => "CIE 1964",
             Observer::Cie2015_2 => "CIE 2015 2°",
             Observer::Cie2015_10 => "CIE 2015 10°",
             Observer::Table(t) => t.name(),

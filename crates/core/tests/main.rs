@@ -10,6 +10,7 @@ mod light_published;
 mod light_references;
 mod moments_1nm;
 mod multiply_reduce;
+mod observers_2015;
 mod paper_eq6;
 mod paper_path;
 mod pixel_cube;
