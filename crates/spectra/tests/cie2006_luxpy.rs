@@ -2,7 +2,8 @@
 //! implementation (tables made offline by tests/data/cie2006_references.py): the cone
 //! fundamentals for ages 20–80 and fields 2–10° within 1e-4 of their peak (1), and x̄ ȳ z̄ at 32
 //! years, 2° and 10°, within 1e-4 of the largest value; the fundamentals at 32 years also equal
-//! the published CIE 2006 tables (data/cmf), and x̄ ȳ z̄ the CIE 2015 tables.
+//! the published CIE 2006 tables (data/cmf), and x̄ ȳ z̄ the CIE 2015 tables, within 3e-4 (one
+//! wavelength, 552 nm, where those tables and the TC1-97 data differ).
 
 use specpoly_spectra::cie2006;
 
@@ -50,6 +51,7 @@ fn fundamentals_equal_luxpy_for_ages_20_to_80_and_fields_2_to_10() {
     for (kind, age, field, rows) in cases.iter().filter(|c| c.0 == "lms") {
         let ours = cie2006::lms(*age, *field).unwrap();
         let d = deviation(&ours, rows);
+        eprintln!("lms age {age} field {field}: {d:.1e} of peak");
         assert!(d < 1e-4, "{kind} age {age} field {field}: {d:e}");
         n += 1;
     }
@@ -63,6 +65,7 @@ fn xyz_at_32_years_2_and_10_degrees_equal_luxpy() {
     for (_, age, field, rows) in luxpy().iter().filter(|c| c.0 == "xyz") {
         let ours = cie2006::xyz(*age, *field).unwrap();
         let d = deviation(&ours, rows);
+        eprintln!("xyz age {age} field {field}: {d:.1e} of peak");
         assert!(d < 1e-4, "xyz age {age} field {field}: {d:e}");
     }
 }
@@ -90,9 +93,13 @@ fn the_32_year_observer_is_the_published_cie_2006_and_2015_one() {
         (10.0, "cie2006_lms_10deg_1nm.csv", "cie2015_10deg_1nm.csv"),
     ] {
         let d = deviation(&cie2006::lms(32.0, field).unwrap(), &table(lms_file));
-        assert!(d < 1e-4, "lms {field}°: {d:e}");
+        eprintln!("lms 32 years {field}° vs CIE 2006 table: {d:.1e}");
+        // the published 1 nm tables and the TC1-97 data behind luxpy differ by 2.7e-4 at one
+        // wavelength, 552 nm (l̄ and m̄, 2°; 7e-5 at 10°); luxpy and we agree there to 5e-7
+        assert!(d < 3e-4, "lms {field}°: {d:e}");
         let d = deviation(&cie2006::xyz(32.0, field).unwrap(), &table(xyz_file));
-        assert!(d < 2e-4, "xyz {field}°: {d:e}");
+        eprintln!("xyz 32 years {field}° vs CIE 2015 table: {d:.1e}");
+        assert!(d < 3e-4, "xyz {field}°: {d:e}");
     }
 }
 
