@@ -164,6 +164,9 @@ fn builtin_names_round_trip() {
     for o in Observer::ALL {
         assert_eq!(Observer::from_name(o.name()), Some(o));
     }
-    assert_eq!(Observer::from_name("CIE2015-10"), Some(Observer::Cie2015_10));
+    assert_eq!(
+        Observer::from_name("CIE2015-10"),
+        Some(Observer::Cie2015_10)
+    );
     assert_eq!(Observer::from_name("cié"), None);
 }

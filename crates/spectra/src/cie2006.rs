@@ -97,7 +97,7 @@ fn parse(text: &str) -> std::result::Result<Vec<Row>, String> {
         };
         let opt = |k: usize| -> std::result::Result<Option<f64>, String> {
             match c.get(k) {
-                Some(s) if s.is_empty() => Ok(None),
+                Some(&"") => Ok(None),
                 _ => num(k).map(Some),
             }
         };

@@ -105,12 +105,24 @@ fn the_32_year_observer_is_the_published_cie_2006_and_2015_one() {
 
 #[test]
 fn ages_and_fields_outside_the_model_are_refused() {
-    for (age, field) in [(19.0, 2.0), (81.0, 2.0), (32.0, 1.0), (32.0, 11.0), (f64::NAN, 2.0)] {
+    for (age, field) in [
+        (19.0, 2.0),
+        (81.0, 2.0),
+        (32.0, 1.0),
+        (32.0, 11.0),
+        (f64::NAN, 2.0),
+    ] {
         let e = cie2006::lms(age, field).unwrap_err().to_string();
         assert!(e.contains("outside"), "{e}");
         assert!(!e.contains('\n'));
     }
-    for bad in ["age=32", "age=x,field=2", "age=32,field=2,lens=1", "32,2", "age=90,field=2"] {
+    for bad in [
+        "age=32",
+        "age=x,field=2",
+        "age=32,field=2,lens=1",
+        "32,2",
+        "age=90,field=2",
+    ] {
         assert!(cie2006::parse_params(bad, bad).is_err(), "{bad}");
     }
     assert_eq!(

@@ -34,13 +34,31 @@ fn a_coarse_camera_table_is_interpolated_and_zero_outside_its_data() {
 #[test]
 fn bad_sensitivity_files_are_refused_in_one_line() {
     let cases: [(&str, &str); 7] = [
-        ("wavelength_nm,x,y,z\n400,0,1,1\n550,-0.1,1,1\n700,1,1,1\n", "negative"),
-        ("wavelength_nm,x,y,z\n400,0,1,1\n550,,1,1\n700,1,1,1\n", "empty cell"),
-        ("wavelength_nm,x,y,z\n400,0,1,1\n700,1,1,1\n550,1,1,1\n", "wavelength"),
-        ("wavelength_nm,x,y,z\n450,0,1,1\n550,1,1,1\n650,1,1,1\n", "400-700"),
+        (
+            "wavelength_nm,x,y,z\n400,0,1,1\n550,-0.1,1,1\n700,1,1,1\n",
+            "negative",
+        ),
+        (
+            "wavelength_nm,x,y,z\n400,0,1,1\n550,,1,1\n700,1,1,1\n",
+            "empty cell",
+        ),
+        (
+            "wavelength_nm,x,y,z\n400,0,1,1\n700,1,1,1\n550,1,1,1\n",
+            "wavelength",
+        ),
+        (
+            "wavelength_nm,x,y,z\n450,0,1,1\n550,1,1,1\n650,1,1,1\n",
+            "400-700",
+        ),
         ("wavelength_nm,x,y\n400,0,1\n700,1,1\n", "3"),
-        ("wavelength_nm,x,y,z\n400,0,1,0\n700,1,1,0\n", "zero everywhere"),
-        ("wavelength_nm,x,y,z\n400,0,1,1\n550,nan,1,1\n700,1,1,1\n", "file.csv"),
+        (
+            "wavelength_nm,x,y,z\n400,0,1,0\n700,1,1,0\n",
+            "zero everywhere",
+        ),
+        (
+            "wavelength_nm,x,y,z\n400,0,1,1\n550,nan,1,1\n700,1,1,1\n",
+            "file.csv",
+        ),
     ];
     for (csv, says) in cases {
         let e = from_csv_text(csv, "file.csv").unwrap_err().to_string();
