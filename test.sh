@@ -33,26 +33,50 @@ command -v arm-none-eabi-gcc >/dev/null 2>&1 || missing+=(gcc-arm-none-eabi)
 # ... and for RV32IMC (ESP32-C3's instruction set) on QEMU `virt`
 command -v riscv64-unknown-elf-gcc >/dev/null 2>&1 || missing+=(gcc-riscv64-unknown-elf)
 command -v qemu-system-riscv32 >/dev/null 2>&1 || missing+=(qemu-system-misc)
+# The installs run in the background while the host build below compiles (they need the
+# network and the disk, the build the cores); each is waited for before the first step that
+# needs it, and a failed install stops the run with its log.
+logs=$(mktemp -d)
+apt_pid=""
 if ((${#missing[@]})); then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-    echo "installing ${missing[*]} (apt)"
-    apt-get update -o DPkg::Lock::Timeout=600 -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 \
-      --no-install-recommends "${missing[@]}" >/dev/null
+    echo "installing ${missing[*]} (apt, in the background)"
+    (
+      apt-get update -o DPkg::Lock::Timeout=600 -qq
+      DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 \
+        --no-install-recommends "${missing[@]}"
+    ) >"$logs/apt.log" 2>&1 &
+    apt_pid=$!
   else
     echo "test.sh: missing ${missing[*]}: install them (Debian: apt-get install ${missing[*]}) and run again" >&2
     exit 1
   fi
 fi
-for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
-  exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
-  command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
-done
+targets=()
 for target in thumbv7em-none-eabihf riscv32imc-unknown-none-elf; do
-  if ! rustup target list --installed | grep -qx "$target"; then
-    rustup target add "$target"
-  fi
+  rustup target list --installed | grep -qx "$target" || targets+=("$target")
 done
+targets_pid=""
+if ((${#targets[@]})); then
+  echo "installing the Rust targets ${targets[*]} (rustup, in the background)"
+  rustup target add "${targets[@]}" >"$logs/rustup.log" 2>&1 &
+  targets_pid=$!
+fi
+# Waits for a background install; on failure prints its log and stops.
+await() {
+  local pid=$1 what=$2 log=$3
+  [ -n "$pid" ] || return 0
+  if ! wait "$pid"; then
+    echo "test.sh: installing $what failed:" >&2
+    cat "$log" >&2
+    exit 1
+  fi
+}
+# the host build links with `cc`: without it, wait for the install now
+if ! command -v cc >/dev/null 2>&1; then
+  await "$apt_pid" "${missing[*]}" "$logs/apt.log"
+  apt_pid=""
+fi
 for c in rustfmt clippy; do
   rustup component list --installed | grep -q "^$c" || rustup component add "$c"
 done
@@ -71,6 +95,7 @@ cargo test --workspace --all-targets --no-run
 cargo test -p specpoly-device --no-default-features --all-targets --no-run
 
 say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
+await "$targets_pid" "the Rust targets ${targets[*]:-}" "$logs/rustup.log"
 # the same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops
 (cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
 # the STM32F4 board build (stm32f4xx-hal), run on netduinoplus2
@@ -88,6 +113,12 @@ cargo build -p specpoly-c --release --target thumbv7em-none-eabihf
 cargo build -p specpoly-c --release --target riscv32imc-unknown-none-elf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
+await "$apt_pid" "${missing[*]:-}" "$logs/apt.log"
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
+  exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
+done
+
 if cargo nextest --version >/dev/null 2>&1; then
   # all test binaries at once, longest tests first (.config/nextest.toml)
   cargo nextest run --workspace --no-fail-fast

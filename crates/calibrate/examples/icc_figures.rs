@@ -8,7 +8,9 @@
 //! against the model's PCS prediction (mean/max ΔE00); `xicclu -ff -ia` (absolute) against the
 //! model's prediction over its white's `Y` (mean/max ΔE00); `profcheck -k`'s mean/max against
 //! the measurements next to the model's own; and the round trip device → `A2B0` → `B2A0` →
-//! device through Little CMS on a 52³ grid of 8-bit codes (max |Δ| in codes of 255).
+//! device through Little CMS and through `xicclu` (`-ff` then `-fb`, relative) on a 52³ grid of
+//! 8-bit codes (max |Δ| in codes of 255, the share within 2 codes, the model's ΔE00 between the
+//! colour and what comes back), and the model's own inverse (the core's) on the same codes.
 //!
 //! Run: `cargo run -p specpoly-calibrate --example icc_figures [GRID]`.
 
@@ -156,21 +158,36 @@ fn main() {
         fwd.transform_pixels(&codes, &mut pcs);
         let mut rgb = vec![[0.0; 3]; codes.len()];
         back.transform_pixels(&pcs, &mut rgb);
-        let mut worst = (0.0f64, [0.0; 3]);
-        let mut worst_de = 0.0f64;
-        for (c, o) in codes.iter().zip(&rgb) {
-            worst_de = worst_de.max(delta_e00(
-                icc::predict_pcs(&cal, *o),
-                icc::predict_pcs(&cal, *c),
-                icc::D50,
-            ));
-            let d = (0..3)
-                .map(|k| (c[k] - o[k]).abs() * 255.0)
-                .fold(0.0, f64::max);
-            if d > worst.0 {
-                worst = (d, *c);
+        // the same through ArgyllCMS: xicclu forward (A2B0), then backward (B2A0), relative
+        let fwd_a = xicclu(&path, &["-ff", "-ir", "-px"], &codes);
+        let rgb_a = xicclu(&path, &["-fb", "-ir", "-px"], &fwd_a);
+        // the model's own inverse (the core's): where the model cannot tell codes apart
+        let rgb_m: Vec<[f64; 3]> = codes.iter().map(|c| cal.inverse(cal.predict(*c))).collect();
+        let trip = |out: &[[f64; 3]]| {
+            let mut worst = (0.0f64, [0.0; 3]);
+            let (mut within, mut worst_de) = (0usize, 0.0f64);
+            for (c, o) in codes.iter().zip(out) {
+                worst_de = worst_de.max(delta_e00(
+                    icc::predict_pcs(&cal, *o),
+                    icc::predict_pcs(&cal, *c),
+                    icc::D50,
+                ));
+                let d = (0..3)
+                    .map(|k| (c[k] - o[k]).abs() * 255.0)
+                    .fold(0.0, f64::max);
+                within += usize::from(d <= 2.0);
+                if d > worst.0 {
+                    worst = (d, *c);
+                }
             }
-        }
+            format!(
+                "{:.1} at {:?}, {:.2} % ≤ 2, model ΔE00 {worst_de:.2}",
+                worst.0,
+                worst.1.map(|v| (v * 255.0).round()),
+                100.0 * within as f64 / codes.len() as f64
+            )
+        };
+        let (trip_l, trip_a, trip_m) = (trip(&rgb), trip(&rgb_a), trip(&rgb_m));
         let stat = |v: &[f64]| {
             (
                 v.iter().sum::<f64>() / v.len() as f64,
@@ -181,11 +198,41 @@ fn main() {
         let (xm, xx) = stat(&xic);
         let (om, ox) = stat(&own);
         println!(
-            "| {name} | {} | {white_de:.3} | {lm:.3} / {lx:.3} | {xm:.3} / {xx:.3} | {pc_mean:.3} / {pc_max:.3} ({om:.3} / {ox:.3}) | {:.2} at {:?}, model ΔE00 {worst_de:.3} | build {build_s:.1} s, {} bytes",
+            "| {name} | {} | {white_de:.3} | {lm:.3} / {lx:.3} | {xm:.3} / {xx:.3} | {pc_mean:.3} / {pc_max:.3} ({om:.3} / {ox:.3}) | lcms {trip_l} | xicclu {trip_a} | model {trip_m} | build {build_s:.1} s, {} bytes",
             opts.tables,
-            worst.0,
-            worst.1.map(|v| (v * 255.0).round()),
             bytes.len()
         );
     }
+}
+
+/// `xicclu -v0 ARGS profile` on `input` (one triple per line): its output triples.
+fn xicclu(profile: &Path, args: &[&str], input: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut child = Command::new("xicclu")
+        .arg("-v0")
+        .args(args)
+        .arg(profile)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut sin = child.stdin.take().unwrap();
+    let text: String = input
+        .iter()
+        .map(|d| format!("{} {} {}\n", d[0], d[1], d[2]))
+        .collect();
+    let writer = std::thread::spawn(move || sin.write_all(text.as_bytes()));
+    let o = child.wait_with_output().unwrap();
+    writer.join().unwrap().unwrap();
+    let out: Vec<[f64; 3]> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .filter_map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .filter_map(|s| s.parse().ok())
+                .collect();
+            (v.len() >= 3).then(|| [v[0], v[1], v[2]])
+        })
+        .collect();
+    assert_eq!(out.len(), input.len(), "xicclu {args:?}");
+    out
 }

@@ -35,6 +35,9 @@ use specpoly_formats::stats::percentile;
 /// and their difference.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PatchResult {
+    /// The patch's number: its position among the file's measurements (1-based), as the fit
+    /// numbers its outliers (`fit` and `verify` say "patch N"); for a 3D LUT, the source patch's.
+    pub patch: usize,
     /// The patch's line in the measurement file (1-based).
     pub line: usize,
     /// Device RGB, 0–1.
@@ -60,7 +63,8 @@ fn lab<S: serde::Serializer>(l: &Lab, s: S) -> Result<S::Ok, S::Error> {
 }
 
 impl PatchResult {
-    /// Compares `measured` with `reference` (XYZ) relative to `white`.
+    /// Compares `measured` with `reference` (XYZ) relative to `white`; the patch at `line`,
+    /// numbered `line` too until its owner sets [`Self::patch`].
     pub fn new(
         line: usize,
         device: [f64; 3],
@@ -72,6 +76,7 @@ impl PatchResult {
         let measured_lab = Lab::from_xyz(measured, white);
         let t = de2000_terms(reference_lab, measured_lab);
         PatchResult {
+            patch: line,
             line,
             device,
             reference,

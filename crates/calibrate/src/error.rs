@@ -508,6 +508,12 @@ pub enum PatchDisplayError {
         /// The page.
         url: String,
     },
+    /// A second client presented the web display's one-time key: someone else may drive the
+    /// run, so it stops.
+    #[error(
+        "web display: the run's one-time link was opened by a second client (another local process may have read it); stopped — run again and open the new link only in the display's browser"
+    )]
+    KeyReused,
     /// Reading the manual display's confirmation failed.
     #[error("manual display: reading stdin: {0}")]
     Stdin(std::io::Error),

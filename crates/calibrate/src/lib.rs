@@ -2,11 +2,12 @@
 //!
 //! Measuring a display: patch sets ([`patches`]), where patches are shown ([`patch_display`]),
 //! where readings come from ([`instrument`]), the readings log ([`session`]), one run per
-//! output ([`lock`]), the measuring loop ([`run`]), the fit of the display model ([`fit`]),
+//! output ([`lock`]), the measuring loop ([`run`]), the fit of the display model ([`fit`]), drift between repeated readings ([`drift`]),
 //! verification ([`verify`], [`criteria`]) and its report ([`report_html`]). The calibration file and its exports are in `specpoly-display`.
 #![forbid(unsafe_code)]
 
 pub mod criteria;
+pub mod drift;
 pub mod error;
 pub mod fit;
 pub mod instrument;

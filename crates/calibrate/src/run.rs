@@ -168,6 +168,9 @@ pub fn fit_and_save(
         prov.readings_sha256 = crate::session::sha256_file(ti3)?;
         prov.instrument = info.instrument.clone().unwrap_or_default();
         prov.measured = info.created.clone().unwrap_or_default();
+        // repeated white and black readings that disagree, numbered as in the .ti3
+        prov.notes
+            .extend(crate::drift::check(taken).iter().map(|d| d.note()));
     }
     cal.save(out)?;
     Ok((cal, [fit_set.len(), verify_set.len()]))

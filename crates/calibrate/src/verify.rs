@@ -63,6 +63,36 @@ pub fn measurements_for(
         .collect())
 }
 
+/// Whether `readings` (a file's bytes) are the readings `cal` was fitted from: their SHA-256
+/// is the one its `[provenance]` records (`readings_sha256`; absent in older files: false).
+pub fn fitted_from(cal: &Calibration, readings: &[u8]) -> bool {
+    let recorded = &cal.data().provenance.readings_sha256;
+    !recorded.is_empty() && crate::session::sha256_hex(readings).eq_ignore_ascii_case(recorded)
+}
+
+/// The patches of `meas` (1-based positions) that the fit of `cal` dropped as bad readings
+/// (its `[fit] outliers`, numbered by position in the file it was fitted from): those whose
+/// position and device values match, when `meas` are that file's readings (`same_file`, see
+/// [`fitted_from`]); none otherwise (another file's reading of the same colour is a new
+/// reading).
+pub fn fit_outliers(cal: &Calibration, meas: &[Measurement], same_file: bool) -> Vec<usize> {
+    if !same_file {
+        return Vec::new();
+    }
+    cal.data()
+        .fit
+        .outliers
+        .iter()
+        .filter(|o| {
+            o.patch >= 1
+                && meas
+                    .get(o.patch - 1)
+                    .is_some_and(|m| (0..3).all(|c| (m.device[c] - o.device[c]).abs() <= 1e-6))
+        })
+        .map(|o| o.patch)
+        .collect()
+}
+
 /// A calibration checked against measured patches.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Verification {
@@ -80,22 +110,38 @@ impl Verification {
     /// Compares the calibration's prediction of each measurement's device values with the
     /// measurement; `lines` are the measurements' lines in their file (1-based, same order).
     pub fn new(cal: &Calibration, meas: &[Measurement], lines: &[usize]) -> Verification {
+        Self::excluding(cal, meas, lines, &[]).0
+    }
+
+    /// [`Self::new`] without the patches numbered in `exclude` (1-based positions in `meas`,
+    /// the numbering of the fit's outliers: [`fit_outliers`]): the verification and the
+    /// patches left out, each with its ΔE00.
+    pub fn excluding(
+        cal: &Calibration,
+        meas: &[Measurement],
+        lines: &[usize],
+        exclude: &[usize],
+    ) -> (Verification, Vec<PatchResult>) {
         let white = cal.data().white;
-        let patches: Vec<PatchResult> = meas
-            .iter()
-            .enumerate()
-            .map(|(i, m)| {
-                let line = lines.get(i).copied().unwrap_or(i + 1);
-                PatchResult::new(line, m.device, cal.predict(m.device), m.xyz, white)
-            })
-            .collect();
+        let (mut patches, mut left_out) = (Vec::new(), Vec::new());
+        for (i, m) in meas.iter().enumerate() {
+            let line = lines.get(i).copied().unwrap_or(i + 1);
+            let mut r = PatchResult::new(line, m.device, cal.predict(m.device), m.xyz, white);
+            r.patch = i + 1;
+            if exclude.contains(&(i + 1)) {
+                left_out.push(r);
+            } else {
+                patches.push(r);
+            }
+        }
         let de: Vec<f64> = patches.iter().map(|p| p.delta_e00).collect();
-        Verification {
+        let v = Verification {
             stats: Stats::of(&de),
             outcomes: criteria::evaluate(&patches, white),
             patches,
             white,
-        }
+        };
+        (v, left_out)
     }
 
     /// A 3D LUT on a display, predicted through its model: for each source patch `c` (encoded

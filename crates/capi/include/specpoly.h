@@ -4,10 +4,20 @@
 #ifndef SPECPOLY_H
 #define SPECPOLY_H
 
+#include <stddef.h>
 #include <stdint.h>
+
+// The most points of a tabulated transfer curve.
+#define SP_DISPLAY_TABLE_MAX 64
 
 // The most channels a mix takes.
 #define SP_MAX_CHANNELS 6
+
+// Spans of a spectrum (uniform over 380–780 nm: 50 nm each).
+#define SP_SPECTRUM_SPANS 8
+
+// Chebyshev coefficients per span (cubic).
+#define SP_SPECTRUM_COEFFS 4
 
 // What a call did: 0 success, 1 a finished fade (not an error), negative an error. Outputs
 // are written only on `SP_STATUS_OK` (and `SP_STATUS_FADE_DONE` where documented).
@@ -25,7 +35,7 @@ enum SpStatus
   // An input number is NaN or infinite.
   SP_STATUS_NOT_FINITE = -2,
   // An input is outside its documented domain (CCT, Duv, chromaticity, luminance, a curve's
-  // gamma, a gamut-map code).
+  // gamma, a gamut-map code, a wavelength, an observer or illuminant code).
   SP_STATUS_DOMAIN = -3,
   // The chromaticity is more than 0.05 from the Planckian locus or outside 1000–100 000 K:
   // it has no CCT (CIE 015:2018 §9.5).
@@ -36,6 +46,15 @@ enum SpStatus
   SP_STATUS_OUT_OF_GAMUT = -6,
   // The display's primaries give a singular matrix (or a primary with `y ≤ 0`).
   SP_STATUS_SINGULAR = -7,
+  // A length outside its range: no samples, a table of 1 or more than
+  // `SP_DISPLAY_TABLE_MAX` points, a buffer too large to address.
+  SP_STATUS_SIZE = -8,
+  // Not a calibration blob of a version this library reads (its magic or version).
+  SP_STATUS_BLOB_VERSION = -9,
+  // A calibration blob whose checksum does not match its bytes (corrupted).
+  SP_STATUS_BLOB_CHECKSUM = -10,
+  // A calibration blob shorter than its header says (cut off), or with bytes past it.
+  SP_STATUS_BLOB_TRUNCATED = -11,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -64,6 +83,54 @@ typedef int32_t SpGamutMap;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
+// A CIE standard observer (the `observer` argument).
+enum SpObserver
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // CIE 1931 2°.
+  SP_OBSERVER_CIE1931 = 0,
+  // CIE 1964 10°.
+  SP_OBSERVER_CIE1964 = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SpObserver SpObserver;
+#else
+typedef int32_t SpObserver;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// A built-in light (the `illuminant` argument), tabulated at 5 nm (CIE 015:2018).
+enum SpIlluminant
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // CIE A (2856 K incandescent).
+  SP_ILLUMINANT_A = 0,
+  // CIE D50.
+  SP_ILLUMINANT_D50 = 1,
+  // CIE D65.
+  SP_ILLUMINANT_D65 = 2,
+  // Equal energy.
+  SP_ILLUMINANT_E = 3,
+  // CIE FL2 (cool white fluorescent).
+  SP_ILLUMINANT_FL2 = 4,
+  // CIE FL7 (broadband daylight fluorescent).
+  SP_ILLUMINANT_FL7 = 5,
+  // CIE FL11 (three-band fluorescent).
+  SP_ILLUMINANT_FL11 = 6,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SpIlluminant SpIlluminant;
+#else
+typedef int32_t SpIlluminant;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
 // CIE 1931 chromaticity.
 typedef struct SpXy {
   // x.
@@ -89,8 +156,14 @@ typedef struct SpDisplay {
   // The black level's X, Y, Z (same unit; zeros for none).
   float black[3];
   // Each channel's curve, device value → light: 1 linear, 0 the sRGB curve, else
-  // `l = v^gamma` (> 0).
+  // `l = v^gamma` (> 0); used where `table_len` is 0.
   float gamma[3];
+  // Points of each channel's tabulated curve: 0 for none (`gamma` is used), else 2 to
+  // `SP_DISPLAY_TABLE_MAX`.
+  uint32_t table_len[3];
+  // Each channel's tabulated curve: the linear output at `table_len` evenly spaced device
+  // values `0, 1/(n−1), …, 1`, non-decreasing.
+  float table[3][SP_DISPLAY_TABLE_MAX];
 } SpDisplay;
 
 // CIE 1931 tristimulus values.
@@ -114,6 +187,16 @@ typedef struct SpDrive {
   // 1 when the target was outside the gamut (and was mapped), else 0.
   int32_t out_of_gamut;
 } SpDrive;
+
+// A colour encoded for the display.
+typedef struct SpEncoded {
+  // Device values in [0, 1] (the curves' inverse of `linear`).
+  float device[3];
+  // Linear drive after gamut mapping, in [0, 1].
+  float linear[3];
+  // 1 when the colour was outside the gamut (and was mapped), else 0.
+  int32_t out_of_gamut;
+} SpEncoded;
 
 // One LED channel.
 typedef struct SpChannel {
@@ -183,6 +266,13 @@ typedef struct SpMixStep {
   uint16_t duty[SP_MAX_CHANNELS];
 } SpMixStep;
 
+// A spectrum: span `s` covers `380 + 50 s` to `430 + 50 s` nm and is `Σₖ coef[k][s] Tₖ(t)`,
+// `t = (2λ − (a + b)) / (b − a)` (128 bytes).
+typedef struct SpSpectrum {
+  // `coef[k][s]`: the coefficient of `Tₖ` in span `s`.
+  float coef[SP_SPECTRUM_COEFFS][SP_SPECTRUM_SPANS];
+} SpSpectrum;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -213,7 +303,8 @@ SpStatus sp_xy_to_cct(double x, double y, struct SpCct *out);
 //
 // Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`display`, `target` or `out` NULL);
 // `SP_STATUS_NOT_FINITE` (a NaN or infinite target or display field); `SP_STATUS_DOMAIN` (an
-// unknown `map`, a negative gamma); `SP_STATUS_SINGULAR` (a primary with `y ≤ 0`, or primaries
+// unknown `map`, a negative gamma, a decreasing table); `SP_STATUS_SIZE` (a `table_len` of 1
+// or over `SP_DISPLAY_TABLE_MAX`); `SP_STATUS_SINGULAR` (a primary with `y ≤ 0`, or primaries
 // that do not span XYZ).
 //
 // # Safety
@@ -224,6 +315,52 @@ SpStatus sp_display_drive(const struct SpDisplay *display,
                           int32_t map,
                           uint16_t max,
                           struct SpDrive *out);
+
+// The display model forward: the XYZ (in the display's units, black included) the display
+// emits at device values `rgb[0..3]` in [0, 1] (the core's `Display::device_to_xyz`:
+// `XYZ = M · decode(rgb) + black`).
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`display`, `rgb` or `out` NULL);
+// `SP_STATUS_NOT_FINITE`; `SP_STATUS_DOMAIN` (a device value outside [0, 1], or a display
+// field as for `sp_display_drive`); `SP_STATUS_SIZE`, `SP_STATUS_SINGULAR` as for
+// `sp_display_drive`.
+//
+// # Safety
+// `display` is NULL or points to a valid `SpDisplay`; `rgb` is NULL or points to 3 floats;
+// `out` is NULL or points to a writable `SpXyz`.
+SpStatus sp_display_forward(const struct SpDisplay *display, const float *rgb, struct SpXyz *out);
+
+// The display model inverse: the device values that make `xyz` (in the display's units,
+// black included), the linear drive brought into the gamut by `map` (`SpGamutMap`) first (the
+// core's `Display::encode`).
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`display`, `xyz` or `out` NULL);
+// `SP_STATUS_NOT_FINITE`; `SP_STATUS_DOMAIN` (an unknown `map`, or a display field as for
+// `sp_display_drive`); `SP_STATUS_SIZE`, `SP_STATUS_SINGULAR` as for `sp_display_drive`.
+//
+// # Safety
+// `display` and `xyz` are NULL or point to a valid `SpDisplay` and `SpXyz`; `out` is NULL or
+// points to a writable `SpEncoded`.
+SpStatus sp_display_inverse(const struct SpDisplay *display,
+                            const struct SpXyz *xyz,
+                            int32_t map,
+                            struct SpEncoded *out);
+
+// Reads a calibration blob (`specpoly calibrate export --format c-blob`: magic `SPCB`,
+// version 1, length, the display's fields, CRC-32; docs/c.md) from `blob[0..len]` into
+// `out`. Nothing past `blob[len − 1]` is read; bytes after the blob's own length are ignored
+// (a flash region larger than it). The display is checked as `sp_display_drive` checks it.
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`blob` or `out` NULL);
+// `SP_STATUS_BLOB_VERSION` (not a blob, or of another version); `SP_STATUS_BLOB_TRUNCATED`
+// (shorter than its length field); `SP_STATUS_BLOB_CHECKSUM` (corrupted);
+// `SP_STATUS_NOT_FINITE`, `SP_STATUS_DOMAIN`, `SP_STATUS_SIZE`, `SP_STATUS_SINGULAR` (a
+// well-formed blob of a display the model refuses).
+//
+// # Safety
+// `blob` is NULL or points to `len` readable bytes; `out` is NULL or points to a writable
+// `SpDisplay`.
+SpStatus sp_calibration_load(const uint8_t *blob, size_t len, struct SpDisplay *out);
 
 // Zeroes a mixer: no channels, no fade time, nothing shown.
 //
@@ -275,6 +412,68 @@ SpStatus sp_mix_target_cct(struct SpMixer *m,
 // # Safety
 // `m` and `out` are NULL or point to a valid `SpMixer` and a writable `SpMixStep`.
 SpStatus sp_mix_step(struct SpMixer *m, uint16_t max, struct SpMixStep *out);
+
+// Fits a spectrum to `n` samples (`nm[i]`, `value[i]`) by least squares in each span against
+// their linear interpolant on a ≤ 1 nm grid, the end values held beyond the data (the core's
+// `Spectrum::fit`; f64 normal equations).
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`nm`, `value` or `out` NULL);
+// `SP_STATUS_SIZE` (`n` is 0); `SP_STATUS_NOT_FINITE` (a NaN or infinite sample);
+// `SP_STATUS_DOMAIN` (wavelengths not strictly increasing, or all outside 380–780 nm).
+//
+// # Safety
+// `nm` and `value` are NULL or point to `n` floats each; `out` is NULL or points to a
+// writable `SpSpectrum`.
+SpStatus sp_spectrum_fit(const float *nm, const float *value, size_t n, struct SpSpectrum *out);
+
+// The spectrum's value at `nm` (380–780 nm; on an interior breakpoint the mean of the two
+// spans' values).
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`spectrum` or `out` NULL);
+// `SP_STATUS_NOT_FINITE` (`nm` or a coefficient NaN or infinite); `SP_STATUS_DOMAIN` (`nm`
+// outside 380–780).
+//
+// # Safety
+// `spectrum` is NULL or points to a valid `SpSpectrum`; `out` is NULL or points to a writable
+// float.
+SpStatus sp_spectrum_eval(const struct SpSpectrum *spectrum, float nm, float *out);
+
+// The product `a · b` reduced to cubics in every span (the exact product's coefficients of
+// degree 4 to 6 dropped: the paper's eq. 6). `out` may be `a` or `b`.
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`a`, `b` or `out` NULL);
+// `SP_STATUS_NOT_FINITE` (a NaN or infinite coefficient, or a product that overflows).
+//
+// # Safety
+// `a` and `b` are NULL or point to valid `SpSpectrum`s; `out` is NULL or points to a writable
+// `SpSpectrum` (it may be `a` or `b`).
+SpStatus sp_spectrum_mul(const struct SpSpectrum *a,
+                         const struct SpSpectrum *b,
+                         struct SpSpectrum *out);
+
+// CIE XYZ of `spectrum` (a reflectance) under the light `illuminant` (`SpIlluminant`) seen by
+// `observer` (`SpObserver`), the perfect white at `Y = 100`.
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`spectrum` or `out` NULL);
+// `SP_STATUS_NOT_FINITE` (a NaN or infinite coefficient, or an XYZ that overflows);
+// `SP_STATUS_DOMAIN` (an unknown `observer` or `illuminant`).
+//
+// # Safety
+// `spectrum` is NULL or points to a valid `SpSpectrum`; `out` is NULL or points to a writable
+// `SpXyz`.
+SpStatus sp_spectrum_xyz(const struct SpSpectrum *spectrum,
+                         int32_t observer,
+                         int32_t illuminant,
+                         struct SpXyz *out);
+
+// CIE XYZ of the light `illuminant` itself (the perfect white: `Y = 100`) for `observer`.
+//
+// Returns `SP_STATUS_OK`; `SP_STATUS_NULL_POINTER` (`out` NULL); `SP_STATUS_DOMAIN` (an
+// unknown `observer` or `illuminant`).
+//
+// # Safety
+// `out` is NULL or points to a writable `SpXyz`.
+SpStatus sp_light_white(int32_t observer, int32_t illuminant, struct SpXyz *out);
 
 #ifdef __cplusplus
 }  // extern "C"

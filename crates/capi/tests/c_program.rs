@@ -11,9 +11,12 @@
 //!
 //! The error cases' statuses are written here by hand from the header's documentation.
 
+use specpoly_core::blob::{self, Parts};
 use specpoly_core::light::cct;
 use specpoly_core::light::channels::{Channel, Curve, Goal, Mixer};
-use specpoly_core::{Display, GamutMap, Transfer, Xyz};
+use specpoly_core::{
+    DefaultSpectrum, Display, GamutMap, Illuminant, Moments, Observer, Tabulated, Transfer, Xyz,
+};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -27,6 +30,37 @@ const NO_CCT: i32 = -4;
 const CHANNELS: i32 = -5;
 const OUT_OF_GAMUT: i32 = -6;
 const SINGULAR: i32 = -7;
+const SIZE: i32 = -8;
+const BLOB_VERSION: i32 = -9;
+const BLOB_CHECKSUM: i32 = -10;
+const BLOB_TRUNCATED: i32 = -11;
+
+/// The display the C program reads from its calibration blob: one curve of each kind.
+fn blob_parts() -> Parts {
+    Parts {
+        primaries: [[0.64, 0.33], [0.30, 0.60], [0.15, 0.06]],
+        luminance: [21.26, 71.52, 7.22],
+        black: Xyz::new(0.05, 0.05, 0.06),
+        transfer: [
+            Transfer::Srgb,
+            Transfer::Gamma(2.2),
+            Transfer::table(&[0.0, 0.1, 0.3, 0.6, 1.0]).unwrap(),
+        ],
+    }
+}
+
+/// `calibration_blob.h` for the C program: the blob of [`blob_parts`] as a C array.
+fn blob_header(dir: &Path) {
+    let mut buf = [0u8; blob::MAX_BYTES];
+    let n = blob::write_parts(&blob_parts(), &mut buf).unwrap();
+    let bytes: Vec<String> = buf[..n].iter().map(|b| format!("0x{b:02x}")).collect();
+    let text = format!(
+        "/* written by tests/c_program.rs (specpoly_core::blob::write_parts) */\n\
+         static const uint8_t CALIBRATION_BLOB[{n}] = {{{}}};\n",
+        bytes.join(", ")
+    );
+    std::fs::write(dir.join("calibration_blob.h"), text).unwrap();
+}
 
 /// The lines the C program prints, from the Rust API.
 struct Lines(String);
@@ -205,11 +239,172 @@ fn expected() -> String {
     ] {
         l.line(name, s, "");
     }
+    spectra(&mut l);
+    display_model(&mut l);
     l.0.push_str("end\n");
     l.0
 }
 
-fn crate_dir() -> &'static Path {
+const PATCHES: [&str; 3] = ["dark_skin", "blue_sky", "red"];
+
+fn coefficients(s: &DefaultSpectrum) -> String {
+    floats(s.coefficients().as_flattened())
+}
+
+fn spectra(l: &mut Lines) {
+    let (nm, patches) = crate::spectra::samples();
+    let mut r = Vec::new();
+    for (_, v) in &patches {
+        let s = DefaultSpectrum::fit(&Tabulated::new(&nm, v).unwrap()).unwrap();
+        l.line("spectrum_fit", OK, &coefficients(&s));
+        l.line("spectrum_mul", OK, &coefficients(&s.mul(&s)));
+        r.push(s);
+    }
+    for light in [Illuminant::A, Illuminant::D65, Illuminant::FL11] {
+        for o in Observer::ALL {
+            let m = Moments::<8, 4>::new(o, &light.tabulated());
+            for (i, s) in r.iter().enumerate() {
+                for (sq, s) in [("r", *s), ("r2", s.mul(s))] {
+                    let v = m.xyz(&s);
+                    let name = format!("xyz:{}:{sq}:{}:{}", PATCHES[i], light.name(), o.name());
+                    l.line(&name, OK, &floats(&v.to_array()));
+                }
+            }
+        }
+    }
+    for nm in [380.0, 430.0, 555.5, 600.0, 780.0] {
+        l.line("spectrum_eval", OK, &f(r[2].eval(nm)));
+    }
+    for (name, o, light) in [
+        ("light_white_d65_1931", Observer::Cie1931, Illuminant::D65),
+        ("light_white_fl11_1964", Observer::Cie1964, Illuminant::FL11),
+    ] {
+        let w = Moments::<8, 4>::new(o, &light.tabulated()).white();
+        l.line(name, OK, &floats(&w.to_array()));
+    }
+    for (name, s) in [
+        ("spectrum_fit_0", SIZE),
+        ("spectrum_fit_null", NULL),
+        ("spectrum_fit_nan", NOT_FINITE),
+        ("spectrum_fit_not_increasing", DOMAIN),
+        ("spectrum_mul_null", NULL),
+        ("spectrum_eval_379", DOMAIN),
+        ("spectrum_xyz_observer_2", DOMAIN),
+        ("spectrum_xyz_illuminant_7", DOMAIN),
+        ("spectrum_xyz_nan", NOT_FINITE),
+    ] {
+        l.line(name, s, "");
+    }
+}
+
+/// The C program's `calibration_load` line: the fields of an `SpDisplay` read from a blob
+/// (a curve's code in `gamma`: 0 sRGB, 1 linear, else the exponent; tables after it).
+fn calibration_line(p: &Parts) -> String {
+    let mut v = floats(p.primaries.as_flattened()) + &floats(&p.luminance);
+    v += &floats(&p.black.to_array());
+    let gamma = p.transfer.clone().map(|t| match t {
+        Transfer::Srgb => 0.0,
+        Transfer::Gamma(g) => g,
+        _ => 1.0,
+    });
+    v += &floats(&gamma);
+    for t in &p.transfer {
+        match t {
+            Transfer::Table(t) => v += &(ints([t.len() as i64]) + &floats(t)),
+            _ => v += " 0",
+        }
+    }
+    v
+}
+
+fn display_model(l: &mut Lines) {
+    let p = blob_parts();
+    l.line("calibration_load", OK, &calibration_line(&p));
+    let d = p.clone().display().unwrap();
+    for (name, rgb) in [
+        ("forward_white", [1.0, 1.0, 1.0]),
+        ("forward_black", [0.0, 0.0, 0.0]),
+        ("forward_mid", [0.25, 0.5, 0.75]),
+        ("forward_table_knee", [0.1, 0.9, 0.375]),
+    ] {
+        l.line(name, OK, &floats(&d.device_to_xyz(rgb).to_array()));
+    }
+    for (name, t, map) in [
+        ("inverse_grey", [20.0, 21.0, 23.0], GamutMap::Clip),
+        ("inverse_cyan_clip", [20.0, 40.0, 70.0], GamutMap::Clip),
+        (
+            "inverse_cyan_desaturate",
+            [20.0, 40.0, 70.0],
+            GamutMap::Desaturate,
+        ),
+    ] {
+        let e = d.encode(Xyz::new(t[0], t[1], t[2]), map);
+        let v = floats(&e.device) + &floats(&e.linear) + &ints([e.out_of_gamut as i32]);
+        l.line(name, OK, &v);
+    }
+    let r = d.drive(Xyz::new(30.0, 35.0, 20.0), GamutMap::Clip, 1023);
+    let e = r.emitted;
+    let v = floats(&r.linear)
+        + &ints(r.level)
+        + &floats(&[e.x, e.y, e.z])
+        + &ints([r.out_of_gamut as i32]);
+    l.line("drive_loaded", OK, &v);
+    for (name, s) in [
+        ("forward_above_1", DOMAIN),
+        ("forward_nan", NOT_FINITE),
+        ("forward_null", NULL),
+        ("inverse_bad_map", DOMAIN),
+        ("forward_table_65", SIZE),
+        ("forward_table_1", SIZE),
+    ] {
+        l.line(name, s, "");
+    }
+    l.line("calibration_longer_region", OK, &calibration_line(&p));
+    for (name, s) in [
+        ("calibration_cut", BLOB_TRUNCATED),
+        ("calibration_header_only", BLOB_TRUNCATED),
+        ("calibration_empty", BLOB_TRUNCATED),
+        ("calibration_corrupted", BLOB_CHECKSUM),
+        ("calibration_version_2", BLOB_VERSION),
+        ("calibration_null", NULL),
+        ("calibration_null_out", NULL),
+    ] {
+        l.line(name, s, "");
+    }
+}
+
+/// The C program's XYZ lines against colour-science's (`tests/data/spectra_references.csv`):
+/// within the fit's error, as
+/// `spectra::fitted_spectra_give_colour_sciences_xyz_within_the_fits_error` bounds it (0.02
+/// for a reflectance, 0.05 for its square).
+fn check_references(got: &str, target: &str) {
+    let mut n = 0;
+    for r in include_str!("data/spectra_references.csv").lines().skip(1) {
+        let f: Vec<&str> = r.split(',').collect();
+        let name = format!("xyz:{}:{}:{}:{}", f[0], f[1], f[2], f[3]);
+        let line = got
+            .lines()
+            .find(|l| l.split(' ').next() == Some(name.as_str()))
+            .unwrap_or_else(|| panic!("{target}: no line {name}"));
+        let v: Vec<f32> = line
+            .split(' ')
+            .skip(2)
+            .map(|h| f32::from_bits(u32::from_str_radix(h, 16).unwrap()))
+            .collect();
+        let tol = if f[1] == "r" { 0.02 } else { 0.05 };
+        for (g, w) in v.iter().zip(&f[4..7]) {
+            let w: f32 = w.parse().unwrap();
+            assert!(
+                (g - w).abs() <= tol,
+                "{target}: {name}: {g} vs colour-science {w}"
+            );
+        }
+        n += 1;
+    }
+    assert_eq!(n, 36);
+}
+
+pub(crate) fn crate_dir() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
@@ -240,7 +435,7 @@ fn staticlib(args: &[&str], lib: &[&str]) -> PathBuf {
     p
 }
 
-fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
+pub(crate) fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
     let out = cmd.output().unwrap_or_else(|e| {
         panic!("{what}: {e} (./test.sh installs it; Debian: apt-get install gcc gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm)")
     });
@@ -253,7 +448,7 @@ fn run(cmd: &mut Command, what: &str) -> Vec<u8> {
     out.stdout
 }
 
-fn out_dir(name: &str) -> PathBuf {
+pub(crate) fn out_dir(name: &str) -> PathBuf {
     let d = target_dir().join("capi-c").join(name);
     std::fs::create_dir_all(&d).unwrap();
     d
@@ -262,12 +457,16 @@ fn out_dir(name: &str) -> PathBuf {
 #[test]
 fn the_c_program_on_the_host_gives_the_rust_apis_results_bit_for_bit() {
     let lib = staticlib(&[], &["debug"]);
-    let exe = out_dir("host").join("specpoly_test");
+    let dir = out_dir("host");
+    blob_header(&dir);
+    let exe = dir.join("specpoly_test");
     let c = crate_dir();
     run(
         Command::new("cc")
             .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-O1", "-I"])
             .arg(c.join("include"))
+            .arg("-I")
+            .arg(&dir)
             .arg(c.join("tests/c/specpoly_test.c"))
             .arg(&lib)
             .args(["-lm", "-lpthread", "-ldl", "-o"])
@@ -280,6 +479,7 @@ fn the_c_program_on_the_host_gives_the_rust_apis_results_bit_for_bit() {
         assert_eq!(g, w);
     }
     assert_eq!(got, want);
+    check_references(&got, "host");
 }
 
 /// Whether two result lines agree: the same name, status and integers (±1 for levels), f32
@@ -314,7 +514,9 @@ fn agree(got: &str, want: &str) -> bool {
 /// `tests/c/<dir>/`), runs it under `qemu`, and compares its output with the Rust API's.
 fn on_qemu(target: &str, gcc: &str, flags: &[&str], dir: &str, ld: &str, qemu: &[&str]) {
     let lib = staticlib(&["--release", "--target", target], &[target, "release"]);
-    let elf = out_dir(target).join("specpoly_test.elf");
+    let out = out_dir(target);
+    blob_header(&out);
+    let elf = out.join("specpoly_test.elf");
     let c = crate_dir();
     let arch = c.join("tests/c").join(dir);
     run(
@@ -330,6 +532,8 @@ fn on_qemu(target: &str, gcc: &str, flags: &[&str], dir: &str, ld: &str, qemu: &
             .args(flags)
             .arg("-I")
             .arg(c.join("include"))
+            .arg("-I")
+            .arg(&out)
             .arg("-T")
             .arg(arch.join(ld))
             .arg(arch.join("startup.c"))
@@ -356,6 +560,7 @@ fn on_qemu(target: &str, gcc: &str, flags: &[&str], dir: &str, ld: &str, qemu: &
     for (g, w) in got.lines().zip(want.lines()) {
         assert!(agree(g, w), "{target}: {g}\nRust: {w}");
     }
+    check_references(&got, target);
 }
 
 #[test]

@@ -2,5 +2,7 @@
 //! against the Rust API) and against the Cortex-M4F staticlib under QEMU.
 
 mod c_program;
+mod cpp;
 mod header;
+mod spectra;
 mod total;

@@ -3,7 +3,9 @@
 //! and results written with `SP_STATUS_OK` are finite and in range.
 
 use specpoly_c::cct::{sp_cct_to_xy, sp_xy_to_cct, SpCct, SpXy};
-use specpoly_c::display::{sp_display_drive, SpDisplay, SpDrive, SpXyz};
+use specpoly_c::display::{
+    sp_display_drive, sp_display_forward, sp_display_inverse, SpDisplay, SpDrive, SpEncoded, SpXyz,
+};
 use specpoly_c::mix::{
     sp_mix_step, sp_mix_target_cct, sp_mix_target_xy, SpChannel, SpMixResult, SpMixStep, SpMixer,
     SpPoint,
@@ -178,13 +180,19 @@ fn the_drive_step_is_total() {
         luminance: [21.26, 71.52, 7.22],
         black: [0.0; 3],
         gamma: [0.0, 2.2, 1.0],
+        ..SpDisplay::default()
     };
-    for v in EDGES {
-        let mut bad = [good; 4];
+    for (i, v) in EDGES.into_iter().enumerate() {
+        let mut bad = [good; 6];
         bad[0].primaries[1][1] = v;
         bad[1].luminance[2] = v;
         bad[2].black[0] = v;
         bad[3].gamma[1] = v;
+        // a table: of 0 to 65 points, one of them an edge value
+        bad[4].table_len[2] = [0, 1, 2, 3, 64, 65, u32::MAX][i % 7];
+        bad[4].table[2] = core::array::from_fn(|k| k as f32 / 63.0);
+        bad[5].table_len[0] = 4;
+        bad[5].table[0][..4].copy_from_slice(&[0.0, 0.2, v, 1.0]);
         for d in bad.iter().chain([&good]) {
             for t in [[v, 50.0, 50.0], [20.0, 21.0, 23.0], [v, v, v]] {
                 for map in [-1, 0, 1, 2] {
@@ -201,9 +209,37 @@ fn the_drive_step_is_total() {
                             assert!(r.level.iter().all(|l| *l <= 255));
                             assert!(r.linear.iter().all(|l| (0.0..=1.0).contains(l)));
                         }
-                        SpStatus::NotFinite | SpStatus::Domain | SpStatus::Singular => {}
+                        SpStatus::NotFinite
+                        | SpStatus::Domain
+                        | SpStatus::Singular
+                        | SpStatus::Size => {}
                         s => panic!("{s:?}"),
                     }
+                    let mut e = SpEncoded::default();
+                    // SAFETY: valid pointers.
+                    let s = unsafe { sp_display_inverse(d, &t, map, &mut e) };
+                    match s {
+                        SpStatus::Ok => {
+                            assert!(e.device.iter().all(|l| (0.0..=1.0).contains(l)));
+                            assert!(e.linear.iter().all(|l| (0.0..=1.0).contains(l)));
+                        }
+                        SpStatus::NotFinite
+                        | SpStatus::Domain
+                        | SpStatus::Singular
+                        | SpStatus::Size => {}
+                        s => panic!("{s:?}"),
+                    }
+                }
+                let mut x = SpXyz::default();
+                // SAFETY: `t` is 3 floats; valid pointers.
+                let s = unsafe { sp_display_forward(d, t.as_ptr(), &mut x) };
+                match s {
+                    SpStatus::Ok => assert!(x.x.is_finite() && x.y.is_finite() && x.z.is_finite()),
+                    SpStatus::NotFinite
+                    | SpStatus::Domain
+                    | SpStatus::Singular
+                    | SpStatus::Size => {}
+                    s => panic!("{s:?}"),
                 }
             }
         }

@@ -18,7 +18,7 @@ pub type Target = fn(&[u8]);
 
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpora `fuzz/corpus/NAME/`
 /// call them.
-pub const TARGETS: [(&str, Target); 8] = [
+pub const TARGETS: [(&str, Target); 10] = [
     ("csv", csv),
     ("cgats", cgats),
     ("scene_toml", scene_toml),
@@ -27,6 +27,8 @@ pub const TARGETS: [(&str, Target); 8] = [
     ("protocol_line", protocol_line),
     ("pr655_reply", pr655_reply),
     ("argyll_ti3", argyll_ti3),
+    ("obj_mesh", obj_mesh),
+    ("ply_mesh", ply_mesh),
 ];
 
 fn one_line(e: &dyn std::fmt::Display) {
@@ -198,4 +200,103 @@ pub fn pr655_reply(data: &[u8]) {
             }
         }
     }
+}
+
+/// A file of this process's own in the temporary folder, removed when dropped (the mesh
+/// readers take a path: the `.mtl` beside an OBJ is found through it).
+struct TempFile(std::path::PathBuf);
+
+impl TempFile {
+    fn new(ext: &str, data: &[u8]) -> Option<Self> {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static N: AtomicU64 = AtomicU64::new(0);
+        let dir = std::env::temp_dir().join(format!("specpoly-fuzz-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).ok()?;
+        let path = dir.join(format!("{}.{ext}", N.fetch_add(1, Ordering::Relaxed)));
+        std::fs::write(&path, data).ok()?;
+        Some(Self(path))
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+/// A mesh read by `load` from `data`: either a one-line error, or triangles whose vertices
+/// are finite and within [`specpoly_render::mesh::MAX_COORDINATE`], whose BVH builds, and
+/// which rays from six sides cross at finite distances.
+fn mesh(
+    data: &[u8],
+    ext: &str,
+    load: fn(
+        &std::path::Path,
+        &specpoly_render::mesh::ObjPlacement<'_>,
+        &mut specpoly_render::mesh::TriangleSoup,
+    ) -> specpoly_render::Result<usize>,
+) {
+    use specpoly_render::geometry::{Ray, V3};
+    use specpoly_render::mesh::{ObjPlacement, TriangleSoup, MAX_COORDINATE};
+    let Some(file) = TempFile::new(ext, data) else {
+        return;
+    };
+    let map = std::collections::BTreeMap::new();
+    let place = ObjPlacement {
+        scale: 1.0,
+        translate: V3::new(0.0, 0.0, 0.0),
+        default: 0,
+        map: &map,
+    };
+    let mut soup = TriangleSoup::default();
+    match load(&file.0, &place, &mut soup) {
+        Err(e) => one_line(&crate::error::CliError::from(e)),
+        Ok(n) => {
+            assert_eq!(n, soup.tris.len());
+            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+            for v in soup.tris.iter().flatten() {
+                for (k, c) in [v.x, v.y, v.z].into_iter().enumerate() {
+                    assert!(c.is_finite() && c.abs() <= MAX_COORDINATE, "{v:?}");
+                    lo[k] = lo[k].min(c);
+                    hi[k] = hi[k].max(c);
+                }
+            }
+            let tris = soup.build();
+            if tris.is_empty() {
+                return;
+            }
+            let c = V3::from_array([0, 1, 2].map(|k| lo[k] * 0.5 + hi[k] * 0.5));
+            let r = [0, 1, 2]
+                .map(|k| hi[k] - lo[k])
+                .into_iter()
+                .fold(1.0f32, f32::max);
+            for k in 0..6 {
+                let mut a = [0.0; 3];
+                a[k / 2] = if k % 2 == 0 { 1.0 } else { -1.0 };
+                let d = V3::from_array(a);
+                let ray = Ray {
+                    origin: c - d * (2.0 * r),
+                    dir: d,
+                };
+                if let Some((t, n, _)) = tris.intersect(&ray, f32::INFINITY) {
+                    assert!(t.is_finite() && t >= 0.0, "t = {t}");
+                    assert!(
+                        n.x.is_finite() && n.y.is_finite() && n.z.is_finite(),
+                        "{n:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// An OBJ mesh ([`specpoly_render::mesh::load_obj`], `tobj` underneath): see [`mesh`].
+pub fn obj_mesh(data: &[u8]) {
+    mesh(data, "obj", specpoly_render::mesh::load_obj);
+}
+
+/// A PLY mesh, ASCII or binary ([`specpoly_render::mesh_ply::load_ply`], `ply-rs-bw`
+/// underneath): see [`mesh`].
+pub fn ply_mesh(data: &[u8]) {
+    mesh(data, "ply", specpoly_render::mesh_ply::load_ply);
 }

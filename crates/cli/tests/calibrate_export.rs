@@ -122,3 +122,66 @@ fn rust_source_and_bad_arguments() {
     assert_eq!(out.stderr.trim().lines().count(), 1);
     assert!(!bad.exists());
 }
+
+/// `--format c-blob`: the bytes are the core's blob of the calibration's matrix model (what
+/// the C library's `sp_calibration_load` reads), and the model read back predicts what the
+/// calibration predicts; a model with a channel-interaction lattice is refused, no file made.
+#[test]
+fn c_blob_holds_the_calibrations_display_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml = dir.path().join("acer.toml");
+    let r = cli::run(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        cli::ACER,
+        "--interaction",
+        "none",
+        "-o",
+        s(&toml),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let path = dir.path().join("acer.bin");
+    let out = export(&toml, &["--format", "c-blob"], &path);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stderr.contains("calibration blob version 1"),
+        "{}",
+        out.stderr
+    );
+    let bytes = std::fs::read(&path).unwrap();
+    let display = calibration::load(&toml).unwrap().display();
+    let mut want = [0u8; specpoly_core::blob::MAX_BYTES];
+    let n = specpoly_core::blob::write(&display, &mut want).unwrap();
+    assert_eq!(bytes, want[..n]);
+    let back = specpoly_core::blob::read(&bytes).unwrap();
+    for rgb in [[1.0, 1.0, 1.0], [0.5, 0.25, 0.75], [0.02, 0.9, 0.1]] {
+        let (a, b) = (display.device_to_xyz(rgb), back.device_to_xyz(rgb));
+        for (x, y) in a.to_array().iter().zip(b.to_array()) {
+            assert!(
+                (x - y).abs() <= 1e-4 * x.abs().max(1.0),
+                "{rgb:?}: {a:?} {b:?}"
+            );
+        }
+    }
+
+    // a 3³ lattice, asked for (the default `auto` keeps one too, after a costlier
+    // cross-validation)
+    let lattice = dir.path().join("lattice.toml");
+    let r = cli::run(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        cli::ACER,
+        "--interaction",
+        "3",
+        "-o",
+        s(&lattice),
+    ]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let refused = dir.path().join("refused.bin");
+    let out = export(&lattice, &["--format", "c-blob"], &refused);
+    assert_eq!(out.code, 1, "{}", out.stderr);
+    assert!(out.stderr.contains("channel-interaction"), "{}", out.stderr);
+    assert!(!refused.exists());
+}

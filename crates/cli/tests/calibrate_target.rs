@@ -226,6 +226,17 @@ fn the_cli_writes_the_cal_the_ti3_and_the_calibration() {
         }
     }
     assert!(dir.path().join("warm.native.ti3").exists());
+    // every file written is announced on stderr
+    for f in ["warm.native.ti3", "warm.cal", "warm.ti3", "warm.toml"] {
+        let p = dir.path().join(f);
+        assert!(
+            done.stderr
+                .lines()
+                .any(|l| l.starts_with(&format!("wrote {}", p.display()))),
+            "{f}: {}",
+            done.stderr
+        );
+    }
     // a bad target is a usage error
     let bad = common::calibrate(
         spec,

@@ -549,3 +549,119 @@ fn verify_refuses_the_readings_fit_refuses_with_the_same_message() {
         String::from_utf8_lossy(&o.stdout)
     );
 }
+
+/// The HP laptop's readings with one mixed patch read 2.5 times too bright in X and Z (a
+/// reading taken during a flicker): `calibrate fit` drops it as an outlier and names it "patch
+/// N"; `verify` against the same file says it is the fit's own data, leaves that patch out and
+/// names it the same way (with its line in the file), and `--include-outliers` counts it.
+#[test]
+fn verify_leaves_out_the_fits_outliers_with_one_numbering_and_warns_on_its_own_data() {
+    let dir = tempfile::tempdir().unwrap();
+    let src =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/ti3/hp-hp-elitebook-835-g7_588.ti3");
+    let text = std::fs::read_to_string(&src).unwrap();
+    // the 300th data row (a mixed colour), found independently of our reader
+    let (mut row, mut in_data) = (0usize, false);
+    let (mut bad_line, mut bad_device) = (0usize, [0.0f64; 3]);
+    let mut out = String::new();
+    for (n, line) in text.lines().enumerate() {
+        if line.starts_with("END_DATA") && !line.starts_with("END_DATA_FORMAT") {
+            in_data = false;
+        }
+        let mut f: Vec<String> = line.split_whitespace().map(String::from).collect();
+        if in_data && f.len() >= 7 {
+            row += 1;
+            if row == 300 {
+                (bad_line, bad_device) = (
+                    n + 1,
+                    [1, 2, 3].map(|k| f[k].parse::<f64>().unwrap() / 100.0),
+                );
+                for k in [4, 6] {
+                    f[k] = format!("{:.6}", f[k].parse::<f64>().unwrap() * 2.5);
+                }
+            }
+            out.push_str(&f.join(" "));
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+        if line.starts_with("BEGIN_DATA") && !line.starts_with("BEGIN_DATA_FORMAT") {
+            in_data = true;
+        }
+    }
+    assert!(
+        bad_device.iter().any(|v| *v > 0.0 && *v < 1.0),
+        "{bad_device:?}"
+    );
+    let ti3 = dir.path().join("flicker.ti3");
+    std::fs::write(&ti3, &out).unwrap();
+    let cal = dir.path().join("flicker.toml");
+    let o = specpoly(&[
+        "calibrate",
+        "fit",
+        "--ti3",
+        s(&ti3),
+        "-o",
+        s(&cal),
+        "--interaction",
+        "none",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let fit_text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        fit_text.contains("outlier dropped: patch 300 "),
+        "{fit_text}"
+    );
+
+    // the same file: a warning, the patch left out and named as the fit names it
+    let o = verify(&cal, s(&ti3), &["--json"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("warning:") && err.contains("was fitted from"),
+        "{err}"
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["self_fit"], true);
+    assert_eq!(v["delta_e00"]["patches"], 587);
+    let left = &v["excluded_outliers"][0];
+    assert_eq!(left["patch"], 300);
+    assert_eq!(left["line"], bad_line);
+    assert!(left["delta_e00"].as_f64().unwrap() > 10.0, "{left}");
+    let dev = arr(&left["device"]);
+    assert!(
+        (0..3).all(|k| (dev[k] - bad_device[k]).abs() < 1e-9),
+        "{dev:?}"
+    );
+    assert!(v["patch_results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["patch"] != 300));
+    let o = verify(&cal, s(&ti3), &[]);
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        table.contains(&format!("left out: patch 300 (line {bad_line}:")),
+        "{table}"
+    );
+
+    // counted on request: the bad reading fails the maximum
+    let o = verify(&cal, s(&ti3), &["--include-outliers", "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["delta_e00"]["patches"], 588);
+    assert_eq!(v["worst"]["patch"], 300);
+    assert_eq!(v["worst"]["line"], bad_line);
+
+    // another file (the same readings, one comment more): no warning, nothing left out
+    let other = dir.path().join("other.ti3");
+    std::fs::write(&other, format!("{out}# measured again\n")).unwrap();
+    let o = verify(&cal, s(&other), &["--include-outliers", "--json"]);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("warning:"));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["self_fit"], false);
+    assert_eq!(v["delta_e00"]["patches"], 588);
+    let o = verify(&cal, s(&other), &["--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["excluded_outliers"].as_array().unwrap().len(), 0);
+}

@@ -66,11 +66,12 @@ fn open_live(url: &str, profile: &std::path::Path) -> Browser {
 #[test]
 fn screenshot_shows_the_patch_colour() {
     let dir = tempfile::tempdir().unwrap();
-    let d = WebDisplay::start(0).unwrap();
     for (i, rgb) in [[1.0, 0.5, 0.0], [0.2, 0.4, 0.6], [0.0, 0.0, 0.0]]
         .into_iter()
         .enumerate()
     {
+        // the link works once: a display per browser
+        let d = WebDisplay::start(0).unwrap();
         d.post(rgb);
         let shot = dir.path().join(format!("shot{i}.png"));
         let mut args = common::chromium_args(&dir.path().join(format!("profile{i}")));
@@ -136,13 +137,26 @@ fn calibrate_run_with_chromium_as_the_screen() {
     assert!(ti3.starts_with("CTI3"), "{ti3}");
 }
 
-/// The server's port, from its URL.
+/// The server's port.
 fn port(d: &WebDisplay) -> u16 {
-    d.url()
-        .trim_start_matches("http://127.0.0.1:")
-        .trim_end_matches('/')
-        .parse()
-        .unwrap()
+    d.addr().port()
+}
+
+/// The request target of the printed URL (`/?key=K`).
+fn keyed(d: &WebDisplay) -> String {
+    let url = d.url();
+    url[url.find("/?").expect("a key in the URL")..].to_string()
+}
+
+/// Opens the page with the one-time key; the `Cookie:` header line of the session.
+fn session(d: &WebDisplay) -> String {
+    let page = get(d, &keyed(d), "");
+    assert!(page.starts_with("HTTP/1.1 200"), "{page}");
+    let set = page
+        .lines()
+        .find_map(|l| l.strip_prefix("Set-Cookie: "))
+        .unwrap_or_else(|| panic!("no session cookie: {page}"));
+    format!("Cookie: {}\r\n", set.split(';').next().unwrap())
 }
 
 /// Sends `raw` on a fresh connection and reads the whole reply (at most 5 s).
@@ -162,13 +176,6 @@ fn get(d: &WebDisplay, path: &str, headers: &str) -> String {
         port(d)
     );
     exchange(d, raw.as_bytes())
-}
-
-/// The token written into the served page.
-fn page_token(d: &WebDisplay) -> String {
-    let page = get(d, "/", "");
-    let i = page.find("const token = \"").expect("a token in the page") + 15;
-    page[i..].split('"').next().unwrap().to_string()
 }
 
 #[test]
@@ -199,7 +206,7 @@ fn oversized_headers_and_bodies_are_refused() {
     // just under the limit is served
     let ok = get(
         &d,
-        "/",
+        &keyed(&d),
         &format!("X-Pad: {}\r\n", "a".repeat(MAX_HEAD - 200)),
     );
     assert!(ok.starts_with("HTTP/1.1 200"), "{ok}");
@@ -208,18 +215,19 @@ fn oversized_headers_and_bodies_are_refused() {
 #[test]
 fn connection_cap_holds() {
     let d = WebDisplay::start(0).unwrap();
+    let c = session(&d);
     let idle: Vec<TcpStream> = (0..MAX_CONNECTIONS)
         .map(|_| TcpStream::connect(("127.0.0.1", port(&d))).unwrap())
         .collect();
     // let the server accept them all
     std::thread::sleep(Duration::from_millis(300));
-    let r = get(&d, "/", "");
+    let r = get(&d, "/", &c);
     assert!(r.starts_with("HTTP/1.1 503"), "{r}");
     drop(idle);
     // the slots come back once those clients leave
     let deadline = Instant::now() + Duration::from_secs(3);
     loop {
-        let r = get(&d, "/", "");
+        let r = get(&d, "/", &c);
         if r.starts_with("HTTP/1.1 200") {
             break;
         }
@@ -246,6 +254,8 @@ fn idle_clients_are_cut_off() {
 fn foreign_host_and_origin_are_refused() {
     let d = WebDisplay::start(0).unwrap();
     let p = port(&d);
+    let c = session(&d);
+    // even with the session: the Host and Origin checks come first
     for host in [
         "evil.example".to_string(),
         format!("evil.example:{p}"),
@@ -254,52 +264,89 @@ fn foreign_host_and_origin_are_refused() {
     ] {
         let r = exchange(
             &d,
-            format!("GET / HTTP/1.1\r\nHost: {host}\r\n\r\n").as_bytes(),
+            format!("GET / HTTP/1.1\r\nHost: {host}\r\n{c}\r\n").as_bytes(),
         );
-        assert!(r.starts_with("HTTP/1.1 403"), "{host}: {r}");
+        assert!(
+            r.starts_with("HTTP/1.1 403") && r.contains("Host:"),
+            "{host}: {r}"
+        );
     }
-    let r = exchange(&d, b"GET / HTTP/1.1\r\n\r\n");
+    let r = exchange(&d, format!("GET / HTTP/1.1\r\n{c}\r\n").as_bytes());
     assert!(r.starts_with("HTTP/1.1 403"), "no Host: {r}");
     let r = exchange(
         &d,
-        format!("GET / HTTP/1.1\r\nHost: localhost:{p}\r\n\r\n").as_bytes(),
+        format!("GET / HTTP/1.1\r\nHost: localhost:{p}\r\n{c}\r\n").as_bytes(),
     );
     assert!(r.starts_with("HTTP/1.1 200"), "{r}");
-    let r = get(&d, "/", "Origin: http://evil.example\r\n");
-    assert!(r.starts_with("HTTP/1.1 403"), "{r}");
-    let r = get(&d, "/", &format!("Origin: http://127.0.0.1:{p}\r\n"));
+    let r = get(&d, "/", &format!("Origin: http://evil.example\r\n{c}"));
+    assert!(r.starts_with("HTTP/1.1 403") && r.contains("Origin"), "{r}");
+    let r = get(&d, "/", &format!("Origin: http://127.0.0.1:{p}\r\n{c}"));
     assert!(r.starts_with("HTTP/1.1 200"), "{r}");
 }
 
+/// Another local process (it can connect to the port, but has neither the key nor the
+/// session): `403` on every route, nothing in any reply that would let it in, and the run
+/// stops if it presents a key it read elsewhere before the browser does.
 #[test]
-fn acknowledgements_need_the_token() {
-    let d = WebDisplay::start(0).unwrap();
+fn no_route_without_the_key_or_session() {
+    let mut d = WebDisplay::from_spec(&DeviceSpec::parse("web,wait=5,timeout=5")).unwrap();
     let seq = d.post([0.3, 0.2, 0.1]);
-    let token = page_token(&d);
-    assert_eq!(token.len(), 32);
-    assert_eq!(token, d.token());
-    // another run's token differs
-    assert_ne!(token, WebDisplay::start(0).unwrap().token());
-    let wrong = format!("{:032x}", u128::from_str_radix(&token, 16).unwrap() ^ 1);
+    let url = d.url();
+    let key = url.rsplit("key=").next().unwrap().to_string();
+    assert_eq!(key.len(), 32);
+    // another run's key differs
+    let other = WebDisplay::start(0).unwrap();
+    assert_ne!(keyed(&other), keyed(&d));
+    let wrong = format!("{:032x}", u128::from_str_radix(&key, 16).unwrap() ^ 1);
+    let name = d.cookie_name();
+    let forged = format!("Cookie: {name}={wrong}\r\n");
+    let outsider = |path: &str, extra: &str| {
+        let r = get(&d, path, extra);
+        assert!(r.starts_with("HTTP/1.1 403"), "{path} {extra}: {r}");
+        assert!(
+            !r.contains(&key) && !r.contains("Set-Cookie"),
+            "{path}: {r}"
+        );
+        r
+    };
     for path in [
+        "/".to_string(),
+        "/index.html".to_string(),
+        "/patch".to_string(),
         format!("/shown?seq={seq}"),
-        format!("/shown?seq={seq}&token="),
-        format!("/shown?seq={seq}&token={wrong}"),
-        format!("/shown?seq={seq}&token={token}x"),
-        format!("/shown?seq={seq}&xtoken={token}"),
+        "/favicon.ico".to_string(),
+        "/nope".to_string(),
+        format!("/?key={wrong}"),
+        format!("/?key={key}x"),
+        format!("/?xkey={key}"),
+        format!("/patch?key={key}"),
+        format!("/shown?seq={seq}&key={key}"),
     ] {
-        let r = get(&d, &path, "");
-        assert!(r.starts_with("HTTP/1.1 403"), "{path}: {r}");
-        assert!(!d.wait_shown(seq, Duration::from_millis(20)), "{path}");
+        outsider(&path, "");
+        outsider(&path, &forged);
+        assert!(!d.wait_shown(seq, Duration::from_millis(10)), "{path}");
     }
-    // polling needs it too
-    assert!(get(&d, "/patch", "").starts_with("HTTP/1.1 403"));
-    let r = get(&d, &format!("/patch?token={token}"), "");
+    // the browser opens the link: the page and the session
+    let c = session(&d);
+    assert!(!c.contains(&key));
+    let r = get(&d, "/patch", &c);
     assert!(
         r.starts_with("HTTP/1.1 200") && r.contains("rgb(77,51,26)"),
         "{r}"
     );
-    let r = get(&d, &format!("/shown?seq={seq}&token={token}"), "");
+    // the page never carries the session or the key
+    let page = get(&d, "/", &c);
+    let s = c.trim_end().rsplit('=').next().unwrap();
+    assert!(!page.contains(s) && !page.contains(&key), "{page}");
+    // the session of one run does not open another
+    let r = get(&other, "/patch", &c);
+    assert!(r.starts_with("HTTP/1.1 403"), "{r}");
+    let r = get(&d, &format!("/shown?seq={seq}"), &c);
     assert!(r.starts_with("HTTP/1.1 204"), "{r}");
     assert!(d.wait_shown(seq, Duration::from_millis(20)));
+    // someone else presents the key (read from a browser's command line, say): refused,
+    // and the run stops at its next patch instead of being driven by two clients
+    outsider(&keyed(&d), "");
+    let e = d.show([0.0; 3]).unwrap_err().to_string();
+    assert!(e.contains("opened by a second client"), "{e}");
 }

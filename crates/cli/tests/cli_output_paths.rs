@@ -49,6 +49,50 @@ fn dash_writes_to_stdout() {
     assert!(!Path::new("-").exists());
 }
 
+/// `plot -o -`: the SVG on stdout (the same bytes as the file), `--format png` a PNG; a name
+/// without an image extension needs `--format`, and one that contradicts it is refused.
+#[test]
+fn plot_dash_writes_the_figure_to_stdout() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("f.svg");
+    assert!(plot(s(&file)).status.success());
+    let r = plot("-");
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    assert_eq!(r.stdout, std::fs::read(&file).unwrap());
+    assert!(String::from_utf8_lossy(&r.stderr).contains("wrote stdout"));
+    let r = specpoly(&["plot", "colorchecker#blue", "-o", "-", "--format", "png"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let png = png::Decoder::new(&r.stdout[..]).read_info().unwrap();
+    assert_eq!((png.info().width, png.info().height), (900, 560));
+    let named = dir.path().join("figure");
+    let r = specpoly(&["plot", "colorchecker#blue", "-o", s(&named)]);
+    assert_eq!(r.status.code(), Some(2));
+    let r = specpoly(&[
+        "plot",
+        "colorchecker#blue",
+        "-o",
+        s(&named),
+        "--format",
+        "png",
+    ]);
+    assert!(r.status.success());
+    assert!(png::Decoder::new(std::fs::File::open(&named).unwrap())
+        .read_info()
+        .is_ok());
+    let r = specpoly(&[
+        "plot",
+        "colorchecker#blue",
+        "-o",
+        s(&file),
+        "--format",
+        "png",
+    ]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(2), "{err}");
+    assert!(err.contains("--format says png"), "{err}");
+    assert!(!Path::new("-").exists());
+}
+
 #[test]
 fn render_dash_writes_the_png_to_stdout_and_a_closed_stdout_is_an_error() {
     let r = specpoly(&["render", "example1", "--size", "8x6", "-o", "-"]);

@@ -19,6 +19,13 @@ pub enum Error {
     Singular,
     /// A table (transfer curve) holds too many or too few points for its capacity.
     Capacity,
+    /// Not a calibration blob, or one of a version (or with a curve kind) this build does
+    /// not read.
+    BlobVersion,
+    /// A calibration blob whose checksum does not match its bytes.
+    BlobChecksum,
+    /// A calibration blob shorter than its header says, or whose fields do not fill it.
+    BlobTruncated,
     /// A negative value where only non-negative ones make sense (a sensitivity), at this index.
     Negative(usize),
     /// One of three channels (sensitivities) is zero everywhere: channel 0, 1 or 2.
@@ -37,6 +44,9 @@ impl fmt::Display for Error {
             Error::OutOfRange => write!(f, "data lie outside 380-780 nm"),
             Error::Singular => write!(f, "singular matrix"),
             Error::Capacity => write!(f, "table size outside its capacity"),
+            Error::BlobVersion => write!(f, "not a calibration blob of a version this build reads"),
+            Error::BlobChecksum => write!(f, "calibration blob checksum mismatch (corrupted)"),
+            Error::BlobTruncated => write!(f, "calibration blob cut short"),
             Error::Negative(i) => write!(f, "negative value at sample {i}"),
             Error::ZeroChannel(k) => write!(f, "channel {} is zero everywhere", k + 1),
         }

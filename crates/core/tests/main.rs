@@ -1,6 +1,7 @@
 //! The integration tests of `core`: one test binary, a module per area.
 
 mod accuracy_colorchecker;
+mod blob;
 mod bradford_lindbloom;
 mod ciede2000_sharma;
 mod common;

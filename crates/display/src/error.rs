@@ -123,6 +123,15 @@ pub enum Error {
     /// The C tables need the clip gamut map.
     #[error("cannot write the tables (the C export needs the clip map)")]
     ExportNeedsClip,
+    /// The calibration blob holds the matrix model only (Cowan's: primaries, black, curves).
+    #[error(
+        "the calibration has a channel-interaction lattice, which a c-blob cannot hold \
+         (refit with --interaction none for an additive model)"
+    )]
+    BlobNeedsMatrixModel,
+    /// `c-blob` is bytes, not source text.
+    #[error("the c-blob format is binary: write it with export::blob")]
+    BlobIsBinary,
     /// `--display SPEC` names neither sRGB nor a file.
     #[error("--display `{spec}`: not `sRGB` and no such file")]
     NoSuchDisplay {

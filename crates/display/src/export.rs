@@ -1,12 +1,13 @@
 //! `calibrate export`: a calibration baked into a framebuffer pixel transform
 //! (`specpoly_core::pixel::PanelTransform`: decode table, 3×3 in fixed point, panel
 //! inverse-curve tables, 7.3 KiB) and written as C or Rust source for firmware
-//! (docs/calibration.md, "Framebuffer export").
+//! (docs/calibration.md, "Framebuffer export"), or its display model written as a calibration
+//! blob for the C library (`specpoly_core::blob`, docs/c.md).
 
 use crate::calibration::Calibration;
 use crate::error::{Error, Result};
 use specpoly_core::pixel::{export, Options, PanelTransform, Source, White};
-use specpoly_core::GamutMap;
+use specpoly_core::{blob as core_blob, GamutMap};
 
 /// The source colour space of the firmware's UI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -37,6 +38,9 @@ pub enum Format {
     CTable,
     /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform`.
     Rust,
+    /// The calibration blob (`specpoly_core::blob`: the display model, versioned and
+    /// checksummed) that the C library's `sp_calibration_load` reads: bytes, [`blob`].
+    CBlob,
 }
 
 /// The panel's bits per channel.
@@ -123,7 +127,25 @@ pub fn source_text(p: &PanelTransform, format: Format, name: &str, origin: &str)
     let written = match format {
         Format::CTable => export::write_c(p, name, origin, &mut out),
         Format::Rust => export::write_rust(p, &name.to_ascii_uppercase(), origin, &mut out),
+        Format::CBlob => return Err(Error::BlobIsBinary),
     };
     written.map_err(|_| Error::ExportNeedsClip)?;
     Ok(out)
+}
+
+/// The calibration blob of `cal` (`specpoly_core::blob`, at most `blob::MAX_BYTES`): its
+/// matrix model, Cowan's primaries, black and curves. A calibration with a channel-interaction
+/// lattice is refused ([`Error::BlobNeedsMatrixModel`]): the device would compute other colours
+/// than the model predicts.
+pub fn blob(cal: &Calibration) -> Result<Vec<u8>> {
+    if cal.has_interaction() {
+        return Err(Error::BlobNeedsMatrixModel);
+    }
+    let mut buf = [0u8; core_blob::MAX_BYTES];
+    let n = core_blob::write(&cal.display(), &mut buf).map_err(|error| Error::Model {
+        what: "cannot write the calibration blob".into(),
+        error,
+        hint: String::new(),
+    })?;
+    Ok(buf[..n].to_vec())
 }

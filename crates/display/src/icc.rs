@@ -246,25 +246,29 @@ pub const GRIDS: [usize; 4] = [17, 25, 33, 45];
 /// Grid sides tried for `B2A0` (its error is set by the model's folds at the cube's faces more
 /// than by the grid: measured on the shipped displays, docs/calibration.md).
 pub const B2A_GRIDS: [usize; 2] = [17, 33];
-/// Powers `p` of `A2B0`'s input curves `light^(1/p)` tried on each grid: 1 samples evenly in
-/// light (exact for a model without interaction), 2 puts more nodes in the dark, where the
-/// interaction lattice's cells are.
-pub const A2B_POWERS: [f64; 2] = [1.0, 2.0];
+/// `A2B0`'s input curves tried on each grid ([`a2b_shape`]): −2, piecewise linear in light
+/// with nodes at light `(j/(grid − 1))²` (dense in the dark and exact for the matrix part:
+/// chosen on every shipped display, Little CMS's worst patch 0.33 → 0.22 ΔE00 on the Acer);
+/// `light^(1/p)` with 1, even in light (exact for a model without interaction), and 2, more
+/// nodes in the dark, where the interaction lattice's cells are.
+pub const A2B_POWERS: [f64; 3] = [-2.0, 1.0, 2.0];
 /// `A2B0` is good enough when the table, evaluated as a CMM does, is within this ΔE00 of the
 /// model at every colour of [`check_colours`].
 pub const A2B_CHECK_DE: f64 = 0.05;
 /// `B2A0` is good enough when the model's colour of every [`check_colours`] colour, through the
 /// table and the model again, is within this ΔE00 of itself.
 pub const B2A_CHECK_DE: f64 = 0.05;
-/// `B2A0`'s table holds device values `D ∈ [−B2A_OUT_OFFSET, B2A_OUT_SPAN − B2A_OUT_OFFSET]`
-/// (beyond the cube, so that the table stays smooth across the gamut's boundary) as
-/// `(D + B2A_OUT_OFFSET) / B2A_OUT_SPAN`; its output curves clip to `[0, 1]`.
-pub const B2A_OUT_OFFSET: f64 = 0.5;
-/// See [`B2A_OUT_OFFSET`].
-pub const B2A_OUT_SPAN: f64 = 2.0;
-/// How far beyond `[0, 1]` (in the matrix/TRC model's device values) `B2A0`'s table reaches:
-/// the model's colours at the cube's faces lie that far out when its channels interact.
-pub const B2A_MARGIN: f64 = 0.3;
+/// How far beyond `[0, 1]` (in device linear light) `B2A0`'s table may reach: its nodes outside
+/// the gamut extend the model affinely ([`b2a0`]); nodes further out are clipped there.
+pub const B2A_OUT_REACH: f64 = 0.5;
+/// Margin kept below and above the model's colours in `B2A0`'s input and output ranges.
+pub const B2A_IN_MARGIN: f64 = 0.002;
+/// The most of the other two channels mixed into a channel of `B2A0`'s input (`β`, [`b2a0`]).
+pub const B2A_BETA_MAX: f64 = 0.25;
+/// Rounds of the damped fixed point that extends `B2A0` beyond the gamut ([`b2a_light`]).
+pub const B2A_EXTEND_ROUNDS: usize = 30;
+/// Face colours per side sampled to set `B2A0`'s input range.
+pub const B2A_FACE_STEPS: usize = 32;
 /// Entries of `A2B0`'s input curves.
 pub const LUT_CURVE: usize = 1024;
 /// Entries of `B2A0`'s input and output curves (the most `lut16Type` allows).
@@ -429,25 +433,6 @@ pub fn matrix_part(cal: &Calibration) -> Result<MatrixPart> {
     Ok(MatrixPart { matrix, k, white })
 }
 
-/// The model's transfer curves `t_i`, extended beyond `[0, 1]` by their secants over the last
-/// `delta` at each end (so that a table over an extended device range stays linear there).
-fn t_ext(cal: &Calibration, c: usize, v: f64, delta: f64) -> f64 {
-    let t = |x: f64| {
-        let mut rgb = [0.0; 3];
-        rgb[c] = x;
-        cal.linearise(rgb)[c]
-    };
-    if v < 0.0 {
-        let (a, b) = (t(0.0), t(delta));
-        a + v * (b - a) / delta
-    } else if v > 1.0 {
-        let (a, b) = (t(1.0 - delta), t(1.0));
-        b + (v - 1.0) * (b - a) / delta
-    } else {
-        t(v)
-    }
-}
-
 /// `A2B0` on a `grid`³ table: input curves = each channel's normalised linear light
 /// ([`channel_curves`]), so the table's nodes are even in light; the table holds the model's PCS
 /// XYZ ([`predict_pcs`]) at the device values whose linear light is each node.
@@ -459,7 +444,7 @@ fn a2b0(
 ) -> ([Vec<u16>; 3], Vec<[u16; 3]>) {
     let curves: [Vec<f64>; 3] = curves
         .each_ref()
-        .map(|c| c.iter().map(|v| v.powf(1.0 / power)).collect());
+        .map(|c| c.iter().map(|v| a2b_shape(*v, power, grid)).collect());
     let curves32 = curves
         .each_ref()
         .map(|c| c.iter().map(|v| *v as f32).collect::<Vec<_>>());
@@ -476,6 +461,24 @@ fn a2b0(
         }
     }
     (a_in, clut)
+}
+
+/// `A2B0`'s input coordinate for normalised light `v`: `v^(1/p)` for `p > 0`; for `p < 0`,
+/// piecewise linear in light with grid node `j` at light `(j/(grid − 1))^|p|` (dense in the
+/// dark, yet a function affine in light — the matrix part, black included — is reproduced
+/// exactly between nodes).
+fn a2b_shape(v: f64, p: f64, grid: usize) -> f64 {
+    if p > 0.0 {
+        return v.powf(1.0 / p);
+    }
+    let top = (grid - 1) as f64;
+    let node = |j: f64| (j / top).powf(-p);
+    // the node below v: (v^(1/|p|) · top), floored
+    let j = (v.max(0.0).powf(1.0 / -p) * top)
+        .floor()
+        .clamp(0.0, top - 1.0);
+    let (a, b) = (node(j), node(j + 1.0));
+    ((j + ((v - a) / (b - a)).clamp(0.0, 1.0)) / top).clamp(0.0, 1.0)
 }
 
 /// `A2B0` evaluated as a CMM does: PCS XYZ.
@@ -505,181 +508,238 @@ impl B2a {
     }
 }
 
-/// `B2A0` on a `grid`³ table (PCS XYZ → device).
+/// `B2A0` on a `grid`³ table (PCS XYZ → device), every node solved by the core's inverse
+/// ([`specpoly_core::DisplayModel::inverse_with`]).
 ///
-/// The table's matrix (applied by CMMs to PCS XYZ input) is the inverse of the matrix/TRC
-/// part's PCS matrix, so it gives each channel's `τ_i` ([`MatrixPart`]) scaled into `[0, 1]`;
-/// the input curves turn that into the matrix/TRC model's device value `d`, extended by one
-/// node beyond `[0, 1]` at each end (`d ∈ [−δ, 1 + δ]`, `δ = 1/(grid − 3)`, so that `d = 0`
-/// and `d = 1` are nodes and `τ` is extended linearly by its secants over `δ`); the table
-/// holds the device values `D` whose model colour is the node's colour, solved in the same
-/// extended range (`f(D) = M·t(D) + K + L(clamp(D))`, Newton's method from `D = d`), and the
-/// output curves clip `D` to `[0, 1]`. For a model without channel interaction the table is
-/// the identity (`D = d`), so the inverse is exact up to 16-bit rounding; with interaction the
-/// table holds the lattice's correction, a small smooth function of `d`.
+/// A CMM evaluates `lut16Type` as matrix → input curves → table (trilinear) → output curves.
+/// With `τ = M_pcs⁻¹ · PCS` the matrix/TRC part's linear light ([`MatrixPart`]):
+///
+/// - **matrix**: `u = diag(1/top) · B · τ` with `B = I + diag(β)(J − I)` (each channel mixed
+///   with `β_c` of the other two): a lut16 matrix has no offset and its input curves clip below
+///   0, yet where the channels interact the gamut's faces lie a little outside the matrix/TRC
+///   part's cube (`τ_c` down to −0.02 on the shipped displays); `β_c` is the least that keeps
+///   `u_c ≥ 0` over the model's colours on the cube's faces, `top_c` the largest `u_c` there;
+/// - **input curves**: piecewise linear, grid node `j` at `u = (j/(grid − 1))²` (rounded to the
+///   curve's own samples, so the CMM's interpolation of the curve is exact): nodes dense in the
+///   dark, and a function affine in `u` is reproduced exactly by the table;
+/// - **table**: each node's device linear light `T = M⁻¹ (XYZ − K − L(D))`, `D` the core
+///   inverse's device values for the node's colour (from a neighbour's solution, the global
+///   search when the neighbour was shown). Inside the gamut `T = t(D)`; outside it `D` is the
+///   nearest the cube allows and `T` extends the model affinely, so the table stays smooth
+///   across the gamut's boundary. `T` is affine in `u` for a model without interaction (exact
+///   up to 16-bit rounding); with interaction the table holds the lattice's term. Storing `D`
+///   instead (as before) put each curve's root singularity `D ∝ T^(1/γ)` inside the table's
+///   cells wherever the lattice moves a face off the grid: up to 131 codes back;
+/// - **output curves**: `D = t⁻¹(T)` (the core's curve inverse, `T` clipped to `[0, 1]`),
+///   [`B2A_CURVE`] entries, the table's `T ∈ [−O, S − O]` as `(T + O) / S`.
 fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
-    // margin nodes at each end: the fewest that reach B2A_MARGIN beyond the cube
-    let margin = (1..grid / 2)
-        .find(|n| *n as f64 / (grid - 1 - 2 * n) as f64 >= B2A_MARGIN)
-        .unwrap_or(1);
-    let delta = 1.0 / (grid - 1 - 2 * margin) as f64;
-    let reach = margin as f64 * delta;
+    let singular = || Error::Unprofilable("the calibration's primaries are singular");
     let w = part.white;
     let c_pcs = chad(w);
     let mpcs = c_pcs.mul(&Mat3(part.matrix.map(|r| r.map(|v| v / w[1]))));
-    let k = part.k;
-    let tau = |c: usize, v: f64| (t_ext(cal, c, v, delta) + k[c]) / (1.0 + k[c]);
-    // the input range of each channel's τ, 0 … τ(1 + δ)
-    let top = [0, 1, 2].map(|c| tau(c, 1.0 + reach));
-    let inv = mpcs
-        .inverse()
-        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
+    let mw_inv = Mat3(part.matrix).inverse().map_err(|_| singular())?;
+    // β and top from the model's colours on the cube's faces
+    let faces = face_colours(B2A_FACE_STEPS);
+    let taus: Vec<[f64; 3]> = faces
+        .iter()
+        .map(|d| mw_inv.apply(cal.predict(*d)))
+        .collect();
+    let beta = [0, 1, 2].map(|c| {
+        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
+        taus.iter()
+            .filter(|t| t[c] < B2A_IN_MARGIN)
+            .map(|t| (B2A_IN_MARGIN - t[c]) / (t[a] + t[b]).max(1e-6))
+            .fold(0.0f64, f64::max)
+            .min(B2A_BETA_MAX)
+    });
+    let mix = Mat3([0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { beta[r] })));
+    let top = [0, 1, 2].map(|c| {
+        taus.iter().map(|t| mix.apply(*t)[c]).fold(1.0f64, f64::max) * (1.0 + B2A_IN_MARGIN)
+    });
+    let inv = mpcs.inverse().map_err(|_| singular())?;
+    let a = Mat3([0, 1, 2].map(|r| mix.0[r].map(|v| v / top[r]))).mul(&inv);
     let enc = 65535.0 / 32768.0;
-    let matrix: [[i32; 3]; 3] =
-        [0, 1, 2].map(|r| [0, 1, 2].map(|c| (inv.0[r][c] * enc / top[r] * 65536.0).round() as i32));
-    // what the stored matrix maps back: the node's PCS from its scaled τ
-    let stored = Mat3(matrix.map(|r| r.map(|e| e as f64 / 65536.0)));
-    let back = stored
+    let matrix: [[i32; 3]; 3] = a.0.map(|r| r.map(|v| (v * enc * 65536.0).round() as i32));
+    // what the stored matrix maps back: a node's PCS from its u
+    let back = Mat3(matrix.map(|r| r.map(|e| e as f64 / 65536.0)))
         .inverse()
-        .map_err(|_| Error::Unprofilable("the calibration's primaries are singular"))?;
-    // input curves: x = τ / top → (d + δ) / (1 + 2δ), d the extended device value
-    let span = 1.0 + 2.0 * reach;
-    let inputs = [0, 1, 2].map(|c| {
-        let lo = tau(c, -reach);
-        (0..B2A_CURVE)
-            .map(|i| {
-                let u = i as f64 / (B2A_CURVE - 1) as f64 * top[c];
-                let d = if u <= lo {
-                    -reach
-                } else {
-                    // bisection on the monotone τ (42 halvings: below f64's step of the range)
-                    let (mut a, mut b) = (-reach, 1.0 + reach);
-                    for _ in 0..42 {
-                        let m = 0.5 * (a + b);
-                        if tau(c, m) < u {
-                            a = m;
-                        } else {
-                            b = m;
-                        }
-                    }
-                    0.5 * (a + b)
-                };
-                u16_unit((d + reach) / span)
-            })
-            .collect::<Vec<_>>()
-    });
-    let outputs = [0, 1, 2].map(|_| {
-        (0..B2A_CURVE)
-            .map(|i| u16_unit(i as f64 / (B2A_CURVE - 1) as f64 * B2A_OUT_SPAN - B2A_OUT_OFFSET))
-            .collect::<Vec<_>>()
-    });
-    // the model in the extended range
-    let m = cal.matrix();
-    let black = cal.data().black;
-    let lattice = cal.model().interaction();
-    let f = |d: [f64; 3]| {
-        let t = [0, 1, 2].map(|c| t_ext(cal, c, d[c], delta));
-        let l = lattice.map_or([0.0; 3], |l| {
-            l.eval(d.map(|v| v.clamp(0.0, 1.0) as f32)).map(f64::from)
-        });
-        [0, 1, 2].map(|r| m[r][0] * t[0] + m[r][1] * t[1] + m[r][2] * t[2] + black[r] + l[r])
-    };
+        .map_err(|_| singular())?;
+    // the input curves: node j at u_j, on the curve's own samples
+    let last = (B2A_CURVE - 1) as f64;
+    let mut at = vec![0usize; grid];
+    for (j, u) in at.iter_mut().enumerate() {
+        let f = j as f64 / (grid - 1) as f64;
+        *u = (f * f * last).round() as usize;
+    }
+    for j in 1..grid {
+        at[j] = at[j].max(at[j - 1] + 1);
+    }
+    if at[grid - 1] > B2A_CURVE - 1 {
+        return Err(Error::Unprofilable(
+            "the B2A0 grid is finer than its curves",
+        ));
+    }
+    let input: Vec<u16> = (0..B2A_CURVE)
+        .map(|i| {
+            let j = at.partition_point(|&a| a <= i).clamp(1, grid - 1) - 1;
+            let f = (i as f64 - at[j] as f64) / (at[j + 1] - at[j]) as f64;
+            u16_unit((j as f64 + f.min(1.0)) / (grid - 1) as f64)
+        })
+        .collect();
+    let node_u = |j: usize| at[j] as f64 / last;
+    // the nodes
     let unchad = c_pcs
         .inverse()
         .map_err(|_| Error::Unprofilable("the white is degenerate"))?;
-    let node_d = |j: usize| (j as f64 - margin as f64) * delta;
-    let mut clut = Vec::with_capacity(grid.pow(3));
-    for r in 0..grid {
-        for g in 0..grid {
-            for b in 0..grid {
-                let d = [node_d(r), node_d(g), node_d(b)];
-                let u = [0, 1, 2].map(|c| tau(c, d[c]) / top[c]);
-                let pcs = back.apply(u).map(|v| v * enc);
-                let want = unchad.apply(pcs).map(|v| v * w[1]);
-                let sol = solve(&f, want, d, w[1]);
-                clut.push(sol.map(|v| u16_unit((v + B2A_OUT_OFFSET) / B2A_OUT_SPAN)));
-            }
-        }
-    }
+    let want = |n: [usize; 3]| {
+        let pcs = back.apply(n.map(node_u)).map(|v| v * enc);
+        unchad.apply(pcs).map(|v| v * w[1])
+    };
+    // the global search only for nodes inside the matrix/TRC part's cube (outside it the
+    // colour is, but for the lattice's small reach, outside the gamut too)
+    let inside = |n: [usize; 3]| {
+        mw_inv
+            .apply(want(n))
+            .iter()
+            .all(|v| (0.0..=1.0).contains(v))
+    };
+    let light = b2a_light(cal, grid, &want, &inside);
+    // the output curves
+    let (lo, hi) = light
+        .iter()
+        .flatten()
+        .fold((0.0f64, 1.0f64), |(l, h), v| (l.min(*v), h.max(*v)));
+    let offset = (-lo + B2A_IN_MARGIN).min(B2A_OUT_REACH);
+    let span = (hi + B2A_IN_MARGIN).min(1.0 + B2A_OUT_REACH) + offset;
+    let t = cal.model().display().transfer();
+    let outputs = [0, 1, 2].map(|c| {
+        (0..B2A_CURVE)
+            .map(|i| {
+                let l = i as f64 / last * span - offset;
+                u16_unit(t[c].encode(l.clamp(0.0, 1.0) as f32) as f64)
+            })
+            .collect::<Vec<_>>()
+    });
+    let clut = light
+        .iter()
+        .map(|v| v.map(|l| u16_unit((l + offset) / span)))
+        .collect();
     Ok(B2a {
         matrix,
-        inputs,
+        inputs: [input.clone(), input.clone(), input],
         grid,
         clut,
         outputs,
     })
 }
 
-/// Levenberg–Marquardt for `f(x) = want` from `x` (central-difference Jacobian over
-/// [`SECANT`], damping raised until the residual falls, at most 40 iterations): the best point.
-fn solve(
-    f: &impl Fn([f64; 3]) -> [f64; 3],
-    want: [f64; 3],
-    mut x: [f64; 3],
-    scale: f64,
-) -> [f64; 3] {
-    let res = |x: [f64; 3]| {
-        let p = f(x);
-        [0, 1, 2].map(|r| (p[r] - want[r]) / scale)
+/// Each `B2A0` node's device linear light `T = M⁻¹ (XYZ − K − L(D))` ([`b2a0`]), `want` the
+/// node's XYZ (the calibration's units), nodes red slowest. Solved by the core's inverse in
+/// red slices on up to 8 threads, each slice from the white corner down, each node from its
+/// neighbour's solution (continuation: where the model folds, neighbours stay on one branch),
+/// the global search only next to a node that was shown and for a node `inside` the matrix/TRC
+/// part's cube. A node outside the gamut (the
+/// inverse's nearest, not exact) takes the fixed point of `T ← M⁻¹ (XYZ − K − L(t⁻¹(T)))`,
+/// `t⁻¹` clamping to the cube (damped by ½, [`B2A_EXTEND_ROUNDS`] rounds, kept when it
+/// settles; else the nearest's): the lattice held at the face the colour lies beyond, so the
+/// extension follows the model across the boundary rather than the nearest point's moves
+/// (measured: colours more than 5 codes off on the Lenovo 431 → 243 of 140 608).
+fn b2a_light(
+    cal: &Calibration,
+    grid: usize,
+    want: &(impl Fn([usize; 3]) -> [f64; 3] + Sync),
+    inside: &(impl Fn([usize; 3]) -> bool + Sync),
+) -> Vec<[f64; 3]> {
+    use specpoly_core::InverseOptions;
+    let model = cal.model();
+    let m_inv = Mat3(cal.matrix()).inverse().ok();
+    let black = cal.data().black;
+    let lattice = model.interaction();
+    let curves = model.display().transfer();
+    let solve_slice = |r: usize| {
+        let mut out = vec![[0.0f64; 3]; grid * grid];
+        let mut row_start: Option<([f32; 3], bool)> = None;
+        for g in (0..grid).rev() {
+            let mut prev = row_start;
+            for b in (0..grid).rev() {
+                let x = want([r, g, b]);
+                let s = model.inverse_with(
+                    Xyz::from_array(x.map(|v| v as f32)),
+                    InverseOptions {
+                        start: prev.map(|p| p.0),
+                        global: prev.is_none_or(|p| p.1) && inside([r, g, b]),
+                    },
+                );
+                let d = s.device;
+                let l = lattice.map_or([0.0; 3], |l| l.eval(d).map(f64::from));
+                let rest = [0, 1, 2].map(|k| x[k] - black[k] - l[k]);
+                let mut tl = match &m_inv {
+                    Some(mi) => mi.apply(rest),
+                    None => cal.linearise(d.map(f64::from)),
+                };
+                // outside the gamut: the lattice at the clamped device values of `T` itself
+                if let (Some(mi), false, Some(lat)) = (&m_inv, s.exact, lattice) {
+                    let mut cur = tl;
+                    let mut converged = false;
+                    for _ in 0..B2A_EXTEND_ROUNDS {
+                        let dd = [0, 1, 2].map(|c| curves[c].encode(cur[c] as f32));
+                        let l = lat.eval(dd).map(f64::from);
+                        let next = mi.apply([0, 1, 2].map(|k| x[k] - black[k] - l[k]));
+                        let step = [0, 1, 2].map(|c| 0.5 * (next[c] - cur[c]));
+                        cur = [0, 1, 2].map(|c| cur[c] + step[c]);
+                        converged = step.iter().all(|v| v.abs() < 1e-7);
+                    }
+                    if converged {
+                        tl = cur;
+                    }
+                }
+                out[g * grid + b] = tl;
+                prev = Some((d, s.exact));
+                if b == grid - 1 {
+                    row_start = prev;
+                }
+            }
+        }
+        out
     };
-    let norm = |r: [f64; 3]| r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    let mut r = res(x);
-    let mut cost = norm(r);
-    let mut mu = 1e-4;
-    for _ in 0..40 {
-        if cost < 1e-18 {
-            break;
-        }
-        let mut j = [[0.0; 3]; 3];
-        for c in 0..3 {
-            let (mut lo, mut hi) = (x, x);
-            lo[c] -= SECANT;
-            hi[c] += SECANT;
-            let (a, b) = (res(lo), res(hi));
-            for row in 0..3 {
-                j[row][c] = (b[row] - a[row]) / (2.0 * SECANT);
-            }
-        }
-        let mut a = [[0.0; 3]; 3];
-        let mut g = [0.0; 3];
-        for p in 0..3 {
-            for q in 0..3 {
-                a[p][q] = (0..3).map(|k| j[k][p] * j[k][q]).sum();
-            }
-            g[p] = (0..3).map(|k| j[k][p] * r[k]).sum();
-        }
-        let trace = a[0][0] + a[1][1] + a[2][2];
-        let mut moved = false;
-        for _ in 0..12 {
-            let mut m = a;
-            for p in 0..3 {
-                m[p][p] += mu * (a[p][p] + 1e-6 * trace) + 1e-30;
-            }
-            let Ok(mi) = Mat3(m).inverse() else {
-                mu *= 10.0;
-                continue;
-            };
-            let step = mi.apply(g);
-            let y = [0, 1, 2].map(|c| x[c] - step[c]);
-            let ry = res(y);
-            let cy = norm(ry);
-            if cy < cost {
-                (x, r, cost) = (y, ry, cy);
-                mu = (mu / 10.0).max(1e-12);
-                moved = true;
-                break;
-            }
-            mu *= 10.0;
-        }
-        if !moved {
-            break;
-        }
-    }
-    x
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, 8);
+    let slices: Vec<Vec<[f64; 3]>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let solve_slice = &solve_slice;
+                s.spawn(move || {
+                    (0..grid)
+                        .filter(|r| r % threads == k)
+                        .map(|r| (r, solve_slice(r)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        let mut all: Vec<(usize, Vec<[f64; 3]>)> = handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect();
+        all.sort_by_key(|p| p.0);
+        all.into_iter().map(|p| p.1).collect()
+    });
+    slices.into_iter().flatten().collect()
 }
 
-/// The step of [`solve`]'s central differences (device units).
-const SECANT: f64 = 1e-4;
+/// Device values on the cube's six faces, `steps + 1` a side.
+fn face_colours(steps: usize) -> Vec<[f64; 3]> {
+    let mut out = Vec::with_capacity(6 * (steps + 1) * (steps + 1));
+    for i in 0..=steps {
+        for j in 0..=steps {
+            let (a, b) = (i as f64 / steps as f64, j as f64 / steps as f64);
+            for v in [0.0, 1.0] {
+                out.extend([[v, a, b], [a, v, b], [a, b, v]]);
+            }
+        }
+    }
+    out
+}
 
 /// The round trip's worst error over [`check_colours`]: the model's PCS through `b2a`, and
 /// the model's colour of the device values it gives against that PCS (ΔE00: codes in a flat

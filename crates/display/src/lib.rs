@@ -8,8 +8,8 @@
 //!
 //! Layers, each module depending only on those before it in this list (no module cycles):
 //! [`error`] and [`time`] (the UTC stamps); [`lattice`]; [`video_lut`]; [`calibration`];
-//! [`target`] and [`export`] on a calibration; [`icc`] (its B2A0 table uses [`target`]'s
-//! inverse); [`icc_read`]; [`spec`], the one loader over all the readers; [`lut3d`], 3D LUTs
+//! [`target`] and [`export`] on a calibration; [`icc`] (its B2A0 table solved by the core's
+//! inverse, as everything else); [`icc_read`]; [`spec`], the one loader over all the readers; [`lut3d`], 3D LUTs
 //! from a source colour space to any display model (the core's `DisplayModel`, as [`spec`]
 //! gives it), and their files.
 //!

@@ -38,6 +38,7 @@
 
 // leaves
 pub mod builtin;
+pub mod bvh_build;
 pub mod cpu_time;
 pub mod error;
 pub mod geometry;

@@ -1,6 +1,7 @@
 //! Triangle meshes: OBJ files (read with `tobj`), quads written in the scene file, and one
-//! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8;
-//! `bench/bvh-compare` measures it against the `bvh` crate, docs/performance.md).
+//! bounding volume hierarchy over every triangle of the scene (`obvhs`' compressed wide BVH8,
+//! traversed by `obvhs`, over a binary tree built by [`crate::bvh_build`]; `bench/bvh-compare`
+//! measures `obvhs` against the `bvh` crate, docs/performance.md).
 //!
 //! Triangles are one-sided for nothing: a hit reports a unit normal and the tracers flip it toward
 //! the viewer as for every other shape. A triangle without vertex normals reports its geometric
@@ -20,7 +21,6 @@ use obvhs::ray::{Ray as BvhRay, RayHit};
 use obvhs::triangle::Triangle;
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::time::Duration;
 
 /// At most this many triangles per scene (bounds memory on absurd input).
 pub const MAX_TRIANGLES: usize = 20_000_000;
@@ -196,11 +196,11 @@ impl TriangleSoup {
                 v2: a3(t[2]),
             })
             .collect();
-        let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
-            &input,
-            obvhs::BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
+        // the binary tree by binned SAH (bounded work on any mesh: crate::bvh_build), then
+        // `obvhs`' 8-wide nodes with up to three triangles per leaf, children ordered
+        let bounds: Vec<obvhs::aabb::Aabb> = input.iter().map(padded_bounds).collect();
+        let bvh2 = crate::bvh_build::binned_sah(&bounds);
+        let bvh = obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh2, 3, true, false);
         // reorder into BVH order so a leaf's triangles are contiguous
         let order: Vec<usize> = bvh.primitive_indices.iter().map(|&i| i as usize).collect();
         let tris: Vec<Triangle> = order.iter().map(|&i| input[i]).collect();
@@ -295,6 +295,17 @@ impl Triangles {
             }
         });
     }
+}
+
+/// A triangle's bounds widened by 2⁻²⁰ of its largest coordinate: the ray–triangle test is not
+/// watertight (Möller–Trumbore in `f32`), and a ray through a shared edge can be found inside
+/// a triangle while it passes just outside that triangle's exact bounds (measured: 1.3e-8 at
+/// coordinates near 4); the margin keeps such hits inside the box that leads to them.
+fn padded_bounds(t: &Triangle) -> obvhs::aabb::Aabb {
+    let b = t.aabb();
+    let scale = b.min.abs().max(b.max.abs()).max_element();
+    let pad = Vec3A::splat(scale * (1.0 / (1u32 << 20) as f32) + f32::MIN_POSITIVE);
+    obvhs::aabb::Aabb::new(b.min - pad, b.max + pad)
 }
 
 /// Where an OBJ file's triangles go: its transform and its materials.

@@ -42,6 +42,14 @@ fn indices(p: Option<&Property>) -> Option<Vec<i64>> {
     })
 }
 
+/// The first line of a `ply-rs-bw` error: the rest is the parser's debug dump (the offending
+/// line quoted with its newline, the grammar's expected set), which would break the one-line
+/// error rule.
+fn first_line(e: &dyn std::fmt::Display) -> String {
+    let s = e.to_string();
+    s.lines().next().unwrap_or("").trim_end().to_string()
+}
+
 /// Reads a PLY file into `soup` with material `place.default`; returns how many triangles it
 /// added.
 pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
@@ -51,7 +59,7 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
     let parser = Parser::<DefaultElement>::new();
     let header = parser
         .read_header(&mut r)
-        .map_err(|e| bad(format!("not a readable PLY header: {e}")))?;
+        .map_err(|e| bad(format!("not a readable PLY header: {}", first_line(&e))))?;
     for (name, e) in &header.elements {
         // every element takes at least one byte in any encoding
         if e.count > bytes.len() {
@@ -64,7 +72,7 @@ pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) 
     }
     let payload = parser
         .read_payload(&mut r, &header)
-        .map_err(|e| bad(format!("not a readable PLY file: {e}")))?;
+        .map_err(|e| bad(format!("not a readable PLY file: {}", first_line(&e))))?;
     let empty = Vec::new();
     let verts = payload.get("vertex").unwrap_or(&empty);
     let mut v = Vec::with_capacity(verts.len());

@@ -7,17 +7,26 @@
 //!
 //! | path | reply |
 //! |---|---|
-//! | `GET /` | the page: its background is the current patch, and a script polls `/patch` every 50 ms |
-//! | `GET /patch?token=T` | `{"seq":N,"rgb":[r,g,b],"css":"rgb(R,G,B)"}`: the patch number and colour (8-bit in `css`) |
-//! | `GET /shown?seq=N&token=T` | the page's acknowledgement that patch `N` is painted (sent two animation frames after setting the background) |
+//! | `GET /?key=K` | the page, once: its background is the current patch, and a script polls `/patch` every 50 ms |
+//! | `GET /patch` | `{"seq":N,"rgb":[r,g,b],"css":"rgb(R,G,B)"}`: the patch number and colour (8-bit in `css`) |
+//! | `GET /shown?seq=N` | the page's acknowledgement that patch `N` is painted (sent two animation frames after setting the background) |
+//!
+//! **Who may drive the run.** The printed URL carries `K`, a random 128-bit key of this run
+//! that works once: the first request with it is answered with the page and a session cookie
+//! (`specpoly_PORT=S`, 128 random bits, `HttpOnly`, `SameSite=Strict`), and every route,
+//! the page included, needs that cookie from then on. The key appears on the run's terminal
+//! only; the session only in that one answer's `Set-Cookie`, never in a page or script. A
+//! second use of the key means another client has it: it is refused and the run stops
+//! ([`PatchDisplayError::KeyReused`]) rather than record readings for patches nobody saw. So a
+//! local process of another user can connect, but every request it makes gets `403` and
+//! learns nothing; if it reads the key before the browser uses it (e.g. from a browser's
+//! command line in `/proc`), the run stops instead of being driven. See `docs/reliability.md`.
 //!
 //! Limits (see `docs/reliability.md`): the request line and headers at most [`MAX_HEAD`]
 //! bytes (else `431`), read within [`HEAD_DEADLINE`]; no request bodies (`413`); GET only
 //! (`405`); at most [`MAX_CONNECTIONS`] connections at once (else `503`); `Host` must be
 //! `127.0.0.1:PORT` or `localhost:PORT` and `Origin`, when sent, `http://` one of those (else
-//! `403`: DNS rebinding and other sites' pages); `T` is a random 128-bit token of this run,
-//! written into the page, and `/patch` or `/shown` without it get `403` (a blind request —
-//! another site's `<img>`, a script that never loaded the page — cannot advance the run).
+//! `403`: DNS rebinding and other sites' pages).
 //!
 //! [`WebDisplay::show`] returns once the page acknowledged the patch: it waits `wait` seconds
 //! (default 300) for a browser to show the first patch and `timeout` seconds (default 10) for
@@ -61,8 +70,13 @@ struct Shared {
     active: AtomicUsize,
     /// The port listened on (for the `Host` / `Origin` checks).
     port: u16,
-    /// This run's token, 32 hex digits.
-    token: String,
+    /// This run's one-time key (32 hex digits): the URL's `key=`.
+    key: String,
+    /// The session the key opened (32 hex digits): the cookie every route needs.
+    session: String,
+    /// Whether the key was used; a second use stops the run.
+    key_used: AtomicBool,
+    key_reused: AtomicBool,
 }
 
 impl Shared {
@@ -116,7 +130,8 @@ impl WebDisplay {
         let addr = listener.local_addr().map_err(PatchDisplayError::Socket)?;
         let shared = Arc::new(Shared {
             port: addr.port(),
-            token: new_token(),
+            key: new_secret(),
+            session: new_secret(),
             ..Shared::default()
         });
         let s = shared.clone();
@@ -174,9 +189,21 @@ impl WebDisplay {
         Ok(d)
     }
 
-    /// The page's URL.
+    /// The page's URL with this run's one-time key: open it once, in the browser on the
+    /// display.
     pub fn url(&self) -> String {
-        format!("http://{}/", self.addr)
+        format!("http://{}/?key={}", self.addr, self.shared.key)
+    }
+
+    /// The address served (`127.0.0.1:PORT`).
+    pub fn addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// The cookie's name, `specpoly_PORT` (cookies are shared by all ports of a host; the
+    /// port keeps two runs' sessions apart).
+    pub fn cookie_name(&self) -> String {
+        cookie_name(self.shared.port)
     }
 
     /// Sets the patch without waiting for the page (returns its sequence number).
@@ -188,11 +215,15 @@ impl WebDisplay {
         s.seq
     }
 
-    /// Waits until the page acknowledged patch `seq`, at most `timeout`.
+    /// Waits until the page acknowledged patch `seq`, at most `timeout` (false: not shown,
+    /// or the key was used twice).
     pub fn wait_shown(&self, seq: u64, timeout: Duration) -> bool {
         let deadline = Instant::now() + timeout;
         let mut s = self.shared.lock();
         while s.shown < seq {
+            if self.shared.key_reused.load(Ordering::SeqCst) {
+                return false;
+            }
             let now = Instant::now();
             if now >= deadline {
                 return false;
@@ -205,9 +236,9 @@ impl WebDisplay {
         true
     }
 
-    /// This run's token (written into the page; `/patch` and `/shown` need it).
-    pub fn token(&self) -> &str {
-        &self.shared.token
+    /// Whether a second client presented the one-time key (the run must stop).
+    pub fn key_reused(&self) -> bool {
+        self.shared.key_reused.load(Ordering::SeqCst)
     }
 
     /// How many HTTP requests were served so far.
@@ -242,7 +273,11 @@ impl PatchDisplay for WebDisplay {
         } else {
             self.timeout
         };
-        if !self.wait_shown(seq, wait) {
+        let shown = self.wait_shown(seq, wait);
+        if self.key_reused() {
+            return Err(PatchDisplayError::KeyReused);
+        }
+        if !shown {
             return Err(PatchDisplayError::NotShown {
                 seq,
                 css: css(rgb),
@@ -296,9 +331,13 @@ impl Drop for Active {
     }
 }
 
+fn cookie_name(port: u16) -> String {
+    format!("specpoly_{port}")
+}
+
 /// 128 random bits as 32 hex digits: the operating system's generator (`/dev/urandom`), else
 /// SipHash with std's randomly keyed `RandomState` (itself seeded by the operating system).
-fn new_token() -> String {
+fn new_secret() -> String {
     let mut b = [0u8; 16];
     let ok = std::fs::File::open("/dev/urandom")
         .and_then(|mut f| f.read_exact(&mut b))
@@ -333,14 +372,13 @@ const PAGE: &str = r#"<!doctype html>
 <script>
 "use strict";
 let seq = __SEQ__;
-const token = "__TOKEN__";
 function ack(n) {
   requestAnimationFrame(() => requestAnimationFrame(() =>
-    fetch("/shown?seq=" + n + "&token=" + token, {cache: "no-store"}).catch(() => {})));
+    fetch("/shown?seq=" + n, {cache: "no-store"}).catch(() => {})));
 }
 async function tick() {
   try {
-    const r = await fetch("/patch?token=" + token, {cache: "no-store"});
+    const r = await fetch("/patch", {cache: "no-store"});
     const p = await r.json();
     if (p.seq !== seq) {
       document.getElementById("patch").style.background = p.css;
@@ -356,9 +394,20 @@ tick();
 "#;
 
 fn respond(w: &mut TcpStream, status: &str, ctype: &str, body: &str) -> std::io::Result<()> {
+    respond_with(w, status, ctype, "", body)
+}
+
+/// Answers with `extra` header lines (each ending in `\r\n`).
+fn respond_with(
+    w: &mut TcpStream,
+    status: &str,
+    ctype: &str,
+    extra: &str,
+    body: &str,
+) -> std::io::Result<()> {
     write!(
         w,
-        "HTTP/1.1 {status}\r\nContent-Type: {ctype}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n{body}",
+        "HTTP/1.1 {status}\r\nContent-Type: {ctype}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nReferrer-Policy: no-referrer\r\n{extra}Connection: close\r\n\r\n{body}",
         body.len()
     )?;
     w.flush()
@@ -434,7 +483,7 @@ fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
     };
     let mut lines = head.lines();
     let request = lines.next().unwrap_or("");
-    let (mut host, mut origin, mut body) = (None, None, false);
+    let (mut host, mut origin, mut body, mut cookies) = (None, None, false, Vec::new());
     for h in lines {
         let Some((k, v)) = h.split_once(':') else {
             continue;
@@ -443,6 +492,7 @@ fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
         match k.trim().to_ascii_lowercase().as_str() {
             "host" => host = Some(v.to_ascii_lowercase()),
             "origin" => origin = Some(v.to_ascii_lowercase()),
+            "cookie" => cookies.push(v.to_string()),
             "content-length" => body |= v != "0",
             "transfer-encoding" => body = true,
             _ => {}
@@ -471,9 +521,39 @@ fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
             .split('&')
             .find_map(|kv| kv.strip_prefix(name)?.strip_prefix('='))
     };
-    let tokened = param("token").is_some_and(|t| same(t, &shared.token));
-    if matches!(path, "/patch" | "/shown") && !tokened {
-        return refuse(w, "403 Forbidden", "missing or wrong token\n");
+    // the session: the cookie, or the one-time key on the page's first request
+    let wanted = cookie_name(shared.port);
+    let has_session = cookies
+        .iter()
+        .flat_map(|c| c.split(';'))
+        .filter_map(|kv| kv.trim().split_once('='))
+        .any(|(k, v)| k == wanted && same(v, &shared.session));
+    let mut set_cookie = String::new();
+    if !has_session {
+        let keyed = matches!(path, "/" | "/index.html")
+            && param("key").is_some_and(|k| same(k, &shared.key));
+        if !keyed {
+            return refuse(
+                w,
+                "403 Forbidden",
+                "open the URL specpoly printed (it carries this run's key)\n",
+            );
+        }
+        if shared.key_used.swap(true, Ordering::SeqCst) {
+            shared.key_reused.store(true, Ordering::SeqCst);
+            let _s = shared.lock();
+            shared.changed.notify_all();
+            drop(_s);
+            return refuse(
+                w,
+                "403 Forbidden",
+                "this run's link was already opened by another client; the run stops\n",
+            );
+        }
+        set_cookie = format!(
+            "Set-Cookie: {wanted}={}; HttpOnly; SameSite=Strict; Path=/\r\n",
+            shared.session
+        );
     }
     let (seq, rgb) = {
         let mut s = shared.lock();
@@ -489,9 +569,14 @@ fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
                 .replace("__OFF__", &format!("{:.4}", (100.0 - side) / 2.0))
                 .replace("__BG__", &css([win.background; 3]))
                 .replace("__CSS__", &css(rgb))
-                .replace("__SEQ__", &seq.to_string())
-                .replace("__TOKEN__", &shared.token);
-            respond(&mut w, "200 OK", "text/html; charset=utf-8", &page)
+                .replace("__SEQ__", &seq.to_string());
+            respond_with(
+                &mut w,
+                "200 OK",
+                "text/html; charset=utf-8",
+                &set_cookie,
+                &page,
+            )
         }
         "/patch" => {
             let body = format!(
@@ -515,7 +600,7 @@ fn handle(mut stream: TcpStream, shared: &Shared) -> std::io::Result<()> {
                     drop(s);
                     respond(&mut w, "204 No Content", "text/plain", "")
                 }
-                None => respond(&mut w, "400 Bad Request", "text/plain", "seq=N&token=T\n"),
+                None => respond(&mut w, "400 Bad Request", "text/plain", "seq=N\n"),
             }
         }
         "/favicon.ico" => respond(&mut w, "204 No Content", "text/plain", ""),
@@ -528,12 +613,25 @@ mod tests {
     use super::*;
     use std::io::Read;
 
-    fn get(addr: SocketAddr, path: &str) -> String {
+    /// `GET target` with the right `Host` and `extra` header lines; the whole reply.
+    fn get(addr: SocketAddr, target: &str, extra: &str) -> String {
         let mut s = TcpStream::connect(addr).unwrap();
-        write!(s, "GET {path} HTTP/1.1\r\nHost: {addr}\r\n\r\n").unwrap();
+        write!(s, "GET {target} HTTP/1.1\r\nHost: {addr}\r\n{extra}\r\n").unwrap();
         let mut out = String::new();
         s.read_to_string(&mut out).unwrap();
         out
+    }
+
+    /// Opens the page with the key; its reply and the `Cookie:` line of the session.
+    fn open(d: &WebDisplay) -> (String, String) {
+        let url = d.url();
+        let page = get(d.addr, &url[url.find("/?").unwrap()..], "");
+        let set = page
+            .lines()
+            .find_map(|l| l.strip_prefix("Set-Cookie: "))
+            .unwrap_or_else(|| panic!("no cookie: {page}"));
+        let cookie = format!("Cookie: {}\r\n", set.split(';').next().unwrap());
+        (page, cookie)
     }
 
     #[test]
@@ -541,17 +639,20 @@ mod tests {
         let mut d = WebDisplay::start(0).unwrap();
         d.first_wait = Duration::from_millis(100);
         let seq = d.post([1.0, 0.5, 0.0]);
-        let t = d.token().to_string();
-        assert_eq!(t.len(), 32);
-        assert!(get(d.addr, "/").contains(&t));
-        let r = get(d.addr, &format!("/patch?token={t}"));
+        let (page, c) = open(&d);
+        assert!(page.starts_with("HTTP/1.1 200"), "{page}");
+        assert!(page.contains("HttpOnly; SameSite=Strict"), "{page}");
+        let r = get(d.addr, "/patch", &c);
         assert!(r.starts_with("HTTP/1.1 200"), "{r}");
         assert!(r.contains("\"css\":\"rgb(255,128,0)\""), "{r}");
-        assert!(get(d.addr, "/").contains("background:rgb(255,128,0)"));
+        // a reload with the cookie: the page again, no new cookie
+        let again = get(d.addr, "/", &c);
+        assert!(again.contains("background:rgb(255,128,0)"), "{again}");
+        assert!(!again.contains("Set-Cookie"), "{again}");
         assert!(!d.wait_shown(seq, Duration::from_millis(20)));
-        assert!(get(d.addr, &format!("/shown?seq={seq}&token={t}")).starts_with("HTTP/1.1 204"));
+        assert!(get(d.addr, &format!("/shown?seq={seq}"), &c).starts_with("HTTP/1.1 204"));
         assert!(d.wait_shown(seq, Duration::from_millis(20)));
-        assert!(get(d.addr, "/nope").starts_with("HTTP/1.1 404"));
+        assert!(get(d.addr, "/nope", &c).starts_with("HTTP/1.1 404"));
         // nobody acknowledges the next patch: a clear error
         d.timeout = Duration::from_millis(50);
         let e = d.show([0.0; 3]).unwrap_err().to_string();
@@ -560,9 +661,9 @@ mod tests {
 
     #[test]
     fn window_size_and_background() {
-        let open = |s: &str| WebDisplay::from_spec(&DeviceSpec::parse(s));
-        let d = open("web,size=0.1,background=0.2").unwrap();
-        let page = get(d.addr, "/");
+        let start = |s: &str| WebDisplay::from_spec(&DeviceSpec::parse(s));
+        let d = start("web,size=0.1,background=0.2").unwrap();
+        let (page, _) = open(&d);
         // a 10 % window: sides √0.1 = 31.6228 % of the screen's, centred
         assert!(page.contains("width:31.6228%;height:31.6228%"), "{page}");
         assert!(page.contains("left:34.1886%;top:34.1886%"), "{page}");
@@ -576,7 +677,7 @@ mod tests {
             "web,background=-0.1",
             "web,size=x",
         ] {
-            assert!(open(bad).is_err(), "{bad}");
+            assert!(start(bad).is_err(), "{bad}");
         }
     }
 }

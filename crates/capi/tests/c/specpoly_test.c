@@ -7,6 +7,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "calibration_blob.h" /* CALIBRATION_BLOB[]: written by the test (tests/c_program.rs) */
+#include "spectra_samples.h"  /* SAMPLE_NM, SAMPLE_VALUE: ColorChecker reflectances */
+
 #if __STDC_HOSTED__
 #include <stdio.h>
 static void out(const char *s) { fputs(s, stdout); }
@@ -112,6 +115,146 @@ static void rgbw(SpMixer *m) {
     }
 }
 
+static void spectrum(const char *name, SpStatus st, const SpSpectrum *s) {
+    begin(name, st);
+    if (st == SP_STATUS_OK)
+        for (int k = 0; k < SP_SPECTRUM_COEFFS; k++)
+            for (int j = 0; j < SP_SPECTRUM_SPANS; j++) f32(s->coef[k][j]);
+    end();
+}
+
+static void xyz(const char *name, SpStatus st, const SpXyz *v) {
+    begin(name, st);
+    if (st == SP_STATUS_OK) { f32(v->x); f32(v->y); f32(v->z); }
+    end();
+}
+
+static const char *const PATCH[3] = {"dark_skin", "blue_sky", "red"};
+
+static void spectra(void) {
+    const float nan = __builtin_nanf("");
+    SpSpectrum r[3], r2[3];
+    char name[64];
+    for (int i = 0; i < 3; i++) {
+        spectrum("spectrum_fit", sp_spectrum_fit(SAMPLE_NM, SAMPLE_VALUE[i], SAMPLES, &r[i]), &r[i]);
+        spectrum("spectrum_mul", sp_spectrum_mul(&r[i], &r[i], &r2[i]), &r2[i]);
+    }
+    /* XYZ of each reflectance and its square under A, D65, FL11 for both observers */
+    static const int32_t LIGHT[3] = {SP_ILLUMINANT_A, SP_ILLUMINANT_D65, SP_ILLUMINANT_FL11};
+    static const char *const LIGHT_NAME[3] = {"A", "D65", "FL11"};
+    for (int l = 0; l < 3; l++)
+        for (int o = 0; o < 2; o++)
+            for (int i = 0; i < 3; i++)
+                for (int sq = 0; sq < 2; sq++) {
+                    SpXyz v;
+                    SpStatus st = sp_spectrum_xyz(sq ? &r2[i] : &r[i], o, LIGHT[l], &v);
+                    len = 0;
+                    put("xyz:"); put(PATCH[i]); put(sq ? ":r2:" : ":r:"); put(LIGHT_NAME[l]);
+                    put(o ? ":1964" : ":1931");
+                    __builtin_memcpy(name, line, len + 1);
+                    xyz(name, st, &v);
+                }
+    static const float AT[5] = {380.0f, 430.0f, 555.5f, 600.0f, 780.0f};
+    for (int i = 0; i < 5; i++) {
+        float v;
+        SpStatus st = sp_spectrum_eval(&r[2], AT[i], &v);
+        begin("spectrum_eval", st);
+        if (st == SP_STATUS_OK) f32(v);
+        end();
+    }
+    SpXyz w;
+    xyz("light_white_d65_1931", sp_light_white(SP_OBSERVER_CIE1931, SP_ILLUMINANT_D65, &w), &w);
+    xyz("light_white_fl11_1964", sp_light_white(SP_OBSERVER_CIE1964, SP_ILLUMINANT_FL11, &w), &w);
+
+    SpSpectrum s;
+    const float nm3[3] = {400.0f, 500.0f, 500.0f}, v3[3] = {0.1f, nan, 0.2f};
+    spectrum("spectrum_fit_0", sp_spectrum_fit(SAMPLE_NM, SAMPLE_VALUE[0], 0, &s), &s);
+    spectrum("spectrum_fit_null", sp_spectrum_fit(NULL, SAMPLE_VALUE[0], SAMPLES, &s), &s);
+    spectrum("spectrum_fit_nan", sp_spectrum_fit(SAMPLE_NM, v3, 3, &s), &s);
+    spectrum("spectrum_fit_not_increasing", sp_spectrum_fit(nm3, SAMPLE_VALUE[0], 3, &s), &s);
+    spectrum("spectrum_mul_null", sp_spectrum_mul(&r[0], NULL, &s), &s);
+    float v;
+    begin("spectrum_eval_379", sp_spectrum_eval(&r[0], 379.0f, &v)); end();
+    xyz("spectrum_xyz_observer_2", sp_spectrum_xyz(&r[0], 2, SP_ILLUMINANT_D65, &w), &w);
+    xyz("spectrum_xyz_illuminant_7", sp_spectrum_xyz(&r[0], 0, 7, &w), &w);
+    s = r[0];
+    s.coef[1][3] = nan;
+    xyz("spectrum_xyz_nan", sp_spectrum_xyz(&s, 0, SP_ILLUMINANT_D65, &w), &w);
+}
+
+static void forward(const char *name, const SpDisplay *d, float r, float g, float b) {
+    const float rgb[3] = {r, g, b};
+    SpXyz v;
+    xyz(name, sp_display_forward(d, rgb, &v), &v);
+}
+
+static void inverse(const char *name, const SpDisplay *d, SpXyz t, int32_t map) {
+    SpEncoded e;
+    SpStatus st = sp_display_inverse(d, &t, map, &e);
+    begin(name, st);
+    if (st == SP_STATUS_OK) {
+        for (int i = 0; i < 3; i++) f32(e.device[i]);
+        for (int i = 0; i < 3; i++) f32(e.linear[i]);
+        dec(e.out_of_gamut);
+    }
+    end();
+}
+
+static void calibration(const char *name, const uint8_t *blob, size_t n, SpDisplay *d) {
+    SpStatus st = sp_calibration_load(blob, n, d);
+    begin(name, st);
+    if (st == SP_STATUS_OK) {
+        for (int i = 0; i < 3; i++) { f32(d->primaries[i][0]); f32(d->primaries[i][1]); }
+        for (int i = 0; i < 3; i++) f32(d->luminance[i]);
+        for (int i = 0; i < 3; i++) f32(d->black[i]);
+        for (int i = 0; i < 3; i++) f32(d->gamma[i]);
+        for (int i = 0; i < 3; i++) {
+            dec((int32_t)d->table_len[i]);
+            for (uint32_t k = 0; k < d->table_len[i] && k < SP_DISPLAY_TABLE_MAX; k++) f32(d->table[i][k]);
+        }
+    }
+    end();
+}
+
+static void display_model(void) {
+    SpDisplay d;
+    calibration("calibration_load", CALIBRATION_BLOB, sizeof CALIBRATION_BLOB, &d);
+    forward("forward_white", &d, 1.0f, 1.0f, 1.0f);
+    forward("forward_black", &d, 0.0f, 0.0f, 0.0f);
+    forward("forward_mid", &d, 0.25f, 0.5f, 0.75f);
+    forward("forward_table_knee", &d, 0.1f, 0.9f, 0.375f);
+    inverse("inverse_grey", &d, (SpXyz){20.0f, 21.0f, 23.0f}, SP_GAMUT_MAP_CLIP);
+    inverse("inverse_cyan_clip", &d, (SpXyz){20.0f, 40.0f, 70.0f}, SP_GAMUT_MAP_CLIP);
+    inverse("inverse_cyan_desaturate", &d, (SpXyz){20.0f, 40.0f, 70.0f}, SP_GAMUT_MAP_DESATURATE);
+    drive("drive_loaded", &d, (SpXyz){30.0f, 35.0f, 20.0f}, SP_GAMUT_MAP_CLIP);
+
+    forward("forward_above_1", &d, 1.5f, 0.0f, 0.0f);
+    forward("forward_nan", &d, __builtin_nanf(""), 0.0f, 0.0f);
+    begin("forward_null", sp_display_forward(&d, NULL, &(SpXyz){0})); end();
+    inverse("inverse_bad_map", &d, (SpXyz){20.0f, 21.0f, 23.0f}, 5);
+    SpDisplay bad = d;
+    bad.table_len[2] = SP_DISPLAY_TABLE_MAX + 1;
+    forward("forward_table_65", &bad, 0.5f, 0.5f, 0.5f);
+    bad = d;
+    bad.table_len[2] = 1;
+    forward("forward_table_1", &bad, 0.5f, 0.5f, 0.5f);
+
+    /* the blob's checks: cut, corrupted, another version, none */
+    static uint8_t copy[sizeof CALIBRATION_BLOB + 8];
+    __builtin_memcpy(copy, CALIBRATION_BLOB, sizeof CALIBRATION_BLOB);
+    calibration("calibration_longer_region", copy, sizeof copy, &bad);
+    calibration("calibration_cut", copy, sizeof CALIBRATION_BLOB - 1, &bad);
+    calibration("calibration_header_only", copy, 12, &bad);
+    calibration("calibration_empty", copy, 0, &bad);
+    copy[40] ^= 0x10;
+    calibration("calibration_corrupted", copy, sizeof CALIBRATION_BLOB, &bad);
+    copy[40] ^= 0x10;
+    copy[4] = 2;
+    calibration("calibration_version_2", copy, sizeof CALIBRATION_BLOB, &bad);
+    calibration("calibration_null", NULL, sizeof CALIBRATION_BLOB, &bad);
+    calibration("calibration_null_out", CALIBRATION_BLOB, sizeof CALIBRATION_BLOB, NULL);
+}
+
 int run(void) {
     const float nan = __builtin_nanf("");
     const float inf = __builtin_inff();
@@ -193,6 +336,8 @@ int run(void) {
     bad = d;
     bad.luminance[0] = inf;
     drive("drive_inf_display", &bad, (SpXyz){20.0f, 21.0f, 23.0f}, SP_GAMUT_MAP_CLIP);
+    spectra();
+    display_model();
     out("end\n");
     return 0;
 }

@@ -34,7 +34,8 @@ pub enum CalibrateCommand {
     /// Export an ICC display profile (v2.4 or v4.4; matrix/TRC, `vcgt`, tables for models with
     /// channel interaction).
     Icc(IccArgs),
-    /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables.
+    /// Bake a framebuffer pixel transform (source RGB → panel codes) into C or Rust tables, or
+    /// write the display model as a calibration blob for the C library (`--format c-blob`).
     Export(ExportArgs),
     /// Write a 3D LUT (.cube, .3dl, madVR .3dlut) from a source colour space (sRGB, Rec. 709,
     /// Display P3, Rec. 2020) to the display, inverted through its model.
@@ -134,7 +135,7 @@ pub struct ExportArgs {
     /// The colour space the firmware's UI draws in.
     #[arg(long, value_enum, default_value_t = SourceValue::Srgb)]
     pub source: SourceValue,
-    /// C header or Rust source.
+    /// C header or Rust source, or the C library's calibration blob.
     #[arg(long, value_enum)]
     pub format: FormatValue,
     /// The panel's bits per channel.
@@ -184,6 +185,15 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         &a.ti3.display().to_string(),
     )?;
     let (meas, absolute) = ti3.best_units();
+    // repeated white and black readings that disagree (patches numbered in the file)
+    let drift = specpoly_calibrate::drift::check(&meas);
+    // the fit numbers its outliers by position in what it is given: with --hold-out that is
+    // the fit set, renumbered below as positions in the file (one numbering for fit and verify)
+    let fit_positions = if a.hold_out {
+        fit::hold_out_indices(&meas).0
+    } else {
+        (0..meas.len()).collect()
+    };
     let (fit_set, verify_set) = if a.hold_out {
         fit::hold_out(meas)
     } else {
@@ -200,9 +210,15 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     };
     let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
         .map_err(|e| CliError::data(format!("{}: {e}", a.ti3.display())))?;
-    let (_, prov) = cal.report_mut();
+    let (report, prov) = cal.report_mut();
+    for o in &mut report.outliers {
+        if let Some(p) = o.patch.checked_sub(1).and_then(|i| fit_positions.get(i)) {
+            o.patch = p + 1;
+        }
+    }
     prov.source = a.ti3.display().to_string();
     prov.readings_sha256 = readings_sha256;
+    prov.notes.extend(drift.iter().map(|d| d.note()));
     prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
     prov.instrument = ti3
         .keyword("TARGET_INSTRUMENT")
@@ -398,6 +414,19 @@ fn icc_cmd(a: &IccArgs) -> Result<()> {
 
 fn export_cmd(a: &ExportArgs) -> Result<()> {
     let cal = calibration::load(&a.calibration)?;
+    if a.format == FormatValue::CBlob {
+        let bytes = export::blob(&cal)?;
+        specpoly_formats::atomic::write(&a.output, &bytes)?;
+        crate::cli::wrote::wrote(
+            &a.output,
+            &format!(
+                " ({} bytes: calibration blob version {}, for sp_calibration_load)",
+                bytes.len(),
+                specpoly_core::blob::VERSION
+            ),
+        );
+        return Ok(());
+    }
     let p = export::transform(&cal, a.source.into(), a.white.into(), a.bits.into())?;
     let origin = format!(
         "calibration {}, source {}, white {}, {}",

@@ -102,6 +102,7 @@ pub fn run(a: &RunArgs) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
+    crate::cli::wrote::wrote(&ti3, "");
     let primaries = raw_primaries(&set, &taken).map(|p| (p, "reading − black"));
     for (p, what) in primaries
         .into_iter()

@@ -63,6 +63,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         c.devices.ti3.display()
     ))?;
+    crate::cli::wrote::wrote(c.devices.ti3, " (native readings)");
     let (fit_set, verify_set) = split(c.set, &taken);
     let opts = FitOptions {
         matrix: a.matrix.into(),
@@ -134,6 +135,7 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         taken.len(),
         ti3.display()
     ))?;
+    crate::cli::wrote::wrote(&ti3, " (readings through the LUT)");
     let (mut cal, _) = fit_and_save(
         &a.output,
         &ti3,
@@ -149,5 +151,6 @@ pub fn run(c: &Context<'_>, native: &mut Session) -> Result<()> {
         cal_file.display()
     ));
     cal.save(&a.output)?;
+    crate::cli::wrote::wrote(&a.output, "");
     print_fit(&cal, &a.output)
 }

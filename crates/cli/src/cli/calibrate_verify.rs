@@ -88,6 +88,10 @@ pub struct VerifyArgs {
     /// The tone curve the report draws the measured ramps against: `gamma:G`, `srgb` or `linear`.
     #[arg(long, default_value = "gamma:2.2", value_parser = args::transfer, value_name = "CURVE")]
     pub tone_target: Curve,
+    /// Count the patches the fit dropped as bad readings (its `[fit] outliers`) when verifying
+    /// against the file it was fitted from; by default they are listed and left out.
+    #[arg(long, conflicts_with = "lut3d")]
+    pub include_outliers: bool,
     /// JSON instead of text (keys in docs/calibration.md).
     #[arg(long)]
     pub json: bool,
@@ -219,10 +223,29 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
     let Some(ti3_path) = &a.ti3 else {
         return Err(CliError::Usage("give --ti3 FILE or --lut3d FILE".into()));
     };
-    let ti3 = cgats::read_ti3_file(ti3_path)?;
+    let bytes = specpoly_formats::read::bytes(ti3_path)?;
+    let self_fit = verify::fitted_from(&cal, &bytes);
+    let ti3 = cgats::read_ti3(
+        &specpoly_formats::read::decode(bytes),
+        &ti3_path.display().to_string(),
+    )?;
     let m = verify::measurements_for(&cal, &ti3)
         .map_err(|e| CliError::data(format!("{}: {e}", ti3_path.display())))?;
-    let v = Verification::new(&cal, &m, &ti3.lines);
+    let outliers = verify::fit_outliers(&cal, &m, self_fit);
+    let exclude = if a.include_outliers {
+        &[][..]
+    } else {
+        &outliers
+    };
+    let (v, left_out) = Verification::excluding(&cal, &m, &ti3.lines, exclude);
+    if self_fit {
+        let w = format!(
+            "warning: {} is the file {} was fitted from (the same SHA-256): these are the fit's own residuals, not a verification; verify against other readings (calibrate run --verify N measures some) or fit with --hold-out",
+            ti3_path.display(),
+            a.calibration.display()
+        );
+        eprintln!("{}", specpoly_formats::escape::one_line(&w));
+    }
     if let Some(path) = &a.report {
         let curve = a.tone_target;
         let name = match curve {
@@ -241,10 +264,33 @@ pub fn verify(a: &VerifyArgs) -> Result<()> {
         crate::cli::wrote::wrote(path, "");
     }
     let measurements = ti3_path.display().to_string();
-    if a.json {
-        print_json(&verification_json(&v, a, &measurements))?;
+    let counted: Vec<usize> = if a.include_outliers {
+        outliers.clone()
     } else {
-        print(&verification_text(&v, &cal, a, &measurements))?;
+        Vec::new()
+    };
+    if a.json {
+        let mut j = verification_json(&v, a, &measurements);
+        j["self_fit"] = json!(self_fit);
+        j["excluded_outliers"] = left_out.iter().map(patch_ref_json).collect();
+        j["counted_outliers"] = json!(counted);
+        print_json(&j)?;
+    } else {
+        let mut t = verification_text(&v, &cal, a, &measurements);
+        for p in &left_out {
+            let _ = writeln!(
+                t,
+                "left out: patch {} (line {}: RGB {:.4} {:.4} {:.4}), ΔE00 {:.3}: the fit dropped it as a bad reading (--include-outliers counts it)",
+                p.patch, p.line, p.device[0], p.device[1], p.device[2], p.delta_e00
+            );
+        }
+        for n in &counted {
+            let _ = writeln!(
+                t,
+                "counted: patch {n}, which the fit dropped as a bad reading (--include-outliers)"
+            );
+        }
+        print(&t)?;
     }
     match criteria::failures(&v.outcomes, a.require.into()) {
         None => Ok(()),
@@ -292,6 +338,11 @@ pub fn outcomes_json(outcomes: &[Outcome], level: Level) -> serde_json::Value {
         .collect()
 }
 
+/// A patch named in JSON: `patch`, `line`, `device`, `delta_e00`.
+fn patch_ref_json(p: &criteria::PatchResult) -> serde_json::Value {
+    json!({"patch": p.patch, "line": p.line, "device": p.device, "delta_e00": number(p.delta_e00)})
+}
+
 /// The JSON `calibrate verify --json` prints; `measurements` names what was verified.
 pub fn verification_json(
     v: &Verification,
@@ -299,15 +350,14 @@ pub fn verification_json(
     measurements: &str,
 ) -> serde_json::Value {
     let s: &Stats = &v.stats;
-    let worst = v
-        .worst()
-        .map(|w| json!({"line": w.line, "device": w.device, "delta_e00": number(w.delta_e00)}));
+    let worst = v.worst().map(patch_ref_json);
     let patches: Vec<serde_json::Value> = v
         .patches
         .iter()
         .map(|p| {
             let lab = |l: &specpoly_core::Lab| [l.l, l.a, l.b].map(number);
             json!({
+                "patch": p.patch,
                 "line": p.line,
                 "device": p.device,
                 "reference_xyz": p.reference.map(number),
@@ -363,8 +413,8 @@ fn verification_text(v: &Verification, cal: &Calibration, a: &VerifyArgs, what: 
     if let Some(w) = v.worst() {
         let _ = write!(
             t,
-            " (line {}: RGB {:.4} {:.4} {:.4})",
-            w.line, w.device[0], w.device[1], w.device[2]
+            " (patch {}, line {}: RGB {:.4} {:.4} {:.4})",
+            w.patch, w.line, w.device[0], w.device[1], w.device[2]
         );
     }
     t.push('\n');

@@ -2,7 +2,8 @@
 //! by default, Figure 5 with `--product`.
 //!
 //! The representation defaults to `paper` (2 cubic spans split at 550 nm), as in the figures.
-//! Output: SVG or PNG by the file's extension, written atomically.
+//! Output: SVG or PNG by the file's extension (or `--format`), written atomically; `-o -`
+//! writes the figure to stdout (SVG unless `--format png`).
 
 use crate::error::{CliError, Result};
 use specpoly_paper::figures;
@@ -17,9 +18,12 @@ pub struct PlotArgs {
     /// Spectra: FILE, FILE#COLUMN, FILE#* or a built-in such as colorchecker#blue.
     #[arg(required = true, value_name = "SPECTRUM")]
     pub spectra: Vec<String>,
-    /// Output file: FILE.svg or FILE.png.
-    #[arg(short = 'o', long = "output", value_name = "FILE.svg|FILE.png")]
+    /// Output file: FILE.svg or FILE.png, or - for stdout.
+    #[arg(short = 'o', long = "output", value_name = "FILE.svg|FILE.png|-")]
     pub output: PathBuf,
+    /// The image format when the file name does not say (stdout: svg by default).
+    #[arg(long, value_name = "svg|png")]
+    pub format: Option<Format>,
     /// Plot the exact product of two spectra against its reduced polynomial (Figure 5).
     #[arg(long)]
     pub product: bool,
@@ -34,8 +38,12 @@ pub struct PlotArgs {
     pub scale: f64,
 }
 
-enum Format {
+/// `plot`'s image formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Scalable vector graphics (text).
     Svg,
+    /// PNG.
     Png,
 }
 
@@ -54,16 +62,34 @@ pub fn run(a: &PlotArgs) -> Result<()> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let format = match ext.as_deref() {
-        Some("svg") => Format::Svg,
-        Some("png") => Format::Png,
-        _ => {
+    let by_name = match ext.as_deref() {
+        Some("svg") => Some(Format::Svg),
+        Some("png") => Some(Format::Png),
+        _ => None,
+    };
+    let to_stdout = a.output == std::path::Path::new("-");
+    let format = match (a.format, by_name) {
+        (Some(f), Some(n)) if f != n => {
             return Err(CliError::usage(format!(
-                "{}: the output must end in .svg or .png",
+                "{}: the name says {}, --format says {}",
+                a.output.display(),
+                ext.unwrap_or_default(),
+                if f == Format::Svg { "svg" } else { "png" }
+            )))
+        }
+        (Some(f), _) | (None, Some(f)) => f,
+        (None, None) if to_stdout => Format::Svg,
+        (None, None) => {
+            return Err(CliError::usage(format!(
+                "{}: the output must end in .svg or .png (or give --format)",
                 a.output.display()
             )))
         }
     };
+    if to_stdout {
+        // before drawing, not after
+        specpoly_formats::stdout::check_open()?;
+    }
     let fig = figure(a)?;
     let bytes = match format {
         Format::Svg => fig.svg()?.into_bytes(),

@@ -50,7 +50,9 @@ fn is_usage(e: &Error) -> bool {
         | Error::Write { .. }
         | Error::Profile { .. }
         | Error::Unprofilable(_)
-        | Error::ExportNeedsClip => false,
+        | Error::ExportNeedsClip
+        | Error::BlobNeedsMatrixModel
+        | Error::BlobIsBinary => false,
     }
 }
 

@@ -51,6 +51,9 @@ pub enum FormatValue {
     CTable,
     /// Rust: `pub static NAME: specpoly_core::pixel::PixelTransform`.
     Rust,
+    /// The display model as a calibration blob for the C library (`sp_calibration_load`;
+    /// binary, versioned, CRC-32; `--source`, `--bits`, `--white`, `--name` do not apply).
+    CBlob,
 }
 
 /// The panel's bits per channel.
@@ -144,7 +147,7 @@ macro_rules! both_ways {
 both_ways!(TransferValue, TransferKind, Table => Table, Gamma => Gamma);
 both_ways!(IccVersionValue, IccVersion, V2 => V2, V4 => V4);
 both_ways!(SourceValue, SourceArg, Srgb => Srgb, P3 => P3, Linear => Linear);
-both_ways!(FormatValue, Format, CTable => CTable, Rust => Rust);
+both_ways!(FormatValue, Format, CTable => CTable, Rust => Rust, CBlob => CBlob);
 both_ways!(BitsValue, Bits, Rgb565 => Rgb565, Rgb666 => Rgb666, Rgb888 => Rgb888);
 both_ways!(WhiteValue, WhiteArg, Adapt => Adapt, Absolute => Absolute);
 both_ways!(LutSourceValue, SourceSpace, Srgb => Srgb, Rec709 => Rec709, P3 => P3, Rec2020 => Rec2020);

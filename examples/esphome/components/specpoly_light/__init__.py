@@ -1,0 +1,1 @@
+"""specpoly_light: an ESPHome external component (see README.md)."""
