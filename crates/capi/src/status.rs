@@ -62,7 +62,10 @@ pub(crate) fn core(e: specpoly_core::Error) -> SpStatus {
     match e {
         Error::Empty | Error::Capacity | Error::LengthMismatch => SpStatus::Size,
         Error::NonFinite(_) => SpStatus::NotFinite,
-        Error::NotIncreasing(_) | Error::OutOfRange => SpStatus::Domain,
+        Error::NotIncreasing(_)
+        | Error::OutOfRange
+        | Error::Negative(_)
+        | Error::ZeroChannel(_) => SpStatus::Domain,
         Error::Singular => SpStatus::Singular,
         Error::BlobVersion => SpStatus::BlobVersion,
         Error::BlobChecksum => SpStatus::BlobChecksum,

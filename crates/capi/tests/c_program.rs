@@ -261,7 +261,7 @@ fn spectra(l: &mut Lines) {
         r.push(s);
     }
     for light in [Illuminant::A, Illuminant::D65, Illuminant::FL11] {
-        for o in Observer::ALL {
+        for o in Observer::CLASSIC {
             let m = Moments::<8, 4>::new(o, &light.tabulated());
             for (i, s) in r.iter().enumerate() {
                 for (sq, s) in [("r", *s), ("r2", s.mul(s))] {

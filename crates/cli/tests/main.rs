@@ -19,6 +19,7 @@ mod cli_accuracy;
 mod cli_commands;
 mod cli_convention;
 mod cli_errors;
+mod cli_observers;
 mod cli_output_paths;
 mod cli_plausible;
 mod cli_safety;

@@ -84,7 +84,7 @@ impl CmfTable {
 /// `Copy` and free of lifetimes so it can sit in settings and be passed by value; a runtime
 /// table is borrowed for `'static` (the host keeps the few it makes for the life of the process:
 /// `specpoly_spectra::observer::intern`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub enum Observer {
     /// CIE 1931 2° standard observer.
     Cie1931,
@@ -98,17 +98,25 @@ pub enum Observer {
     Table(&'static CmfTable),
 }
 
-// Runtime tables hold finite numbers only (checked by `CmfTable::new`), so equality is reflexive.
+/// Built-in observers are equal by name; runtime tables are equal when they are the same table
+/// (the host keeps each distinct table once, so equal contents are one table). Comparing
+/// addresses, not 1 203 numbers, keeps the firmware's observer checks a few instructions.
+impl PartialEq for Observer {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Observer::Table(a), Observer::Table(b)) => core::ptr::eq(*a, *b),
+            (a, b) => core::mem::discriminant(a) == core::mem::discriminant(b),
+        }
+    }
+}
+
 impl Eq for Observer {}
 
 impl Hash for Observer {
     fn hash<H: Hasher>(&self, state: &mut H) {
         core::mem::discriminant(self).hash(state);
         if let Observer::Table(t) = self {
-            t.name.hash(state);
-            for v in t.values.iter().flatten() {
-                v.to_bits().hash(state);
-            }
+            core::ptr::hash(*t, state);
         }
     }
 }
@@ -184,11 +192,12 @@ impl Observer {
         }
     }
 
-    /// A short description for reports: "CIE 1931 2°", …, or the runtime table's name.
+    /// A short description for reports: "CIE 1931", "CIE 1964", "CIE 2015 2°", "CIE 2015 10°", or
+    /// the runtime table's name.
     pub fn label(self) -> &'static str {
         match self {
-            Observer::Cie1931 => "CIE 1931 2°",
-            Observer::Cie1964 => "CIE 1964 10°",
+            Observer::Cie1931 => "CIE 1931",
+            Observer::Cie1964 => "CIE 1964",
             Observer::Cie2015_2 => "CIE 2015 2°",
             Observer::Cie2015_10 => "CIE 2015 10°",
             Observer::Table(t) => t.name(),

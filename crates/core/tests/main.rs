@@ -13,6 +13,7 @@ mod light_references;
 mod light_standards;
 mod moments_1nm;
 mod multiply_reduce;
+mod observers_2015;
 mod paper_eq6;
 mod paper_path;
 mod pixel_cube;

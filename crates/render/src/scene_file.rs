@@ -121,7 +121,10 @@ impl SceneFile {
         let observer = Observer::from_name(&r.observer).ok_or_else(|| {
             Error::invalid(
                 source,
-                format!("render.observer `{}`: use \"1931\" or \"1964\"", r.observer),
+                format!(
+                    "render.observer `{}`: use \"1931\", \"1964\", \"2015-2\" or \"2015-10\"",
+                    r.observer
+                ),
             )
         })?;
         if r.width == 0 || r.height == 0 || r.width > 16384 || r.height > 16384 {

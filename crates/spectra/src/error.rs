@@ -145,6 +145,28 @@ pub enum Error {
         /// The channels' names.
         channels: String,
     },
+    /// An observer named on the command line that is neither built in nor a readable table.
+    #[error(
+        "unknown observer `{0}` (1931, 1964, 2015-2, 2015-10, cie2006:age=A,field=F, \
+         or a CSV file of three sensitivities)"
+    )]
+    UnknownObserver(String),
+    /// A sensitivity table (observer CSV) that cannot be an observer.
+    #[error("{name}: {why}")]
+    BadObserver {
+        /// The file.
+        name: String,
+        /// What is wrong.
+        why: String,
+    },
+    /// A CIE 2006 observer outside the model's range, or written wrong.
+    #[error("`{spec}`: {why}")]
+    Cie2006 {
+        /// The observer as given.
+        spec: String,
+        /// What is wrong.
+        why: String,
+    },
     /// A mix the core cannot solve or drive (a wrong channel count or target, a dark channel,
     /// …).
     #[error("{0}")]

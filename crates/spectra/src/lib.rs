@@ -4,7 +4,8 @@
 //! command line or in a file ([`spectrum_names`]), refusing data that cannot be a reflectance
 //! ([`plausible`]), the representations a user picks and the dispatch from that runtime choice
 //! to monomorphised code ([`repr`], [`hero`]), the colours of chains of reflectances
-//! ([`colour`]) and the light-metric and LED-mixing reports ([`light`], TM-30 in full:
+//! ([`colour`]), observers given as data — CSV sensitivities and the CIE 2006 model for an
+//! age and field size ([`observer`], [`cie2006`]) — and the light-metric and LED-mixing reports ([`light`], TM-30 in full:
 //! [`light_tm30`]).
 //!
 //! `duplicates` pairs kept: the `light` and `mix` reports ([`light::LightReport`],
@@ -13,6 +14,7 @@
 //! `Scene`); the `match` arms of [`repr`]'s parser (one per representation).
 #![forbid(unsafe_code)]
 
+pub mod cie2006;
 pub mod colour;
 pub mod data;
 pub mod error;
@@ -20,6 +22,7 @@ pub mod hero;
 pub mod light;
 pub mod light_checks;
 pub mod light_tm30;
+pub mod observer;
 pub mod plausible;
 pub mod repr;
 pub mod spectrum_names;

@@ -14,7 +14,7 @@ use specpoly_core::light::{
     tm30::tm30_spd,
     LightError, Samples, Source, Spd,
 };
-use specpoly_core::{Tabulated, Transfer};
+use specpoly_core::{Observer, Tabulated, Transfer};
 
 /// Rounds for printing: far below any visible difference, without f64 noise in the output.
 fn r6(v: f64) -> f64 {
@@ -67,6 +67,54 @@ pub struct LightReport {
     /// The spectrum's shape and hue, α-opic quantities and the standards' checks.
     #[serde(flatten)]
     pub checks: crate::light_checks::Checks,
+    /// The light's colour under the observer asked for (`light --observer`; absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub observer: Option<ObserverColour>,
+}
+
+/// A light's colour under a chosen observer: `Km·Σ S·[x̄, ȳ, z̄]·Δλ` with that observer's
+/// functions (`Km` = 683 lm/W as for CIE 1931, so `Y` is in lumens only for 1931), and its
+/// chromaticities. CCT, Duv, Ra and Rf stay on the observers their standards fix.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ObserverColour {
+    /// The observer's name (`2015-10`, `cie2006:age=60,field=4`, `file:…`).
+    pub name: String,
+    /// `Km·Σ S x̄ Δλ`.
+    #[serde(rename = "X")]
+    pub big_x: f64,
+    /// `Km·Σ S ȳ Δλ`.
+    #[serde(rename = "Y")]
+    pub big_y: f64,
+    /// `Km·Σ S z̄ Δλ`.
+    #[serde(rename = "Z")]
+    pub big_z: f64,
+    /// x.
+    pub x: f64,
+    /// y.
+    pub y: f64,
+    /// u′ = 4X / (X + 15Y + 3Z).
+    pub u_prime: f64,
+    /// v′ = 9Y / (X + 15Y + 3Z).
+    pub v_prime: f64,
+}
+
+/// The colour of the light `s` under `observer` ([`ObserverColour`]).
+pub fn observer_colour(s: &Spd, observer: Observer) -> ObserverColour {
+    let k = specpoly_core::light::source::KM * s.step() as f64;
+    let [x_, y_, z_] = s.sums(observer).map(|v| v * k);
+    let sum = x_ + y_ + z_;
+    let d = x_ + 15.0 * y_ + 3.0 * z_;
+    let ratio = |a: f64, b: f64| if b > 0.0 { r6(a / b) } else { 0.0 };
+    ObserverColour {
+        name: observer.name().to_string(),
+        big_x: r6(x_),
+        big_y: r6(y_),
+        big_z: r6(z_),
+        x: ratio(x_, sum),
+        y: ratio(y_, sum),
+        u_prime: ratio(4.0 * x_, d),
+        v_prime: ratio(9.0 * y_, d),
+    }
 }
 
 /// The metrics of one light, summed as the standards do on its own 1 nm or 5 nm grid
@@ -133,6 +181,7 @@ fn metrics(s: &Spd) -> LightReport {
         rg: t.map(|t| r6(t.rg)),
         extrapolated_from_nm: None,
         checks: crate::light_checks::checks(s, c.as_ref(), t.as_ref().map(|t| t.cct)),
+        observer: None,
     }
 }
 

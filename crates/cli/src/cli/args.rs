@@ -5,7 +5,7 @@
 //! | option | type | parser |
 //! |---|---|---|
 //! | `--illuminant`, `--observer` (`xyz`, `fit`) | [`Colorimetry`] | [`observer`] |
-//! | `--observer` (`led`) | [`Observer`] | [`observer`] |
+//! | `--observer` (`led`) | [`Observer`] | [`device_observer`] |
 //! | `--illuminant` (`led refl`) | [`Illuminant`] | [`builtin_illuminant`] |
 //! | `--repr`, `--mode` | [`specpoly_spectra::repr::Repr`] | its `FromStr` (the list of representations) |
 //! | `--gamut` (`render`), `--map` (`led`) | [`Gamut`] | clap `ValueEnum` |
@@ -22,18 +22,28 @@ pub struct Colorimetry {
     /// The light: A, D50, D65, E, FL2, FL7, FL11, or FILE / FILE#COLUMN.
     #[arg(long, short = 'i', default_value = "D65", value_name = "NAME|FILE")]
     pub illuminant: String,
-    /// Standard observer: 1931 (2°) or 1964 (10°).
-    #[arg(long, default_value = "1964", value_name = "1931|1964", value_parser = observer)]
+    /// Observer: 1931 (2°), 1964 (10°), 2015-2, 2015-10 (CIE 170-2), cie2006:age=A,field=F
+    /// (CIE 170-1, ages 20-80, fields 2-10°), or FILE.csv of three sensitivities.
+    #[arg(long, default_value = "1964", value_name = "NAME|FILE", value_parser = observer)]
     pub observer: Observer,
 }
 
-/// Parses an observer name: `1931` (also `2`, `CIE1931`) or `1964` (also `10`, `CIE1964`).
+/// Parses an observer: a built-in name (`1931`/`2`, `1964`/`10`, `2015-2`, `2015-10`),
+/// `cie2006:age=A,field=F`, or a CSV file of three sensitivities
+/// ([`specpoly_spectra::observer::parse`]; clap reports a refusal as a usage error, exit 2).
 pub fn observer(s: &str) -> Result<Observer> {
-    Observer::from_name(s).ok_or_else(|| {
-        CliError::usage(format!(
-            "unknown observer `{s}` (1931 for the 2° observer, 1964 for the 10° observer)"
-        ))
-    })
+    Ok(specpoly_spectra::observer::parse(s)?)
+}
+
+/// Parses one of the observers the controller carries (`1931`, `1964`): the firmware holds
+/// precomputed moments for those only.
+pub fn device_observer(s: &str) -> Result<Observer> {
+    match Observer::from_name(s) {
+        Some(o) if Observer::CLASSIC.contains(&o) => Ok(o),
+        _ => Err(CliError::usage(format!(
+            "unknown observer `{s}` (the controller carries 1931 (2°) and 1964 (10°))"
+        ))),
+    }
 }
 
 /// Parses a built-in illuminant's name (any case).

@@ -49,7 +49,7 @@ pub struct LedArgs {
     pub map: Option<Gamut>,
     /// Observer for reflectances: `1931` or `1964` (the latter needs a firmware built with
     /// feature `observer-1964`).
-    #[arg(long, value_name = "1931|1964", value_parser = args::observer)]
+    #[arg(long, value_name = "1931|1964", value_parser = args::device_observer)]
     pub observer: Option<Observer>,
     /// A mixing channel: NAME=FILE.csv[#COLUMN], its SPD at full drive; 3 to 6 of them, in
     /// order. Uploaded as `channel` lines (its XYZ from the SPD at 1 nm) before the action.

@@ -42,6 +42,11 @@ pub struct LightArgs {
     /// that page by headless Chromium).
     #[arg(long, value_name = "FILE.html|FILE.png")]
     pub report: Option<PathBuf>,
+    /// Also the light's XYZ, xy and u′v′ under this observer (1931, 1964, 2015-2, 2015-10,
+    /// cie2006:age=A,field=F or FILE.csv): a line after the metrics, with --json under the key
+    /// "observer". CCT, Duv, Ra and Rf stay on the observers their standards fix.
+    #[arg(long, value_name = "NAME|FILE", value_parser = super::args::observer, conflicts_with = "csv")]
+    pub observer: Option<specpoly_core::Observer>,
 }
 
 /// `v` to `prec` decimals, `-` for none.
@@ -107,6 +112,7 @@ pub fn text(name: &str, r: &LightReport) -> String {
         opt(r.rf, 1),
         opt(r.rg, 1)
     );
+    o += &observer_line(&name, r);
     o += &details(r);
     o
 }
@@ -148,6 +154,23 @@ fn details(r: &LightReport) -> String {
         let _ = writeln!(o, "{clause:<62} {figure:>22}  {result}");
     }
     o
+}
+
+/// The line of `--observer`: the light's colour under that observer (empty without it).
+fn observer_line(name: &str, r: &LightReport) -> String {
+    r.observer.as_ref().map_or(String::new(), |c| {
+        format!(
+            "# {name} under observer {}: X {:.4} Y {:.4} Z {:.4}, x {:.6} y {:.6}, u' {:.6} v' {:.6}\n",
+            specpoly_formats::escape::one_line(&c.name),
+            c.big_x,
+            c.big_y,
+            c.big_z,
+            c.x,
+            c.y,
+            c.u_prime,
+            c.v_prime
+        )
+    })
 }
 
 /// One light's report with its name first (JSON Lines).
@@ -217,6 +240,9 @@ pub fn table(rows: &[(Named, LightReport)]) -> String {
             r.checks.ansi_c78377.map_or("-".into(), |k| k.to_string()),
             r.checks.ja8.map_or("-", |p| if p { "pass" } else { "fail" })
         );
+    }
+    for (n, r) in rows {
+        o += &observer_line(&specpoly_formats::escape::one_line(&n.name), r);
     }
     o
 }
@@ -334,7 +360,11 @@ pub fn run(a: &LightArgs) -> Result<()> {
     let mut rows = Vec::new();
     for spec in &a.spd {
         for named in spectrum_names::lights(spec)? {
-            let r = report(&named, a.extrapolate)?;
+            let mut r = report(&named, a.extrapolate)?;
+            if let Some(o) = a.observer {
+                let s = specpoly_spectra::light::standard_spd(&named, a.extrapolate)?;
+                r.observer = Some(specpoly_spectra::light::observer_colour(&s, o));
+            }
             rows.push((named, r));
         }
     }

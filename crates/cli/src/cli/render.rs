@@ -8,11 +8,12 @@
 //! statistics of each mode against the reference. `--equal-time` is [`render_equal_time`]; both
 //! comparisons are written and printed by [`crate::cli::render_report`].
 
-use crate::cli::args::Gamut;
+use crate::cli::args::{self, Gamut};
 use crate::cli::render_equal_time;
 use crate::cli::render_report::{report, Report, Target};
 use crate::error::{CliError, Result};
 use specpoly_calibrate::progress;
+use specpoly_core::Observer;
 use specpoly_display::spec::DisplaySpec;
 use specpoly_formats::stdout::{print, print_json};
 use specpoly_plot::size::Size;
@@ -42,6 +43,10 @@ pub struct RenderArgs {
     /// Image size, overriding the scene's: WIDTHxHEIGHT.
     #[arg(long, value_name = "WxH")]
     pub size: Option<Size>,
+    /// Observer, overriding the scene's: 1931, 1964, 2015-2, 2015-10, cie2006:age=A,field=F
+    /// or FILE.csv of three sensitivities.
+    #[arg(long, value_name = "NAME|FILE", value_parser = args::observer)]
+    pub observer: Option<Observer>,
     /// Rays per pixel along each axis (1–16), overriding the scene's.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
     pub samples: Option<u32>,
@@ -119,6 +124,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     if let Some(n) = a.spp {
         scene.render.spp = n;
+    }
+    if let Some(o) = a.observer {
+        scene.observer = o;
     }
     let out =
         Output::new(&scene, spec.display(), a.gamut.into()).with_model(spec.interaction_model());

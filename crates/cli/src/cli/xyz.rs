@@ -152,9 +152,9 @@ pub fn run(a: &XyzArgs) -> Result<()> {
         .clamp(4, NAME_COLUMN);
     let _ = writeln!(
         o,
-        "# illuminant {}, CIE {} observer, repr {}; Lab against the illuminant's white (Y = 100)",
+        "# illuminant {}, {} observer, repr {}; Lab against the illuminant's white (Y = 100)",
         a.colorimetry.illuminant,
-        a.colorimetry.observer.name(),
+        a.colorimetry.observer.label(),
         a.repr
     );
     let _ = write!(

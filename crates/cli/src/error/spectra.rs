@@ -19,6 +19,8 @@ impl From<Error> for CliError {
             | Error::UnsupportedRepr { .. }
             | Error::NotPolynomial { .. }
             | Error::UnlistedLayout(_)
+            | Error::UnknownObserver(_)
+            | Error::Cie2006 { .. }
             | Error::Mix(LightError::Channels(_) | LightError::BadTarget) => {
                 CliError::Usage(e.to_string())
             }
@@ -29,6 +31,7 @@ impl From<Error> for CliError {
             | Error::Light { .. }
             | Error::ShortLight { .. }
             | Error::OutOfGamut { .. }
+            | Error::BadObserver { .. }
             | Error::Mix(_) => CliError::Data(e.to_string()),
         }
     }

@@ -1,0 +1,4 @@
+//! The integration tests of `spectra`: one test binary, a module per area.
+
+mod cie2006_luxpy;
+mod observer_csv;
