@@ -298,7 +298,9 @@ fn every_command_in_the_docs_runs_as_written() {
         t0.elapsed().as_secs_f64(),
         skipped.join(", ")
     );
-    assert!(skipped.len() <= 6, "too many skipped blocks: {skipped:?}");
+    // the six that need hardware, a root install or minutes of rendering, and the two of the
+    // Python package (a virtual environment and PyPI: test.sh builds and tests it)
+    assert!(skipped.len() <= 8, "too many skipped blocks: {skipped:?}");
     assert!(
         failures.is_empty(),
         "{} doc commands fail:\n{}",

@@ -178,15 +178,27 @@ pub fn calibrate(
     run(&cli::calibrate_run(display, instrument, more, out), timeout)
 }
 
-/// One HTTP GET on the loopback; the body.
-pub fn http_get(base: &str, path: &str) -> Option<String> {
-    let hostport = base.trim_start_matches("http://").trim_end_matches('/');
+/// One HTTP GET on the loopback with `cookie` (a `Cookie:` value, or empty); the body.
+pub fn http_get(base: &str, path: &str, cookie: &str) -> Option<String> {
+    http_get_full(base, path, cookie).map(|(_, b)| b)
+}
+
+/// One HTTP GET on the loopback: the head and the body.
+fn http_get_full(base: &str, path: &str, cookie: &str) -> Option<(String, String)> {
+    let rest = base.trim_start_matches("http://");
+    let hostport = rest.split('/').next()?;
     let mut s = TcpStream::connect(hostport).ok()?;
     s.set_read_timeout(Some(Duration::from_secs(2))).ok()?;
-    write!(s, "GET {path} HTTP/1.1\r\nHost: {hostport}\r\n\r\n").ok()?;
+    let cookie = if cookie.is_empty() {
+        String::new()
+    } else {
+        format!("Cookie: {cookie}\r\n")
+    };
+    write!(s, "GET {path} HTTP/1.1\r\nHost: {hostport}\r\n{cookie}\r\n").ok()?;
     let mut out = String::new();
     s.read_to_string(&mut out).ok()?;
-    out.split_once("\r\n\r\n").map(|(_, b)| b.to_string())
+    out.split_once("\r\n\r\n")
+        .map(|(h, b)| (h.to_string(), b.to_string()))
 }
 
 /// Plays the browser for a web display: polls `/patch`, records the colour, acknowledges it.
@@ -206,38 +218,50 @@ impl Drop for FakeBrowser {
     }
 }
 
-/// Starts polling `base` (`http://127.0.0.1:PORT/`).
-pub fn fake_browser(base: &str) -> FakeBrowser {
-    fake_browser_into(base, Arc::new(Mutex::new([0.0; 3])))
+/// Starts polling the page at `url` (`http://127.0.0.1:PORT/?key=K`, as the run prints it).
+pub fn fake_browser(url: &str) -> FakeBrowser {
+    fake_browser_into(url, Arc::new(Mutex::new([0.0; 3])))
 }
 
-/// Starts polling `base`, writing the colour shown into `current` before acknowledging it.
-pub fn fake_browser_into(base: &str, current: Arc<Mutex<[f64; 3]>>) -> FakeBrowser {
+/// Starts polling the page at `url`, writing the colour shown into `current` before
+/// acknowledging it.
+pub fn fake_browser_into(url: &str, current: Arc<Mutex<[f64; 3]>>) -> FakeBrowser {
     let stop = Arc::new(AtomicBool::new(false));
-    let (c, s, base) = (current.clone(), stop.clone(), base.to_string());
+    let (c, s, url) = (current.clone(), stop.clone(), url.to_string());
     let thread = std::thread::spawn(move || {
         let mut seq = 0u64;
-        // like the page: the run's token is written into it, and /patch and /shown need it
-        let mut token = String::new();
+        // like the browser: the printed URL's one-time key opens the page once and gives the
+        // session cookie, which /patch and /shown need
+        let keyed = url
+            .find("/?")
+            .map_or("/".to_string(), |i| url[i..].to_string());
+        let mut cookie = String::new();
         while !s.load(Ordering::SeqCst) {
-            if token.is_empty() {
-                token = http_get(&base, "/")
-                    .and_then(|p| {
-                        let i = p.find("const token = \"")? + 15;
-                        Some(p[i..].split('"').next()?.to_string())
-                    })
-                    .unwrap_or_default();
-                std::thread::sleep(Duration::from_millis(5));
+            if cookie.is_empty() {
+                if let Some((head, _)) = http_get_full(&url, &keyed, "") {
+                    cookie = head
+                        .lines()
+                        .find_map(|l| l.strip_prefix("Set-Cookie: "))
+                        .and_then(|c| c.split(';').next())
+                        .unwrap_or_default()
+                        .to_string();
+                    if cookie.is_empty() {
+                        // the key was refused: nothing more this browser can do
+                        return;
+                    }
+                } else {
+                    std::thread::sleep(Duration::from_millis(5));
+                }
                 continue;
             }
-            if let Some(body) = http_get(&base, &format!("/patch?token={token}")) {
+            if let Some(body) = http_get(&url, "/patch", &cookie) {
                 if let Ok(v) = serde_json::from_str::<serde_json::Value>(&body) {
                     let n = v["seq"].as_u64().unwrap_or(0);
                     if n != seq {
                         let rgb = &v["rgb"];
                         *c.lock().unwrap() = [0, 1, 2].map(|i| rgb[i].as_f64().unwrap_or(0.0));
                         seq = n;
-                        let _ = http_get(&base, &format!("/shown?seq={n}&token={token}"));
+                        let _ = http_get(&url, &format!("/shown?seq={n}"), &cookie);
                     }
                 }
             }
