@@ -68,7 +68,7 @@ await() {
   local pid=$1 what=$2 log=$3
   [ -n "$pid" ] || return 0
   if ! wait "$pid"; then
-    echo "test.sh: installing $what failed:" >&2
+    echo "test.sh: $what failed:" >&2
     cat "$log" >&2
     exit 1
   fi
@@ -90,7 +90,7 @@ PYO3_ENVIRONMENT_SIGNATURE=$("$py" -c 'import struct, sys; print("cpython-%d.%d-
 export PYO3_ENVIRONMENT_SIGNATURE
 # the host build links with `cc`: without it, wait for the install now
 if ! command -v cc >/dev/null 2>&1; then
-  await "$apt_pid" "${missing[*]}" "$logs/apt.log"
+  await "$apt_pid" "installing ${missing[*]}" "$logs/apt.log"
   apt_pid=""
 fi
 for c in rustfmt clippy; do
@@ -111,7 +111,7 @@ cargo test --workspace --all-targets --no-run
 cargo test -p specpoly-device --no-default-features --all-targets --no-run
 
 say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
-await "$targets_pid" "the Rust targets ${targets[*]:-}" "$logs/rustup.log"
+await "$targets_pid" "installing the Rust targets ${targets[*]:-}" "$logs/rustup.log"
 # the same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops
 (cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
 # the STM32F4 board build (stm32f4xx-hal), run on netduinoplus2
@@ -129,11 +129,21 @@ cargo build -p specpoly-c --release --target thumbv7em-none-eabihf
 cargo build -p specpoly-c --release --target riscv32imc-unknown-none-elf
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
-await "$apt_pid" "${missing[*]:-}" "$logs/apt.log"
+await "$apt_pid" "installing ${missing[*]:-}" "$logs/apt.log"
 for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
   exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
+
+# The Python package's wheel (maturin) compiles while the tests run: they mostly wait (on
+# ArgyllCMS, QEMU, Chromium, serial timeouts), so its compile fills idle cores. It starts once
+# nextest's own build check has released the target directory's lock.
+await "$venv_pid" "making the Python test environment" "$logs/venv.log"
+rm -rf target/wheels
+( sleep 20
+  "$venv/bin/maturin" build --quiet --profile dev -m python/Cargo.toml -i "$py" -o target/wheels
+) >"$logs/wheel.log" 2>&1 &
+wheel_pid=$!
 
 if cargo nextest --version >/dev/null 2>&1; then
   # all test binaries at once, longest tests first (.config/nextest.toml)
@@ -146,10 +156,8 @@ fi
 # the controller's unit tests as the 32 KiB build compiles it (no settings, mixing, lut)
 cargo test -p specpoly-device --no-default-features --lib
 
-say "Python package: its wheel from the build above (maturin), installed in a virtual environment, pytest"
-await "$venv_pid" "the Python test environment" "$logs/venv.log"
-rm -rf target/wheels
-"$venv/bin/maturin" build --quiet --profile dev -m python/Cargo.toml -i "$py" -o target/wheels
+say "Python package: its wheel (built during the tests), installed in a virtual environment, pytest"
+await "$wheel_pid" "the Python package's wheel (maturin build)" "$logs/wheel.log"
 "$venv/bin/pip" install -q --disable-pip-version-check --no-deps target/wheels/specpoly-*.whl
 # against colour-science and the CLI this build made
 SPECPOLY_CLI="$PWD/target/debug/specpoly" "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests

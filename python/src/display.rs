@@ -81,9 +81,8 @@ impl DisplayModel {
     }
 }
 
-/// Fits a calibration to a `.ti3` as `specpoly calibrate fit` does (the same steps, notes and
-/// provenance as the CLI's `fit_cmd`, which keeps them in the CLI crate with its own error
-/// mapping; moving both into `specpoly-calibrate` is the next step).
+/// Fits a calibration to a `.ti3` as `specpoly calibrate fit` does, with the same provenance
+/// ([`fit::provenance::record`]).
 fn fit_ti3(path: &Path, opts: FitOptions, hold_out: bool) -> Result<Calibration, String> {
     let shown = path.display().to_string();
     let bytes = specpoly_formats::read::bytes(path).map_err(|e| e.to_string())?;
@@ -99,35 +98,7 @@ fn fit_ti3(path: &Path, opts: FitOptions, hold_out: bool) -> Result<Calibration,
     let opts = FitOptions { absolute, ..opts };
     let mut cal =
         fit::fit_and_verify(&fit_set, &verify_set, &opts).map_err(|e| format!("{shown}: {e}"))?;
-    let (_, prov) = cal.report_mut();
-    prov.source = shown.clone();
-    prov.readings_sha256 = sha;
-    prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
-    prov.instrument = ti3
-        .keyword("TARGET_INSTRUMENT")
-        .unwrap_or_default()
-        .to_string();
-    if ti3.normalized {
-        prov.notes.push(match ti3.white_cdm2 {
-            Some(w) => format!(
-                "the source is normalised to white Y = 100 (NORMALIZED_TO_Y_100); scaled to cd/m² with LUMINANCE_XYZ_CDM2 (white Y = {:.3} cd/m²)",
-                w[1]
-            ),
-            None => "the source is normalised to white Y = 100 and gives no absolute luminance: units are relative".into(),
-        });
-    }
-    if ti3.video_lut_active() {
-        prov.notes.push(format!(
-            "measured through a video-LUT calibration (the source's CAL table, {} entries): this model holds only while that LUT is loaded",
-            ti3.video_lut.as_ref().map_or(0, Vec::len)
-        ));
-    }
-    if let Some(rows) = &ti3.video_lut {
-        let lut =
-            specpoly_display::video_lut::VideoLut::from_rows(rows, &format!("{shown}: CAL table"))
-                .map_err(|e| e.to_string())?;
-        cal.set_video_lut(Some(lut)).map_err(|e| e.to_string())?;
-    }
+    fit::provenance::record(&mut cal, &ti3, &shown, sha).map_err(|e| e.to_string())?;
     Ok(cal)
 }
 

@@ -39,6 +39,7 @@
 
 pub use specpoly_display::lattice;
 pub mod locus;
+pub mod provenance;
 pub mod robust;
 pub mod select;
 

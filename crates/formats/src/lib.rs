@@ -21,6 +21,7 @@ pub mod atomic;
 pub mod ccmx;
 pub mod ccss;
 pub mod cgats;
+pub mod cgats_table;
 pub mod csv;
 pub mod device_spec;
 pub mod error;

@@ -12,7 +12,7 @@
 //! is normalised so its largest value is 100). Negative values are allowed (a spectrometer's
 //! noise in the dark bands), values that are not finite are not.
 
-use crate::cgats::{bad, number, Table};
+use crate::cgats_table::{bad, number, Table};
 use crate::{Error, Result};
 
 /// The most bands read: ArgyllCMS's own limit (`XSPECT_MAX_BANDS`, spectro/xspect.h).
@@ -256,7 +256,7 @@ pub fn value(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cgats::parse;
+    use crate::cgats_table::parse;
 
     const GOOD: &str = "CTI3\n\nSPECTRAL_BANDS \"3\"\nSPECTRAL_START_NM \"400.000000\"\nSPECTRAL_END_NM \"700.000000\"\nNUMBER_OF_FIELDS 4\nBEGIN_DATA_FORMAT\nSAMPLE_ID SPEC_400 SPEC_550 SPEC_700\nEND_DATA_FORMAT\nNUMBER_OF_SETS 2\nBEGIN_DATA\n1 1 2 3\n2 -0.5 0 1e-3\nEND_DATA\n";
 

@@ -42,7 +42,7 @@
 //! ages far from 32 (docs/accuracy.md, "Observers").
 
 use crate::{Error, Result};
-use specpoly_core::{observer::CMF_LEN, CmfTable, Observer};
+use specpoly_core::{observer::CMF_LEN, CmfTable};
 use std::sync::OnceLock;
 
 /// The model's input tables at 0.1 nm, 390–780 nm (see data/README.md).
@@ -246,9 +246,9 @@ pub fn parse_params(spec: &str, params: &str) -> Result<(f64, f64)> {
     }
 }
 
-/// The CIE 2006 observer for `age` and `field` as an [`Observer`] (a runtime table, kept for
-/// the process's life by [`crate::observer::intern`]), named `cie2006:age=A,field=F`.
-pub fn observer(age: f64, field: f64) -> Result<Observer> {
+/// The CIE 2006 observer for `age` and `field` as a runtime observer table named
+/// `cie2006:age=A,field=F` (`crate::observer::parse` keeps it for the process's life).
+pub fn table(age: f64, field: f64) -> Result<CmfTable> {
     let name = format!("cie2006:age={age},field={field}");
     let xyz = xyz(age, field)?;
     let mut values = [[0.0f32; 3]; CMF_LEN];
@@ -259,5 +259,5 @@ pub fn observer(age: f64, field: f64) -> Result<Observer> {
         spec: name.clone(),
         why: e.to_string(),
     })?;
-    Ok(crate::observer::intern(table))
+    Ok(table)
 }

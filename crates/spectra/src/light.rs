@@ -512,6 +512,50 @@ pub fn describe(t: &Target) -> String {
     }
 }
 
+/// The checks as rows (clause, figure, result) for the text report of one light.
+pub fn check_lines(r: &LightReport) -> Vec<[String; 3]> {
+    let mut out = vec![];
+    let xy_text = format!("x,y {:.4},{:.4}", r.x, r.y);
+    match r
+        .checks
+        .ansi_c78377
+        .and_then(specpoly_core::light::ansi_c78377::by_name)
+    {
+        Some(n) => out.push([
+            format!(
+                "ANSI C78.377-2017 {} K quadrangle ({} +-{} K, Duv {:.4} +-0.006)",
+                n.nominal, n.cct, n.cct_tolerance, n.duv
+            ),
+            xy_text,
+            "pass".into(),
+        ]),
+        None => out.push([
+            "ANSI C78.377-2017 nominal CCT quadrangles (2200-6500 K)".into(),
+            xy_text,
+            "fail: in none".into(),
+        ]),
+    }
+    let figures = [
+        ("ra", r.ra.map(|v| format!("{v:.1}"))),
+        ("r9", r.r9.map(|v| format!("{v:.1}"))),
+        ("cct", r.cct.map(|v| format!("{v:.0} K"))),
+        ("duv", r.duv.map(|v| format!("{v:.5}"))),
+    ];
+    for ((_, c), (key, fig)) in specpoly_core::light::ja8::CLAUSES.iter().zip(figures) {
+        let res = match (r.checks.ja8, fig.is_some()) {
+            (Some(_), true) if r.checks.ja8_fails.contains(&key) => "fail",
+            (Some(_), true) => "pass",
+            _ => "fail: no CCT",
+        };
+        out.push([
+            format!("JA8 {c}"),
+            fig.unwrap_or_else(|| "-".into()),
+            res.into(),
+        ]);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -55,7 +55,7 @@ pub fn parse(spec: &str) -> Result<Observer> {
         .or_else(|| spec.strip_prefix("CIE2006:"))
     {
         let (age, field) = crate::cie2006::parse_params(spec, params)?;
-        return crate::cie2006::observer(age, field);
+        return Ok(intern(crate::cie2006::table(age, field)?));
     }
     let path = Path::new(spec);
     if path.is_file() {

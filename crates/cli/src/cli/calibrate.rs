@@ -231,37 +231,13 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
             o.patch = p + 1;
         }
     }
-    prov.source = a.ti3.display().to_string();
-    prov.readings_sha256 = readings_sha256;
     prov.notes.extend(drift.iter().map(|d| d.note()));
-    prov.measured = ti3.keyword("CREATED").unwrap_or_default().to_string();
-    prov.instrument = ti3
-        .keyword("TARGET_INSTRUMENT")
-        .unwrap_or_default()
-        .to_string();
-    if ti3.normalized {
-        prov.notes.push(match ti3.white_cdm2 {
-            Some(w) => format!(
-                "the source is normalised to white Y = 100 (NORMALIZED_TO_Y_100); scaled to cd/m² with LUMINANCE_XYZ_CDM2 (white Y = {:.3} cd/m²)",
-                w[1]
-            ),
-            None => "the source is normalised to white Y = 100 and gives no absolute luminance: units are relative".into(),
-        });
-    }
-    if ti3.video_lut_active() {
-        prov.notes.push(format!(
-            "measured through a video-LUT calibration (the source's CAL table, {} entries): this model holds only while that LUT is loaded",
-            ti3.video_lut.as_ref().map_or(0, Vec::len)
-        ));
-    }
-    if let Some(rows) = &ti3.video_lut {
-        // kept, so the ICC profile carries it as its `vcgt`
-        let lut = specpoly_display::video_lut::VideoLut::from_rows(
-            rows,
-            &format!("{}: CAL table", a.ti3.display()),
-        )?;
-        cal.set_video_lut(Some(lut))?;
-    }
+    fit::provenance::record(
+        &mut cal,
+        &ti3,
+        &a.ti3.display().to_string(),
+        readings_sha256,
+    )?;
     cal.save(&a.output)?;
     crate::cli::wrote::wrote(&a.output, "");
     if a.json {

@@ -150,7 +150,7 @@ fn details(r: &LightReport) -> String {
         c.der_mel
     );
     let _ = writeln!(o, "{:<62} {:>22}  result", "check", "figure");
-    for [clause, figure, result] in specpoly_spectra::light_checks::check_lines(r) {
+    for [clause, figure, result] in specpoly_spectra::light::check_lines(r) {
         let _ = writeln!(o, "{clause:<62} {figure:>22}  {result}");
     }
     o
