@@ -6,7 +6,7 @@
 //! Batches are split into chunks computed in parallel with the GIL released.
 
 use crate::arrays::{self, out_1d, out_3d, out_rows, Rows};
-use crate::lib_err;
+use crate::{grid, lib_err};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
@@ -30,13 +30,12 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The observer named `s` (`1931`/`2`, `1964`/`10`).
+/// The observer `s` as the CLI's `--observer` takes it
+/// ([`specpoly_spectra::observer::parse`]): `1931` (`2`), `1964` (`10`), `2015-2`, `2015-10`,
+/// `cie2006:age=A,field=F`, or a CSV file of three sensitivities; anything else is the
+/// library's one-line error (a `ValueError`).
 pub fn observer(s: &str) -> PyResult<Observer> {
-    Observer::from_name(s).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "unknown observer `{s}`: give 1931 (or 2) or 1964 (or 10)"
-        ))
-    })
+    specpoly_spectra::observer::parse(s).map_err(lib_err)
 }
 
 /// The representation named `s` (as `--repr`).
@@ -164,10 +163,20 @@ fn batch<'py>(
     k: usize,
     f: impl Fn(&Colour) -> Vec<f64> + Send + Sync,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let (rows, wl) = sampled(values, wavelengths)?;
+    // the arguments first (errors in the order of the per-spectrum path), then the grid's
+    // batch path, which reads the values in place; the per-spectrum path when it declines
+    let wl = arrays::vector(wavelengths, "wavelengths")?;
+    arrays::finite(&wl, "wavelengths", 0)?;
     let light = light(illuminant)?;
     let obs = observer(observer_name)?;
     let repr = repr(repr_name)?;
+    if !product {
+        if let Some(cs) = grid::try_colours(py, values, &wl, &light, obs, repr, scale) {
+            let n = cs.len();
+            return out_rows(py, cs.iter().flat_map(&f).collect(), n, k, false);
+        }
+    }
+    let (rows, wl) = sampled(values, wavelengths)?;
     let (n, one) = if product {
         (1, true)
     } else {
