@@ -110,6 +110,23 @@ fn rows_of<'py>(values: &Bound<'py, PyAny>, k: usize) -> Option<(F64Rows<'py>, u
     None
 }
 
+/// `W` with its columns computed in parallel blocks ([`GridWeights::columns`]).
+fn weights(
+    repr: Repr,
+    observer: Observer,
+    light: &Named,
+    wl: &[f32],
+) -> Result<GridWeights, specpoly_core::Error> {
+    let lt = light.tabulated();
+    let k = wl.len();
+    let block = k.div_ceil(rayon::current_num_threads().max(1) * 2).max(8);
+    let parts = (0..k.div_ceil(block))
+        .into_par_iter()
+        .map(|b| GridWeights::columns(repr, observer, &lt, wl, b * block..(b + 1) * block))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(GridWeights::from_columns(observer, &lt, parts))
+}
+
 /// The colours of the rows of `values` on `wl` by the grid's matrix, computed with the GIL
 /// released, or `None` for the per-spectrum path (see the module docs). `values` and `wl` are
 /// already known to be a valid batch (shape, finite wavelengths) only when this returns
@@ -139,10 +156,7 @@ pub fn try_colours(
         Some(w) => w,
         None if n >= 2 && 4 * n >= k => {
             // the library checks the grid (finite, increasing, reaching 380–780 nm)
-            let w = Arc::new(
-                py.detach(|| GridWeights::new(repr, observer, &light.tabulated(), wl))
-                    .ok()?,
-            );
+            let w = Arc::new(py.detach(|| weights(repr, observer, light, wl)).ok()?);
             keep(key, w.clone());
             w
         }

@@ -32,6 +32,7 @@
 use crate::colour::{self, Colour};
 use crate::plausible;
 use crate::repr::{Repr, Visitor};
+use core::ops::Range;
 use specpoly_core::{Error, Observer, Shade, Tabulated};
 
 /// `W` for one wavelength grid, representation, observer and light, with the light's exact
@@ -44,11 +45,13 @@ pub struct GridWeights {
     white: [f64; 3],
 }
 
-/// A [`Visitor`]: the colours of the unit spectra of a grid in one representation.
+/// A [`Visitor`]: the colours of the unit spectra `e_j`, `j` in `cols`, of a grid in one
+/// representation.
 struct Columns<'a> {
     observer: Observer,
     light: Tabulated<'a>,
     wavelengths: &'a [f32],
+    cols: Range<usize>,
 }
 
 impl Visitor for Columns<'_> {
@@ -56,16 +59,21 @@ impl Visitor for Columns<'_> {
     fn visit<T: Shade>(self) -> Self::Output {
         let k = self.wavelengths.len();
         let light = T::light(self.observer, &self.light);
-        let mut w = [vec![0.0; k], vec![0.0; k], vec![0.0; k]];
+        let cols = self.cols.start.min(k)..self.cols.end.min(k);
+        let mut w = [
+            Vec::with_capacity(cols.len()),
+            Vec::with_capacity(cols.len()),
+            Vec::with_capacity(cols.len()),
+        ];
         let mut unit = vec![0.0f32; k];
-        for j in 0..k {
+        for j in cols {
             unit[j] = 1.0;
             let tab = Tabulated::new(self.wavelengths, &unit)?;
             let xyz = T::from_reflectance(&tab, &light)?.xyz(&light);
             unit[j] = 0.0;
-            w[0][j] = xyz.x as f64;
-            w[1][j] = xyz.y as f64;
-            w[2][j] = xyz.z as f64;
+            w[0].push(xyz.x as f64);
+            w[1].push(xyz.y as f64);
+            w[2].push(xyz.z as f64);
         }
         Ok(w)
     }
@@ -80,18 +88,47 @@ impl GridWeights {
         light: &Tabulated<'_>,
         wavelengths: &[f32],
     ) -> Result<Self, Error> {
-        let w = crate::repr::dispatch(
+        let cols = Self::columns(repr, observer, light, wavelengths, 0..wavelengths.len())?;
+        Ok(Self::from_columns(observer, light, [cols]))
+    }
+
+    /// Columns `cols` of `W` (rows X, Y, Z): [`Self::new`] in parts, for a caller that
+    /// computes the parts in parallel and joins them with [`Self::from_columns`].
+    pub fn columns(
+        repr: Repr,
+        observer: Observer,
+        light: &Tabulated<'_>,
+        wavelengths: &[f32],
+        cols: Range<usize>,
+    ) -> Result<[Vec<f64>; 3], Error> {
+        crate::repr::dispatch(
             repr,
             Columns {
                 observer,
                 light: *light,
                 wavelengths,
+                cols,
             },
-        )?;
-        Ok(Self {
+        )
+    }
+
+    /// `W` from its [`Self::columns`] in order (together covering the grid), with the light's
+    /// white under `observer`.
+    pub fn from_columns(
+        observer: Observer,
+        light: &Tabulated<'_>,
+        parts: impl IntoIterator<Item = [Vec<f64>; 3]>,
+    ) -> Self {
+        let mut w: [Vec<f64>; 3] = Default::default();
+        for part in parts {
+            for (all, p) in w.iter_mut().zip(part) {
+                all.extend(p);
+            }
+        }
+        Self {
             w,
             white: colour::white(observer, light),
-        })
+        }
     }
 
     /// Number of grid samples `k`.

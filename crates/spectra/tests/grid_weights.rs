@@ -30,10 +30,22 @@ fn w_times_samples_is_each_representations_colour() {
         (Illuminant::FL11, Observer::Cie2015_10),
     ] {
         let lt = light.tabulated();
-        for repr in ["poly", "paper", "poly:4x5", "sampled:41", "hero:4", "rgb", "exact"] {
+        for repr in [
+            "poly",
+            "paper",
+            "poly:4x5",
+            "sampled:41",
+            "hero:4",
+            "rgb",
+            "exact",
+        ] {
             let repr: Repr = repr.parse().unwrap();
             let w = GridWeights::new(repr, observer, &lt, &wl).unwrap();
             assert_eq!(w.len(), wl.len());
+            // built in two parts (as a parallel caller does): the same matrix
+            let parts = [0..10, 10..wl.len()]
+                .map(|c| GridWeights::columns(repr, observer, &lt, &wl, c).unwrap());
+            assert_eq!(GridWeights::from_columns(observer, &lt, parts), w);
             let per = colour::chains(repr, observer, &lt, &tabs, &chains).unwrap();
             for (i, n) in cc.iter().enumerate() {
                 let r: Vec<f64> = n.values.iter().map(|v| *v as f64).collect();
@@ -42,7 +54,12 @@ fn w_times_samples_is_each_representations_colour() {
                 close(c.xyz, per[i].xyz, 2e-6, &format!("{repr} {}", n.name));
                 if repr == Repr::Exact {
                     let want = colour::reference(observer, &lt, &tabs, &[i]);
-                    close(c.xyz, want.xyz, 2e-6, &format!("exact reference {}", n.name));
+                    close(
+                        c.xyz,
+                        want.xyz,
+                        2e-6,
+                        &format!("exact reference {}", n.name),
+                    );
                 }
             }
         }
@@ -52,7 +69,12 @@ fn w_times_samples_is_each_representations_colour() {
 #[test]
 fn a_grid_that_is_not_increasing_is_refused() {
     let lt = Illuminant::D65.tabulated();
-    let e = GridWeights::new(Repr::DEFAULT, Observer::Cie1964, &lt, &[400.0, 500.0, 450.0]);
+    let e = GridWeights::new(
+        Repr::DEFAULT,
+        Observer::Cie1964,
+        &lt,
+        &[400.0, 500.0, 450.0],
+    );
     assert!(e.is_err());
 }
 
