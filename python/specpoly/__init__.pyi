@@ -73,10 +73,15 @@ def sd_fit(
     "rms": (n, spans), "max": (n, spans), "delta_E00": (n,)} (batch axis dropped for (k,))."""
 
 def light_metrics(
-    values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False
+    values: ArrayLike,
+    wavelengths: ArrayLike,
+    extrapolate: bool = False,
+    observer: Optional[str] = None,
 ) -> Dict[str, Union[Float, float]]:
     """`specpoly light --json` for SPDs (n, k) or (k,): {"XYZ": (n, 3), "xy": (n, 2),
-    "uv_prime": (n, 2), "CCT", "Duv", "Ra", "R9", "Rf", "Rg": (n,)}; NaN where undefined."""
+    "uv_prime": (n, 2), "CCT", "Duv", "Ra", "R9", "Rf", "Rg": (n,)}; NaN where undefined.
+    With `observer` (any of `sd_to_XYZ`'s; `light --observer`) also the light's colour under
+    it: "observer_XYZ" (n, 3), "observer_xy", "observer_uv_prime" (n, 2)."""
 
 def CCT_Duv(values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False) -> Float:
     """CCT (K) and Duv: (n, 2) or (2,)."""
