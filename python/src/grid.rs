@@ -30,8 +30,9 @@ use std::sync::{Arc, Mutex};
 /// Matrices kept for later calls.
 pub const KEEP: usize = 8;
 
-/// Rows per parallel chunk.
-const CHUNK: usize = 1024;
+/// Rows per parallel chunk (about 20 µs of work at 81 samples a row, so a batch of a thousand
+/// rows already spreads over the cores).
+const CHUNK: usize = 256;
 
 /// What a matrix is for: compared by value (f32 bit patterns).
 #[derive(Clone, PartialEq)]
@@ -127,10 +128,10 @@ fn weights(
     Ok(GridWeights::from_columns(observer, &lt, parts))
 }
 
-/// The colours of the rows of `values` on `wl` by the grid's matrix, computed with the GIL
-/// released, or `None` for the per-spectrum path (see the module docs). `values` and `wl` are
-/// already known to be a valid batch (shape, finite wavelengths) only when this returns
-/// `Some`: the caller checks them again on `None`.
+/// The rows of `values` on `wl` by the grid's matrix, each colour mapped by `f` to `k_out`
+/// numbers (the first of its three), row-major, computed with the GIL released; or `None` for
+/// the per-spectrum path (see the module docs), which checks `values` and `wl` again.
+#[allow(clippy::too_many_arguments)]
 pub fn try_colours(
     py: Python<'_>,
     values: &Bound<'_, PyAny>,
@@ -139,8 +140,10 @@ pub fn try_colours(
     observer: Observer,
     repr: Repr,
     scale: f64,
-) -> Option<Vec<Colour>> {
-    if !(scale.is_finite() && scale > 0.0) {
+    k_out: usize,
+    f: impl Fn(&Colour) -> [f64; 3] + Send + Sync,
+) -> Option<(Vec<f64>, usize)> {
+    if !(scale.is_finite() && scale > 0.0) || !(1..=3).contains(&k_out) {
         return None;
     }
     let k = wl.len();
@@ -166,20 +169,22 @@ pub fn try_colours(
     if data.len() != n * k || k == 0 {
         return None;
     }
-    py.detach(|| {
+    let white = w.white();
+    let mut out = vec![0.0; n * k_out];
+    let ok = py.detach(|| {
         data.par_chunks(CHUNK * k)
-            .map(|chunk| {
-                chunk
-                    .chunks_exact(k)
-                    .map(|row| {
-                        w.reflectance_xyz(row, scale).map(|xyz| Colour {
-                            xyz,
-                            white: w.white(),
-                        })
+            .zip(out.par_chunks_mut(CHUNK * k_out))
+            .all(|(rows, outs)| {
+                rows.chunks_exact(k)
+                    .zip(outs.chunks_exact_mut(k_out))
+                    .all(|(row, o)| match w.reflectance_xyz(row, scale) {
+                        Some(xyz) => {
+                            o.copy_from_slice(&f(&Colour { xyz, white })[..k_out]);
+                            true
+                        }
+                        None => false,
                     })
-                    .collect::<Option<Vec<Colour>>>()
             })
-            .collect::<Option<Vec<Vec<Colour>>>>()
-            .map(|v| v.into_iter().flatten().collect())
-    })
+    });
+    ok.then_some((out, n))
 }

@@ -161,7 +161,7 @@ fn batch<'py>(
     scale: f64,
     product: bool,
     k: usize,
-    f: impl Fn(&Colour) -> Vec<f64> + Send + Sync,
+    f: impl Fn(&Colour) -> [f64; 3] + Send + Sync,
 ) -> PyResult<Bound<'py, PyAny>> {
     // the arguments first (errors in the order of the per-spectrum path), then the grid's
     // batch path, which reads the values in place; the per-spectrum path when it declines
@@ -171,9 +171,9 @@ fn batch<'py>(
     let obs = observer(observer_name)?;
     let repr = repr(repr_name)?;
     if !product {
-        if let Some(cs) = grid::try_colours(py, values, &wl, &light, obs, repr, scale) {
-            let n = cs.len();
-            return out_rows(py, cs.iter().flat_map(&f).collect(), n, k, false);
+        if let Some((data, n)) = grid::try_colours(py, values, &wl, &light, obs, repr, scale, k, &f)
+        {
+            return out_rows(py, data, n, k, false);
         }
     }
     let (rows, wl) = sampled(values, wavelengths)?;
@@ -184,8 +184,11 @@ fn batch<'py>(
     };
     let data = py
         .detach(|| {
-            colours(&rows, &wl, &light, obs, repr, scale, product)
-                .map(|cs| cs.iter().flat_map(&f).collect::<Vec<f64>>())
+            colours(&rows, &wl, &light, obs, repr, scale, product).map(|cs| {
+                cs.iter()
+                    .flat_map(|c| f(c).into_iter().take(k))
+                    .collect::<Vec<f64>>()
+            })
         })
         .map_err(lib_err)?;
     out_rows(py, data, n, k, one)
@@ -219,7 +222,7 @@ fn sd_to_xyz<'py>(
         scale,
         product,
         3,
-        |c| c.xyz.to_vec(),
+        |c| c.xyz,
     )
 }
 
@@ -247,7 +250,10 @@ fn sd_to_xy<'py>(
         scale,
         product,
         2,
-        |c| c.xy().to_vec(),
+        |c| {
+            let [x, y] = c.xy();
+            [x, y, 0.0]
+        },
     )
 }
 
@@ -277,7 +283,7 @@ fn sd_to_lab<'py>(
         3,
         |c| {
             let l = c.lab();
-            vec![l.l, l.a, l.b]
+            [l.l, l.a, l.b]
         },
     )
 }
