@@ -143,7 +143,7 @@ pub fn try_colours(
     k_out: usize,
     f: impl Fn(&Colour) -> [f64; 3] + Send + Sync,
 ) -> Option<(Vec<f64>, usize)> {
-    if !(scale.is_finite() && scale > 0.0) || !(1..=3).contains(&k_out) {
+    if !(scale.is_finite() && scale > 0.0 && (1..=3).contains(&k_out)) {
         return None;
     }
     let k = wl.len();
