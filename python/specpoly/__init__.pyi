@@ -94,7 +94,8 @@ def colour_rendering_index(
 def colour_fidelity_index(
     values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False
 ) -> Tuple[Union[Float, float], Union[Float, float]]:
-    """CIE 224:2017 Rf and TM-30 Rg: (n,) each, or floats for one light."""
+    """CIE 224:2017 Rf and TM-30 Rg: (n,) each, or floats for one light; unrounded (TM-30
+    alone: faster than `light_metrics`, which also computes CIE 13.3 and rounds as the CLI)."""
 
 def tm30(
     values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False

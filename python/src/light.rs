@@ -12,12 +12,14 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use specpoly_core::light::cri::cri_spd;
+use specpoly_core::light::tm30::tm30_spd;
 use specpoly_spectra::light::{observer_colour, report, standard_spd, LightReport, ObserverColour};
 use specpoly_spectra::light_tm30::tm30_report;
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(light_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(colour_rendering_index, m)?)?;
+    m.add_function(wrap_pyfunction!(colour_fidelity_index, m)?)?;
     m.add_function(wrap_pyfunction!(tm30, m)?)?;
     Ok(())
 }
@@ -136,6 +138,42 @@ fn colour_rendering_index<'py>(
         out_1d(py, ra)
     };
     Ok((ra, out_rows(py, ri, cri.len(), 14, rows.one)?))
+}
+
+/// CIE 224:2017 Rf and ANSI/IES TM-30-20 Rg: `(Rf, Rg)`, each (n,) (or floats for one light),
+/// unrounded (`light_metrics` rounds them as the CLI prints them, to 6 decimals); NaN where the
+/// light has no CCT. Only TM-30 is computed (`light_metrics` also computes CIE 13.3 and the
+/// standards' checks).
+#[pyfunction]
+#[pyo3(signature = (values, wavelengths, extrapolate=false))]
+fn colour_fidelity_index<'py>(
+    py: Python<'py>,
+    values: &Bound<'py, PyAny>,
+    wavelengths: &Bound<'py, PyAny>,
+    extrapolate: bool,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (rows, wl) = sampled(values, wavelengths)?;
+    let rfg: Vec<[f64; 2]> = py
+        .detach(|| {
+            (0..rows.n)
+                .into_par_iter()
+                .map(|i| {
+                    let n = named(&rows, &wl, i).map_err(|e| e.to_string())?;
+                    let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
+                    Ok(tm30_spd(&s).map_or([f64::NAN; 2], |t| [t.rf, t.rg]))
+                })
+                .collect::<Result<Vec<_>, String>>()
+        })
+        .map_err(lib_err)?;
+    let out = |k: usize| -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = rfg.iter().map(|r| r[k]).collect();
+        if rows.one {
+            Ok(v[0].into_pyobject(py)?.into_any())
+        } else {
+            Ok(out_1d(py, v))
+        }
+    };
+    Ok((out(0)?, out(1)?))
 }
 
 /// ANSI/IES TM-30-20 in full for one light (k,) (`specpoly light --tm30 --json`): a dict with
