@@ -199,6 +199,10 @@ fn batch<'py>(
 /// values: (n, k) or (k,) reflectances (0–1) sampled at `wavelengths` (k,) nm, strictly
 /// increasing, covering 380–780 nm or held at the ends. Returns (n, 3), or (3,) for one
 /// spectrum or with `product=True` (the product of all rows: an inter-reflection chain).
+/// observer: as the CLI's `--observer`: "1964" (default), "1931", "2015-2", "2015-10",
+/// "cie2006:age=A,field=F", or a CSV file of three sensitivities. A 2-D float64/float32 batch
+/// on one grid is one (3, k) matrix product (the grid's matrix built once and kept; equal to
+/// the per-spectrum colours to f32 rounding).
 #[pyfunction]
 #[pyo3(name = "sd_to_XYZ", signature = (values, wavelengths, illuminant=None, observer="1964", repr="poly", scale=1.0, product=false))]
 #[allow(clippy::too_many_arguments)]
