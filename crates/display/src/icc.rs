@@ -544,15 +544,10 @@ fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
         .iter()
         .map(|d| mw_inv.apply(cal.predict(*d)))
         .collect();
-    let beta = [0, 1, 2].map(|c| {
-        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
-        taus.iter()
-            .filter(|t| t[c] < B2A_IN_MARGIN)
-            .map(|t| (B2A_IN_MARGIN - t[c]) / (t[a] + t[b]).max(1e-6))
-            .fold(0.0f64, f64::max)
-            .min(B2A_BETA_MAX)
-    });
-    let mix = Mat3([0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { beta[r] })));
+    let mix = b2a_mix(&faces, &taus);
+    if std::env::var_os("B2A_DEBUG").is_some() {
+        eprintln!("mix {:?}", mix.0);
+    }
     let top = [0, 1, 2].map(|c| {
         taus.iter().map(|t| mix.apply(*t)[c]).fold(1.0f64, f64::max) * (1.0 + B2A_IN_MARGIN)
     });
@@ -725,6 +720,48 @@ fn b2a_light(
         all.into_iter().map(|p| p.1).collect()
     });
     slices.into_iter().flatten().collect()
+}
+
+/// `B2A0`'s channel mixing: row `c` is `u_c = τ_c + x·τ_a + y·τ_b` (`a`, `b` the other two
+/// channels) with the `(x, y)` that brings the face `D_c = 0` closest to `u_c = 0` (the least
+/// largest `u_c` over that face's colours) while keeping `u_c ≥ 0` at every face colour of the
+/// cube (a lut16 matrix has no offset and its input curves clip below 0). Found by a grid
+/// search refined three times (steps 0.01, 0.0005, 0.00002).
+fn b2a_mix(faces: &[[f64; 3]], taus: &[[f64; 3]]) -> Mat3<f64> {
+    let mut rows = [[0.0; 3]; 3];
+    for c in 0..3 {
+        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
+        let own: Vec<[f64; 3]> = faces
+            .iter()
+            .zip(taus)
+            .filter(|(d, _)| d[c] == 0.0)
+            .map(|(_, t)| *t)
+            .collect();
+        let score = |x: f64, y: f64| {
+            let u = |t: &[f64; 3]| t[c] + x * t[a] + y * t[b];
+            if taus.iter().any(|t| u(t) < 0.0) {
+                return f64::INFINITY;
+            }
+            own.iter().map(u).fold(f64::NEG_INFINITY, f64::max)
+        };
+        let (mut bx, mut by, mut best) = (0.0, 0.0, score(0.0, 0.0));
+        for (step, reach) in [(0.01, 25i32), (0.0005, 20), (0.00002, 25)] {
+            let (cx, cy) = (bx, by);
+            for i in -reach..=reach {
+                for j in -reach..=reach {
+                    let (x, y) = (cx + i as f64 * step, cy + j as f64 * step);
+                    let s = score(x, y);
+                    if s < best {
+                        (bx, by, best) = (x, y, s);
+                    }
+                }
+            }
+        }
+        rows[c][c] = 1.0;
+        rows[c][a] = bx;
+        rows[c][b] = by;
+    }
+    Mat3(rows)
 }
 
 /// Device values on the cube's six faces, `steps + 1` a side.
