@@ -261,10 +261,9 @@ pub const B2A_CHECK_DE: f64 = 0.05;
 /// How far beyond `[0, 1]` (in device linear light) `B2A0`'s table may reach: its nodes outside
 /// the gamut extend the model affinely ([`b2a0`]); nodes further out are clipped there.
 pub const B2A_OUT_REACH: f64 = 0.5;
-/// Margin kept below and above the model's colours in `B2A0`'s input and output ranges.
+/// Margin kept above the model's colours in `B2A0`'s input range, and below and above them in its
+/// output range.
 pub const B2A_IN_MARGIN: f64 = 0.002;
-/// The most of the other two channels mixed into a channel of `B2A0`'s input (`β`, [`b2a0`]).
-pub const B2A_BETA_MAX: f64 = 0.25;
 /// Rounds of the damped fixed point that extends `B2A0` beyond the gamut ([`b2a_light`]).
 pub const B2A_EXTEND_ROUNDS: usize = 30;
 /// Face colours per side sampled to set `B2A0`'s input range.
@@ -514,11 +513,17 @@ impl B2a {
 /// A CMM evaluates `lut16Type` as matrix → input curves → table (trilinear) → output curves.
 /// With `τ = M_pcs⁻¹ · PCS` the matrix/TRC part's linear light ([`MatrixPart`]):
 ///
-/// - **matrix**: `u = diag(1/top) · B · τ` with `B = I + diag(β)(J − I)` (each channel mixed
-///   with `β_c` of the other two): a lut16 matrix has no offset and its input curves clip below
-///   0, yet where the channels interact the gamut's faces lie a little outside the matrix/TRC
-///   part's cube (`τ_c` down to −0.02 on the shipped displays); `β_c` is the least that keeps
-///   `u_c ≥ 0` over the model's colours on the cube's faces, `top_c` the largest `u_c` there;
+/// - **matrix**: `u = diag(1/top) · B · τ`, `B` with a unit diagonal ([`b2a_mix`]): a lut16
+///   matrix has no offset and its input curves clip below 0, yet where the channels interact the
+///   gamut's faces lie a little outside the matrix/TRC part's cube and are bent (`τ_c` down to
+///   −0.02 on the shipped displays); row `c` of `B` mixes in the least of the other two channels
+///   that keeps `u_c ≥ 0` at the model's colours on every face of the cube while bringing the
+///   face `D_c = 0` closest to `u_c = 0`, where the grid's nodes are densest; `top_c` is the
+///   largest `u_c` there. (One share `β_c` of both other channels, the least keeping
+///   `u_c ≥ 0.002` — larger than the black's own `τ_c ≈ 0.001` — went to its cap of 0.25 on four
+///   of the five shipped displays: a fifth of the grid's span in `u_c` then held the other two
+///   channels, the face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, where a cell spans 30 codes
+///   of red, and colours came back up to 16 codes off);
 /// - **input curves**: piecewise linear, grid node `j` at `u = (j/(grid − 1))²` (rounded to the
 ///   curve's own samples, so the CMM's interpolation of the curve is exact): nodes dense in the
 ///   dark, and a function affine in `u` is reproduced exactly by the table;
@@ -538,16 +543,13 @@ fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
     let c_pcs = chad(w);
     let mpcs = c_pcs.mul(&Mat3(part.matrix.map(|r| r.map(|v| v / w[1]))));
     let mw_inv = Mat3(part.matrix).inverse().map_err(|_| singular())?;
-    // β and top from the model's colours on the cube's faces
+    // the mixing and top from the model's colours on the cube's faces
     let faces = face_colours(B2A_FACE_STEPS);
     let taus: Vec<[f64; 3]> = faces
         .iter()
         .map(|d| mw_inv.apply(cal.predict(*d)))
         .collect();
     let mix = b2a_mix(&faces, &taus);
-    if std::env::var_os("B2A_DEBUG").is_some() {
-        eprintln!("mix {:?}", mix.0);
-    }
     let top = [0, 1, 2].map(|c| {
         taus.iter().map(|t| mix.apply(*t)[c]).fold(1.0f64, f64::max) * (1.0 + B2A_IN_MARGIN)
     });
