@@ -264,6 +264,8 @@ pub const B2A_OUT_REACH: f64 = 0.5;
 /// Margin kept above the model's colours in `B2A0`'s input range, and below and above them in its
 /// output range.
 pub const B2A_IN_MARGIN: f64 = 0.002;
+/// The most of the other two channels mixed into a channel of `B2A0`'s input (`β`, [`b2a0`]).
+pub const B2A_BETA_MAX: f64 = 0.25;
 /// Rounds of the damped fixed point that extends `B2A0` beyond the gamut ([`b2a_light`]).
 pub const B2A_EXTEND_ROUNDS: usize = 30;
 /// Face colours per side sampled to set `B2A0`'s input range.
@@ -513,17 +515,16 @@ impl B2a {
 /// A CMM evaluates `lut16Type` as matrix → input curves → table (trilinear) → output curves.
 /// With `τ = M_pcs⁻¹ · PCS` the matrix/TRC part's linear light ([`MatrixPart`]):
 ///
-/// - **matrix**: `u = diag(1/top) · B · τ`, `B` with a unit diagonal ([`b2a_mix`]): a lut16
-///   matrix has no offset and its input curves clip below 0, yet where the channels interact the
-///   gamut's faces lie a little outside the matrix/TRC part's cube and are bent (`τ_c` down to
-///   −0.02 on the shipped displays); row `c` of `B` mixes in the least of the other two channels
-///   that keeps `u_c ≥ 0` at the model's colours on every face of the cube while bringing the
-///   face `D_c = 0` closest to `u_c = 0`, where the grid's nodes are densest; `top_c` is the
-///   largest `u_c` there. (One share `β_c` of both other channels, the least keeping
-///   `u_c ≥ 0.002` — larger than the black's own `τ_c ≈ 0.001` — went to its cap of 0.25 on four
-///   of the five shipped displays: a fifth of the grid's span in `u_c` then held the other two
-///   channels, the face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, where a cell spans 30 codes
-///   of red, and colours came back up to 16 codes off);
+/// - **matrix**: `u = diag(1/top) · B · τ` with `B = I + diag(β)(J − I)` (each channel mixed
+///   with `β_c` of the other two): a lut16 matrix has no offset and its input curves clip below
+///   0, yet where the channels interact the gamut's faces lie a little outside the matrix/TRC
+///   part's cube (`τ_c` down to −0.02 on the shipped displays); `β_c` is the least that keeps
+///   `u_c ≥ 0` over the model's colours on the cube's faces (0–0.023 on the shipped displays),
+///   `top_c` the largest `u_c` there. (Asking for `u_c ≥ 0.002` instead — more than the
+///   black's own `τ_c ≈ 0.001` — drove `β_c` to its cap of 0.25 near black on four of the five
+///   shipped displays: a fifth of the grid's span in `u_c` then held the other two channels, the
+///   face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, where one cell spans 30 codes of red, and
+///   colours came back up to 16 codes off.);
 /// - **input curves**: piecewise linear, grid node `j` at `u = (j/(grid − 1))²` (rounded to the
 ///   curve's own samples, so the CMM's interpolation of the curve is exact): nodes dense in the
 ///   dark, and a function affine in `u` is reproduced exactly by the table;
@@ -549,7 +550,15 @@ fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
         .iter()
         .map(|d| mw_inv.apply(cal.predict(*d)))
         .collect();
-    let mix = b2a_mix(&faces, &taus);
+    let beta = [0, 1, 2].map(|c| {
+        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
+        taus.iter()
+            .filter(|t| t[c] < 0.0)
+            .map(|t| -t[c] / (t[a] + t[b]).max(1e-6))
+            .fold(0.0f64, f64::max)
+            .min(B2A_BETA_MAX)
+    });
+    let mix = Mat3([0, 1, 2].map(|r| [0, 1, 2].map(|c| if r == c { 1.0 } else { beta[r] })));
     let top = [0, 1, 2].map(|c| {
         taus.iter().map(|t| mix.apply(*t)[c]).fold(1.0f64, f64::max) * (1.0 + B2A_IN_MARGIN)
     });
@@ -722,48 +731,6 @@ fn b2a_light(
         all.into_iter().map(|p| p.1).collect()
     });
     slices.into_iter().flatten().collect()
-}
-
-/// `B2A0`'s channel mixing: row `c` is `u_c = τ_c + x·τ_a + y·τ_b` (`a`, `b` the other two
-/// channels) with the `(x, y)` that brings the face `D_c = 0` closest to `u_c = 0` (the least
-/// largest `u_c` over that face's colours) while keeping `u_c ≥ 0` at every face colour of the
-/// cube (a lut16 matrix has no offset and its input curves clip below 0). Found by a grid
-/// search refined three times (steps 0.01, 0.0005, 0.00002).
-fn b2a_mix(faces: &[[f64; 3]], taus: &[[f64; 3]]) -> Mat3<f64> {
-    let mut rows = [[0.0; 3]; 3];
-    for c in 0..3 {
-        let (a, b) = ((c + 1) % 3, (c + 2) % 3);
-        let own: Vec<[f64; 3]> = faces
-            .iter()
-            .zip(taus)
-            .filter(|(d, _)| d[c] == 0.0)
-            .map(|(_, t)| *t)
-            .collect();
-        let score = |x: f64, y: f64| {
-            let u = |t: &[f64; 3]| t[c] + x * t[a] + y * t[b];
-            if taus.iter().any(|t| u(t) < 0.0) {
-                return f64::INFINITY;
-            }
-            own.iter().map(u).fold(f64::NEG_INFINITY, f64::max)
-        };
-        let (mut bx, mut by, mut best) = (0.0, 0.0, score(0.0, 0.0));
-        for (step, reach) in [(0.01, 25i32), (0.0005, 20), (0.00002, 25)] {
-            let (cx, cy) = (bx, by);
-            for i in -reach..=reach {
-                for j in -reach..=reach {
-                    let (x, y) = (cx + i as f64 * step, cy + j as f64 * step);
-                    let s = score(x, y);
-                    if s < best {
-                        (bx, by, best) = (x, y, s);
-                    }
-                }
-            }
-        }
-        rows[c][c] = 1.0;
-        rows[c][a] = bx;
-        rows[c][b] = by;
-    }
-    Mat3(rows)
 }
 
 /// Device values on the cube's six faces, `steps + 1` a side.
