@@ -172,7 +172,11 @@ fn main() {
         };
         // the codes the model itself gives back (its own inverse within 2 codes): where it
         // does not, the model shows the code's colour at another code too
-        let told: Vec<bool> = codes.iter().zip(&rgb_m).map(|(c, m)| off(c, m) <= 2.0).collect();
+        let told: Vec<bool> = codes
+            .iter()
+            .zip(&rgb_m)
+            .map(|(c, m)| off(c, m) <= 2.0)
+            .collect();
         let trip = |out: &[[f64; 3]]| {
             let mut worst = (0.0f64, [0.0; 3]);
             let (mut within, mut worst_de) = (0usize, 0.0f64);
