@@ -523,8 +523,8 @@ impl B2a {
 ///   `top_c` the largest `u_c` there. (Asking for `u_c ≥ 0.002` instead — more than the
 ///   black's own `τ_c ≈ 0.001` — drove `β_c` to its cap of 0.25 near black on four of the five
 ///   shipped displays: a fifth of the grid's span in `u_c` then held the other two channels, the
-///   face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, where one cell spans 30 codes of red, and
-///   colours came back up to 16 codes off.);
+///   face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, red 0–30 within a quarter of one cell,
+///   and colours came back up to 16 codes off.);
 /// - **input curves**: piecewise linear, grid node `j` at `u = (j/(grid − 1))²` (rounded to the
 ///   curve's own samples, so the CMM's interpolation of the curve is exact): nodes dense in the
 ///   dark, and a function affine in `u` is reproduced exactly by the table;
@@ -544,7 +544,7 @@ fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
     let c_pcs = chad(w);
     let mpcs = c_pcs.mul(&Mat3(part.matrix.map(|r| r.map(|v| v / w[1]))));
     let mw_inv = Mat3(part.matrix).inverse().map_err(|_| singular())?;
-    // the mixing and top from the model's colours on the cube's faces
+    // β and top from the model's colours on the cube's faces
     let faces = face_colours(B2A_FACE_STEPS);
     let taus: Vec<[f64; 3]> = faces
         .iter()
