@@ -95,7 +95,7 @@ fn gltf_multi(
     let mut views = Vec::new();
     let mut accessors = Vec::new();
     let mut add = |data: Vec<u8>, acc: Value| {
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         views.push(json!({"buffer": 0, "byteOffset": bin.len(), "byteLength": data.len()}));
@@ -241,7 +241,7 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
             gltf(
                 &square(),
                 matte(Some(0)),
-                &[image.clone()],
+                std::slice::from_ref(&image),
                 json!([{"source": 0, "sampler": 0}]),
                 json!([sampler]),
             ),
