@@ -232,7 +232,12 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
     let dir = tempfile::tempdir().unwrap();
     let image = png(2, 2, &TEXELS);
     let lin = |i: usize| TEXELS[i].map(linear);
-    for nearest in [true, false] {
+    use render::sections::Integrator;
+    for (nearest, integrator) in [
+        (true, Integrator::Whitted),
+        (false, Integrator::Whitted),
+        (true, Integrator::Path),
+    ] {
         let mut sampler = json!({"wrapS": CLAMP, "wrapT": CLAMP});
         if nearest {
             sampler["magFilter"] = json!(NEAREST);
@@ -252,6 +257,10 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
         // triangle test (not watertight) can miss on both sides
         s.render.width = W;
         s.render.height = H;
+        // the path tracer: the point light's direct term at the first hit; the bounces leave
+        // the scene (no environment)
+        s.render.integrator = integrator;
+        s.render.spp = 1;
         let img = render::render(&s, Repr::DEFAULT, None).unwrap();
         let white = render::scene_white(&s);
         let (mut worst, mut n) = (0.0f64, 0);
@@ -260,12 +269,19 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
                 let got = img.xyz[(y * W + x) as usize];
                 let (px, py) = on_plane(&s, x, y);
                 let (u, v) = ((px + 1.0) / 2.0, (1.0 - py) / 2.0);
-                if !(0.0..1.0).contains(&u) || !(0.0..1.0).contains(&v) {
+                // the path tracer's ray is jittered over the pixel (0.07 in u and v here):
+                // away from the square's and the texels' edges by that much
+                let m = if integrator == Integrator::Path {
+                    0.08
+                } else {
+                    0.0
+                };
+                if !(m..1.0 - m).contains(&u) || !(m..1.0 - m).contains(&v) {
                     continue;
                 }
                 let want = if nearest {
                     // away from the texel edges, where the hit point's rounding decides
-                    if (u - 0.5).abs() < 0.02 || (v - 0.5).abs() < 0.02 {
+                    if (u - 0.5).abs() < 0.02 + m || (v - 0.5).abs() < 0.02 + m {
                         continue;
                     }
                     lin((v >= 0.5) as usize * 2 + (u >= 0.5) as usize)
@@ -279,16 +295,26 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
                 };
                 let want = srgb_xyz(want);
                 let de = delta_e2000(Lab::from_xyz(got, white), Lab::from_xyz(want, white));
+                // each texel's colour: the upsampling's round trip (≤ 0.01) and the
+                // representation's fit, measured 0.0074; blends of texels measured 0.020
+                let limit = if nearest { 0.015 } else { 0.03 };
                 assert!(
-                    de < 0.02,
+                    de < limit,
                     "nearest {nearest}, pixel ({x}, {y}) at uv ({u}, {v}): {got:?} vs {want:?}, ΔE00 {de}"
                 );
                 worst = worst.max(de);
                 n += 1;
             }
         }
-        eprintln!("textured square, nearest {nearest}: {n} pixels, max ΔE00 {worst:.2e}");
-        assert!(n > 150, "{n}");
+        eprintln!(
+            "textured square, nearest {nearest}, {integrator:?}: {n} pixels, max ΔE00 {worst:.2e}"
+        );
+        assert!(n > 80, "{n}");
+        // hero-wavelength sampling does not bind a texture's palette to its wavelengths
+        let e = render::render(&s, Repr::Hero(4), None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hero-wavelength") && e.contains("gltf#0"), "{e}");
     }
 }
 
