@@ -404,7 +404,7 @@ fn attach_textures(file: &GltfFile, scene: &mut crate::scene::Scene) -> Result<(
                 return Err(bad(format!("{at}.normalTexture.scale: not finite")));
             }
             tex.normal = Some(NormalMap {
-                image: (*image(t.source().index())?).clone(),
+                image: image(t.source().index())?,
                 sampling: sampling(&t),
                 scale: n.scale(),
             });

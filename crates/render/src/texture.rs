@@ -245,8 +245,8 @@ impl BaseColour {
 /// A tangent-space normal map.
 #[derive(Debug)]
 pub struct NormalMap {
-    /// The image (linear values).
-    pub image: Image,
+    /// The image (linear values), shared with other materials that use it.
+    pub image: Arc<Image>,
     /// How it is looked up.
     pub sampling: Sampling,
     /// glTF's `normalTexture.scale`: multiplies the normal's x and y.
