@@ -105,7 +105,8 @@ pub struct Surface {
     pub uv: [[f32; 2]; 3],
     /// The tangent (toward increasing `u`) at each vertex, in the scene frame.
     pub tangent: [V3; 3],
-    /// The handedness: the bitangent is `handedness · (N × T)`.
+    /// The handedness: the bitangent is `handedness · (N × T)`; 0 for a triangle without
+    /// texture coordinates (in a scene where others have them).
     pub handedness: f32,
 }
 
@@ -363,10 +364,13 @@ impl Triangles {
 
     /// The texture coordinates `(u, v)` and the unit tangent and bitangent of triangle `i` at
     /// its point `p`, for the unit shading normal `n` there (the tangent interpolated and
-    /// orthogonalised against `n`, the bitangent `h·(n × t)`); `None` when the scene's
-    /// triangles have no texture coordinates, a zero frame where the tangent is degenerate.
+    /// orthogonalised against `n`, the bitangent `h·(n × t)`); `None` when the triangle has no
+    /// texture coordinates, a zero frame where the tangent is degenerate.
     pub fn surface_at(&self, i: u32, p: V3, n: V3) -> Option<([f32; 2], V3, V3)> {
-        let s = self.surface.get(i as usize)?;
+        let s = self
+            .surface
+            .get(i as usize)
+            .filter(|s| s.handedness != 0.0)?;
         let (b1, b2) = self.barycentric(i as usize, p);
         let b0 = 1.0 - b1 - b2;
         let uv = [0, 1].map(|k| s.uv[0][k] * b0 + s.uv[1][k] * b1 + s.uv[2][k] * b2);

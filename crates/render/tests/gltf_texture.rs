@@ -318,6 +318,44 @@ fn a_textured_square_shows_each_texels_colour_under_the_light() {
     }
 }
 
+/// A textured material on a primitive without texture coordinates (beside one with them)
+/// shows its factor: white, `Y = 100` under the head-on light.
+#[test]
+fn a_textured_material_without_texture_coordinates_shows_its_factor() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut bare = square();
+    bare.uvs.clear();
+    for p in &mut bare.pos {
+        p[0] += 3.0;
+    }
+    let doc = with_light(
+        gltf_multi(
+            &[(&square(), 0), (&bare, 0)],
+            vec![matte(Some(0))],
+            &[png(2, 2, &TEXELS)],
+            json!([{"source": 0}]),
+            json!([]),
+        ),
+        [1.5, 0.0, 1e6],
+    );
+    let mut s = load(&doc, dir.path(), "bare.gltf").unwrap();
+    s.render.width = W;
+    s.render.height = H;
+    let img = render::render(&s, Repr::DEFAULT, None).unwrap();
+    let mut n = 0;
+    for y in 0..H {
+        for x in 0..W {
+            let (px, py) = on_plane(&s, x, y);
+            if (2.1..3.9).contains(&px) && (-0.9..0.9).contains(&py) {
+                let got = img.xyz[(y * W + x) as usize].to_array()[1];
+                assert!((got - 100.0).abs() < 0.01, "({x}, {y}): Y {got}");
+                n += 1;
+            }
+        }
+    }
+    assert!(n > 20, "{n}");
+}
+
 /// A cube `±0.5`, each face mapped onto the whole texture, normals per face.
 fn cube() -> Prim {
     let mut p = Prim::default();
