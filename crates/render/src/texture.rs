@@ -7,7 +7,7 @@
 //! is decoded by IEC 61966-2-1's transfer function, multiplied by the material's linear factor
 //! (`baseColorFactor · (1 − metallic)(1 − transmission)`, see [`crate::scene_gltf`]) and
 //! upsampled to a smooth reflectance by Jakob and Hanika's sigmoid-polynomial
-//! ([`crate::upsample`]). The fit (a Gauss–Newton solve, tens of µs) is **cached per distinct
+//! ([`crate::upsample`]). The fit (a Gauss–Newton solve, about 0.1 ms) is **cached per distinct
 //! colour of a texture**: each texture keeps a palette of the sigmoid coefficients of the
 //! colours it uses and one palette index per texel. Textures repeat colours (flat regions,
 //! quantised art), so a palette costs far fewer fits than texels; it is 24 bytes an entry and
