@@ -106,9 +106,13 @@ cargo fmt --all --check
 export RUSTC_WORKSPACE_WRAPPER="$PWD/.ci/clippy-deny-warnings"
 
 say "build and lint every target (clippy -D warnings)"
-cargo test --workspace --all-targets --no-run
+# Every build and test here uses the `dev` profile, tests included (`cargo test` alone would
+# use `test`, which has the same settings but other artefact names for proc macros and build
+# scripts): maturin builds the Python package with `dev`, and so reuses everything this build
+# compiled except the package's own crate.
+cargo test --profile dev --workspace --all-targets --no-run
 # the controller logic as the 32 KiB build compiles it (no settings, mixing, lut)
-cargo test -p specpoly-device --no-default-features --all-targets --no-run
+cargo test --profile dev -p specpoly-device --no-default-features --all-targets --no-run
 
 say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
 await "$targets_pid" "installing the Rust targets ${targets[*]:-}" "$logs/rustup.log"
@@ -135,8 +139,9 @@ for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof pr
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 
-# The Python package's wheel (maturin) compiles while the tests run: they mostly wait (on
-# ArgyllCMS, QEMU, Chromium, serial timeouts), so its compile fills idle cores. It starts once
+# The Python package's wheel (maturin) builds while the tests run: only the package's own crate
+# compiles (the workspace build above made everything else, with the same profile and features),
+# and the tests often wait (on ArgyllCMS, QEMU, Chromium, serial timeouts). It starts once
 # nextest's own build check has released the target directory's lock.
 await "$venv_pid" "making the Python test environment" "$logs/venv.log"
 rm -rf target/wheels
@@ -147,14 +152,14 @@ wheel_pid=$!
 
 if cargo nextest --version >/dev/null 2>&1; then
   # all test binaries at once, longest tests first (.config/nextest.toml)
-  cargo nextest run --workspace --no-fail-fast
-  cargo test --workspace --doc
+  cargo nextest run --cargo-profile dev --workspace --no-fail-fast
+  cargo test --profile dev --workspace --doc
 else
   echo "(cargo-nextest is not installed: cargo test runs the same tests, one binary at a time)"
-  cargo test --workspace --no-fail-fast
+  cargo test --profile dev --workspace --no-fail-fast
 fi
 # the controller's unit tests as the 32 KiB build compiles it (no settings, mixing, lut)
-cargo test -p specpoly-device --no-default-features --lib
+cargo test --profile dev -p specpoly-device --no-default-features --lib
 
 say "Python package: its wheel (built during the tests), installed in a virtual environment, pytest"
 await "$wheel_pid" "the Python package's wheel (maturin build)" "$logs/wheel.log"
