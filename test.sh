@@ -114,23 +114,34 @@ cargo test --profile dev --workspace --all-targets --no-run
 # the controller logic as the 32 KiB build compiles it (no settings, mixing, lut)
 cargo test --profile dev -p specpoly-device --no-default-features --all-targets --no-run
 
-say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
+say "firmware builds and the microcontroller builds (linted as they build; the QEMU tests run these very binaries)"
 await "$targets_pid" "installing the Rust targets ${targets[*]:-}" "$logs/rustup.log"
-# the same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops
-(cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
+# The same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops.
+# Each firmware build has a target dir of its own and ends in a one-thread link (LTO): the
+# variants build side by side, and the microcontroller builds of the library crates beside them.
+firmware() { local log=$1; shift; (cd firmware && cargo build "$@") >"$log" 2>&1; }
 # the STM32F4 board build (stm32f4xx-hal), run on netduinoplus2
-(cd firmware && cargo build --release --no-default-features --features stm32f4,full --bin stm32f4 \
-  --target thumbv7em-none-eabihf --target-dir target/stm32f4)
+firmware "$logs/fw-stm32f4.log" --release --no-default-features --features stm32f4,full --bin stm32f4 \
+  --target thumbv7em-none-eabihf --target-dir target/stm32f4 &
+fw_stm32f4=$!
 # the 32 KiB build (no settings store, no mixing)
-(cd firmware && cargo build --profile small --bins --target thumbv7em-none-eabihf \
-  --no-default-features --features mps2 --target-dir target/small)
-
-say "specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)"
+firmware "$logs/fw-small.log" --profile small --bins --target thumbv7em-none-eabihf \
+  --no-default-features --features mps2 --target-dir target/small &
+fw_small=$!
+# the micromath build, whose colour error a QEMU test measures against the libm build
+firmware "$logs/fw-fast-math.log" --release --bins --target thumbv7em-none-eabihf \
+  --target-dir target/fast-math --features fast-math &
+fw_fast=$!
+(cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
+# specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)
 cargo build -p specpoly-core -p specpoly-graphics -p specpoly-device --target thumbv7em-none-eabihf
 cargo build -p specpoly-device --no-default-features --target thumbv7em-none-eabihf
 # the C library's staticlibs as its QEMU tests link them (crates/capi/tests/c_program.rs)
 cargo build -p specpoly-c --release --target thumbv7em-none-eabihf
 cargo build -p specpoly-c --release --target riscv32imc-unknown-none-elf
+await "$fw_stm32f4" "the STM32F4 firmware build" "$logs/fw-stm32f4.log"
+await "$fw_small" "the 32 KiB firmware build" "$logs/fw-small.log"
+await "$fw_fast" "the micromath firmware build" "$logs/fw-fast-math.log"
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 await "$apt_pid" "installing ${missing[*]:-}" "$logs/apt.log"
