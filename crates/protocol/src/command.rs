@@ -188,9 +188,8 @@ impl Command {
     /// Parses one line (without its newline). Never panics; any input gives a command or a
     /// [`Fault`].
     pub fn parse(line: &str) -> Result<Command, Fault> {
-        let mut it = line.split_ascii_whitespace();
-        let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
-        let mut w = Words::new(it);
+        let (head, mut w) = Words::new(line);
+        let head = head.ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
@@ -432,13 +431,7 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     loop {
         let mut f = Spectrum::<S, C, L>::ZERO;
         for i in 0..S * C {
-            let (tok, at) = w
-                .next()
-                .ok_or(Fault::at(ErrorCode::WrongCount, w.pos + 1))?;
-            if tok == "*" {
-                return Err(Fault::at(ErrorCode::WrongCount, at));
-            }
-            f.coefficients_mut()[i % C][i / C] = number(tok, at)?;
+            f.coefficients_mut()[i % C][i / C] = w.coefficient()?;
         }
         factors += 1;
         product = Some(match product {
