@@ -426,18 +426,10 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
     mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
 ) -> Result<(Spectrum<S, C, L>, u8), Fault> {
-    let mut product: Option<Spectrum<S, C, L>> = None;
-    let mut factors = 0u8;
+    let mut product = Spectrum::<S, C, L>::ZERO;
+    w.coefficients(S * C, |i, v| product.coefficients_mut()[i % C][i / C] = v)?;
+    let mut factors = 1u8;
     loop {
-        let mut f = Spectrum::<S, C, L>::ZERO;
-        for i in 0..S * C {
-            f.coefficients_mut()[i % C][i / C] = w.coefficient()?;
-        }
-        factors += 1;
-        product = Some(match product {
-            None => f,
-            Some(p) => mul(&p, &f),
-        });
         match w.next() {
             None => break,
             Some(("*", at)) => {
@@ -447,16 +439,17 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
             }
             Some((_, at)) => return Err(Fault::at(ErrorCode::WrongCount, at)),
         }
+        let mut f = Spectrum::<S, C, L>::ZERO;
+        w.coefficients(S * C, |i, v| f.coefficients_mut()[i % C][i / C] = v)?;
+        product = mul(&product, &f);
+        factors += 1;
     }
-    match product {
-        // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as
-        // the colour it would give is: it could not be written back as numbers.
-        Some(p) if !p.coefficients().iter().flatten().all(|c| c.is_finite()) => {
-            Err(Fault::new(ErrorCode::NotFinite))
-        }
-        Some(p) => Ok((p, factors)),
-        None => Err(Fault::new(ErrorCode::WrongCount)),
+    // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as the
+    // colour it would give is: it could not be written back as numbers.
+    if !product.coefficients().iter().flatten().all(|c| c.is_finite()) {
+        return Err(Fault::new(ErrorCode::NotFinite));
     }
+    Ok((product, factors))
 }
 
 /// Writes `refl PRESET ILLUMINANT c… * c… …` for the product of `factors` (at least one, all

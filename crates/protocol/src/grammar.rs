@@ -75,27 +75,36 @@ impl<'a> Words<'a> {
         let (w, at) = self.need()?;
         number(w, at)
     }
-    /// The next word as one coefficient of a `refl` factor: `err wrong-count` when the line
-    /// ends or the word is `*` (a factor cut short), else the word as [`number`] reads it.
-    /// The common words (a plain decimal or the hex form) are found and read in one pass
-    /// over their bytes ([`word_f32`]: the same value as [`parse_f32`], which reads the rest).
-    pub(crate) fn coefficient(&mut self) -> Result<f32, Fault> {
+    /// The next `n` words as the coefficients of a `refl` factor, the `k`-th stored with
+    /// `store(k, value)`: `err wrong-count` when the line ends or a word is `*` (a factor cut
+    /// short), else each word as [`number`] reads it. The common words (a plain decimal or the
+    /// hex form) are found and read in one pass over their bytes ([`word_f32`], inlined here: the
+    /// same value as [`parse_f32`], which reads the rest).
+    pub(crate) fn coefficients(
+        &mut self,
+        n: usize,
+        mut store: impl FnMut(usize, f32),
+    ) -> Result<(), Fault> {
         let b = self.line.as_bytes();
-        let start = self.start();
-        self.at = start;
-        let Some(rest) = b.get(start..).filter(|r| !r.is_empty()) else {
-            return Err(Fault::at(ErrorCode::WrongCount, self.pos + 1));
-        };
-        if let Some((v, len)) = word_f32(rest) {
-            self.at = start + len;
-            self.pos += 1;
-            return Ok(v);
+        for k in 0..n {
+            let mut i = self.at;
+            while i < b.len() && b[i].is_ascii_whitespace() {
+                i += 1;
+            }
+            self.at = i;
+            if let Some((v, len)) = word_f32(&b[i..]) {
+                self.at = i + len;
+                self.pos += 1;
+                store(k, v);
+                continue;
+            }
+            match self.next() {
+                Some(("*", at)) => return Err(Fault::at(ErrorCode::WrongCount, at)),
+                Some((w, at)) => store(k, number(w, at)?),
+                None => return Err(Fault::at(ErrorCode::WrongCount, self.pos + 1)),
+            }
         }
-        match self.next() {
-            Some(("*", at)) => Err(Fault::at(ErrorCode::WrongCount, at)),
-            Some((w, at)) => number(w, at),
-            None => Err(Fault::at(ErrorCode::WrongCount, self.pos + 1)),
-        }
+        Ok(())
     }
     pub(crate) fn end(&mut self) -> Result<(), Fault> {
         match self.next() {

@@ -235,35 +235,38 @@ pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
 /// The number word at the start of `b`, found and read in one pass: `Some((value, length))`
 /// when the word (the bytes up to the first ASCII whitespace or the end of `b`) is the compact
 /// hex form of a finite f32, or a plain decimal `[+-]? (digits ('.' digits?)? | '.' digits)`
-/// (no exponent) of at most [`MAX_NUMBER_LEN`] bytes whose digits read as one u32 `m`; the
-/// value is then `±m · 10^−fraction` rounded by [`decimal_to_f32`], exactly as [`parse_f32`]
-/// reads the same word (it calls this first). `None` for any other word, which [`parse_f32`]'s
+/// (no exponent) of at most 9 digits, read as one u32 `m`; the value is then
+/// `±m · 10^−fraction` rounded by [`decimal_to_f32`] (correctly rounded, as every path of
+/// [`parse_f32`], which calls this first). `None` for any other word, which [`parse_f32`]'s
 /// general loop then reads (or refuses). Every number the protocol itself writes is such a
 /// word, so a `refl` line's 64 coefficients cost a few instructions a byte: a load, a compare
 /// and a multiply-add a digit, with no separate pass to split the line into words.
+#[inline(always)]
 pub(crate) fn word_f32(b: &[u8]) -> Option<(f32, usize)> {
     let ends = |i: usize| i == b.len() || b[i].is_ascii_whitespace();
-    if b.len() >= 10 && b[0] == b'0' && b[1] == b'x' && ends(10) {
-        return Some((parse_hex(&b[2..10]).ok()?, 10));
-    }
     let (negative, mut i) = match b.first() {
         Some(b'-') => (true, 1),
         Some(b'+') => (false, 1),
         _ => (false, 0),
     };
-    // the integer digits, then (after a point) the fraction's: two loops, so a digit costs a
-    // load, a compare, a bound and a multiply-add
-    let mut m = 0u32;
+    // the integer digits, then (after a point) the fraction's, at most 9 in all after a leading
+    // zero (so `m < 10⁹` needs no overflow check: a 10th digit ends the loops and the word goes
+    // to the general reader): a digit is a load, a compare and a multiply-add
     let first = i;
-    while i < b.len() {
-        let d = b[i].wrapping_sub(b'0');
+    let lead = (b.get(i) == Some(&b'0')) as usize;
+    if lead == 1 && b.get(1) == Some(&b'x') && b.len() >= 10 && ends(10) {
+        // `0x` and 8 hexadecimal digits (no sign: `i` is 0)
+        return Some((parse_hex(&b[2..10]).ok()?, 10));
+    }
+    i += lead;
+    let mut m = 0u32;
+    let mut stop = b.len().min(i + 9);
+    while i < stop {
+        let d = (b[i] as u32).wrapping_sub(b'0' as u32);
         if d >= 10 {
             break;
         }
-        if m > (u32::MAX - 9) / 10 {
-            return None;
-        }
-        m = m * 10 + d as u32;
+        m = m * 10 + d;
         i += 1;
     }
     let mut digits = i - first;
@@ -271,25 +274,30 @@ pub(crate) fn word_f32(b: &[u8]) -> Option<(f32, usize)> {
     if i < b.len() && b[i] == b'.' {
         i += 1;
         let start = i;
-        while i < b.len() {
-            let d = b[i].wrapping_sub(b'0');
+        stop = b.len().min(start + 9 + lead - digits);
+        while i < stop {
+            let d = (b[i] as u32).wrapping_sub(b'0' as u32);
             if d >= 10 {
                 break;
             }
-            if m > (u32::MAX - 9) / 10 {
-                return None;
-            }
-            m = m * 10 + d as u32;
+            m = m * 10 + d;
             i += 1;
         }
         fraction = i - start;
         digits += fraction;
     }
-    if digits == 0 || !ends(i) || i > MAX_NUMBER_LEN {
+    if digits == 0 || !ends(i) {
         return None;
     }
     let v = if m == 0 {
         0.0
+    } else if m <= 1 << 24 && fraction <= 10 {
+        // `decimal_to_f32`'s first case (Clinger: both operands exact, one rounding), here
+        // without the call
+        m as f32 / POW10_F32[fraction]
+    } else if let Some(v) = short_decimal(m, -(fraction as i32)) {
+        // its second (`fraction ≤ 9 < 27`), also without the call
+        v
     } else {
         decimal_to_f32(m as u64, -(fraction as i32), false)?
     };

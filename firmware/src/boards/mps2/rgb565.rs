@@ -2,19 +2,22 @@
 //! [`PixelTransform`] ([`GamutMap::Clip`]), the Bayer 8×8 threshold and the RGB565 pack, for rows
 //! of 8-bit source pixels — the same integers as the portable code, bit for bit (checked by the
 //! demo on every pixel of its frame and by `tests/tests/firmware_framebuffer.rs` against the
-//! host), in 42.4 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
+//! host), in 39.8 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
 //! "Calibrated framebuffer"). The transform stores each channel's levels top-aligned for its
-//! bits (`specpoly_core::pixel::transform`), so the dither is an add with a shifted threshold and
-//! the pack two masks and two `orr`s with shifted operands.
+//! bits (`specpoly_core::pixel::transform`) and no add carries past bit 15, so two pixels'
+//! levels, packed in one word's halves, are dithered, masked and stored together: per pair one
+//! threshold word, three adds, three masks, two `orr`s with shifted operands and one store.
 //!
 //! Assembly because the two instructions that make it short are the DSP extension's, which
 //! stable Rust does not emit on its own here: `SMLAD` (two 16 × 16 products and a 32-bit
 //! accumulate: the matrix is 3 × (`SMUL<x>B` + `SMLAD`) on the packed decoded pair `d₀ | d₁ << 16`
 //! instead of 9 multiplies with their constants rematerialised) and `PKHBT` (the packing); the
 //! index's `USAT`s with shifts the compiler finds too. The 14 registers hold the pointers, the
-//! tables' bases and three of the five packed coefficient words; the other two and the row's
-//! eight thresholds are on the stack. The loop does 8 pixels per turn (threshold `k` is
-//! `[sp, #2k]`).
+//! tables' bases and three of the five packed coefficient words; the other two (one `LDM` or
+//! `LDRD` a pixel) and the row's four threshold pairs are on the stack, and the first pixel's
+//! levels are pushed while the second is computed. The loop does 16 pixels per turn (pair `j` of
+//! an 8-pixel group: threshold word `[sp, #12 + 4j]`); a row of an odd number of 8-pixel groups
+//! starts halfway into it.
 //!
 //! Cortex-M4 generic (no mps2 peripheral); here because board support is where the firmware keeps
 //! its `unsafe`.
@@ -262,11 +265,13 @@ impl<'t> Rgb565Kernel<'t> {
         };
         // SAFETY: the assembly reads `rows × width` pixels (3 bytes each) from `src` and writes
         // as many u16 to `dst`, both exactly their lengths (checked above; `width` a multiple of
-        // 8, so every row ends on its 8-pixel loop); it reads the decode table at code values
-        // (0‥255 < 256 entries), each curve table at indices ≤ 127 + 511 + 511 = `LEN − 1`
-        // (`usat` bounds every term) and `THRESHOLDS[y & 7]`, all borrowed or static for the
-        // call. It restores the callee-saved registers and `sp` (AAPCS) and touches no other
-        // memory than its own 48 bytes of stack.
+        // 8, so every row ends on its loop: 16 pixels a turn, entered halfway when `odd`; the
+        // 32-bit stores of pixel pairs need no alignment on the Cortex-M4); it reads the decode
+        // table at code values (0‥255 < 256 entries), each curve table at indices
+        // ≤ 127 + 511 + 511 = `LEN − 1` (`usat` bounds every term) and `PAIRS[y & 7]`, all
+        // borrowed or static for the call. It restores the callee-saved registers and `sp`
+        // (AAPCS) and touches no other memory than its own 56 + 12 bytes of stack (the 12 pushed
+        // and popped within a pair, always above `sp`).
         unsafe { specpoly_rgb565_run(&frame) };
     }
 }

@@ -11,7 +11,7 @@
 //!
 //! No dither, so rows do not matter: the loop runs over the whole run of pixels, 8 per turn.
 //! The same integers as the portable code, bit for bit (checked by the demo on its frames and by
-//! `tests/tests/firmware_framebuffer.rs` against the host); 36.4 instructions per pixel
+//! `tests/tests/firmware_framebuffer.rs` against the host); 35.4 instructions per pixel
 //! (docs/performance.md, "Calibrated framebuffer").
 
 use specpoly_core::pixel::transform::LEN;
