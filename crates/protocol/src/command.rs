@@ -427,9 +427,13 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
 ) -> Result<(Spectrum<S, C, L>, u8), Fault> {
     let mut product = Spectrum::<S, C, L>::ZERO;
-    w.coefficients(S * C, |i, v| product.coefficients_mut()[i % C][i / C] = v)?;
-    let mut factors = 1u8;
+    let mut f = Spectrum::<S, C, L>::ZERO;
+    let mut factors = 0u8;
     loop {
+        // one call site: the reader is inlined once per preset
+        w.coefficients(S * C, |i, v| f.coefficients_mut()[i % C][i / C] = v)?;
+        product = if factors == 0 { f } else { mul(&product, &f) };
+        factors += 1;
         match w.next() {
             None => break,
             Some(("*", at)) => {
@@ -439,10 +443,6 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
             }
             Some((_, at)) => return Err(Fault::at(ErrorCode::WrongCount, at)),
         }
-        let mut f = Spectrum::<S, C, L>::ZERO;
-        w.coefficients(S * C, |i, v| f.coefficients_mut()[i % C][i / C] = v)?;
-        product = mul(&product, &f);
-        factors += 1;
     }
     // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as the
     // colour it would give is: it could not be written back as numbers.

@@ -31,7 +31,11 @@ pub(crate) struct Words<'a> {
 impl<'a> Words<'a> {
     /// The line's first word (`None` for a blank line) and the words after it, numbered from 1.
     pub(crate) fn new(line: &'a str) -> (Option<&'a str>, Self) {
-        let mut w = Words { line, at: 0, pos: 0 };
+        let mut w = Words {
+            line,
+            at: 0,
+            pos: 0,
+        };
         let head = w.next().map(|(h, _)| h);
         w.pos = 0;
         (head, w)
@@ -78,8 +82,9 @@ impl<'a> Words<'a> {
     /// The next `n` words as the coefficients of a `refl` factor, the `k`-th stored with
     /// `store(k, value)`: `err wrong-count` when the line ends or a word is `*` (a factor cut
     /// short), else each word as [`number`] reads it. The common words (a plain decimal or the
-    /// hex form) are found and read in one pass over their bytes ([`word_f32`], inlined here: the
-    /// same value as [`parse_f32`], which reads the rest).
+    /// hex form) are found and read in one pass over their bytes ([`word_f32`], inlined here:
+    /// the same value as [`parse_f32`], which reads the rest).
+    #[inline(always)]
     pub(crate) fn coefficients(
         &mut self,
         n: usize,
@@ -106,6 +111,7 @@ impl<'a> Words<'a> {
         }
         Ok(())
     }
+
     pub(crate) fn end(&mut self) -> Result<(), Fault> {
         match self.next() {
             None => Ok(()),

@@ -125,7 +125,10 @@ fn std_reads(w: &str) -> Result<f32, ErrorCode> {
             Err(ErrorCode::OutOfRange)
         };
     }
-    if !w.bytes().all(|c| c.is_ascii_digit() || b"+-.eE".contains(&c)) {
+    if !w
+        .bytes()
+        .all(|c| c.is_ascii_digit() || b"+-.eE".contains(&c))
+    {
         return Err(ErrorCode::BadNumber);
     }
     match w.parse::<f32>() {
