@@ -4,7 +4,9 @@
 //! curves and gamut maps. Depends only on [`crate::number`] and [`crate::fault`].
 
 use crate::fault::{ErrorCode, Fault};
-use crate::number::{parse_f32, word_f32, write_f32, write_int, NumberError};
+#[cfg(feature = "fast-refl")]
+use crate::number::word_f32;
+use crate::number::{parse_f32, write_f32, write_int, NumberError};
 use core::fmt::{self, Write};
 use specpoly_core::{GamutMap, Transfer};
 
@@ -84,7 +86,7 @@ impl<'a> Words<'a> {
     /// short), else each word as [`number`] reads it. The common words (a plain decimal or the
     /// hex form) are found and read in one pass over their bytes ([`word_f32`], inlined here:
     /// the same value as [`parse_f32`], which reads the rest).
-    #[inline(always)]
+    #[cfg_attr(feature = "fast-refl", inline(always))]
     pub(crate) fn coefficients(
         &mut self,
         n: usize,
@@ -97,6 +99,7 @@ impl<'a> Words<'a> {
                 i += 1;
             }
             self.at = i;
+            #[cfg(feature = "fast-refl")]
             if let Some((v, len)) = word_f32(&b[i..]) {
                 self.at = i + len;
                 self.pos += 1;

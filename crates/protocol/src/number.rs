@@ -101,6 +101,7 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     if b.len() == 10 && b[0] == b'0' && b[1] == b'x' {
         return parse_hex(&b[2..]);
     }
+    #[cfg(feature = "fast-refl")]
     if let Some((v, len)) = word_f32(b) {
         if len == b.len() {
             // the common token: a plain decimal whose digits fit a u32
@@ -119,6 +120,16 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
         }
         _ => false,
     };
+    #[cfg(not(feature = "fast-refl"))]
+    if let Some((m, fraction)) = plain(&b[i..]) {
+        // the common token: no exponent, the digits fit a u32
+        let v = if m == 0 {
+            0.0
+        } else {
+            decimal_to_f32(m as u64, -(fraction as i32), false).ok_or(NumberError::Range)?
+        };
+        return Ok(if negative { -v } else { v });
+    }
     let mut mantissa: u64 = 0;
     let mut kept = 0u32; // significant digits kept in `mantissa`
     let mut sticky = false; // a non-zero digit was dropped after the 19th
@@ -232,6 +243,55 @@ pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
     w.write_str(core::str::from_utf8(&out).map_err(|_| fmt::Error)?)
 }
 
+/// Without feature `fast-refl` (the 32 KiB firmware build, for flash): [`parse_f32`]'s common
+/// token, `digits ('.' digits?)?` or `'.' digits` (no sign, no exponent) whose digits read as one
+/// u32 `m`: `(m, digits after the point)`, so the value is `m · 10^−fraction`. `None` for
+/// anything else, which [`parse_f32`]'s general loop then reads (or refuses). A loop of a few
+/// instructions a digit for the numbers the protocol itself writes.
+#[cfg(not(feature = "fast-refl"))]
+fn plain(b: &[u8]) -> Option<(u32, u32)> {
+    // the integer digits, then (after a point) the fraction's: two loops, so a digit costs a
+    // load, a compare, a bound and a multiply-add
+    let mut m = 0u32;
+    let mut i = 0;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            break;
+        }
+        if m > (u32::MAX - 9) / 10 {
+            return None;
+        }
+        m = m * 10 + d as u32;
+        i += 1;
+    }
+    let int_digits = i;
+    if i == b.len() {
+        return if i > 0 { Some((m, 0)) } else { None };
+    }
+    if b[i] != b'.' {
+        return None;
+    }
+    i += 1;
+    let start = i;
+    while i < b.len() {
+        let d = b[i].wrapping_sub(b'0');
+        if d >= 10 {
+            return None;
+        }
+        if m > (u32::MAX - 9) / 10 {
+            return None;
+        }
+        m = m * 10 + d as u32;
+        i += 1;
+    }
+    let fraction = (i - start) as u32;
+    if int_digits + fraction as usize == 0 {
+        return None;
+    }
+    Some((m, fraction))
+}
+
 /// The number word at the start of `b`, found and read in one pass: `Some((value, length))`
 /// when the word (the bytes up to the first ASCII whitespace or the end of `b`) is the compact
 /// hex form of a finite f32, or a plain decimal `[+-]? (digits ('.' digits?)? | '.' digits)`
@@ -241,6 +301,7 @@ pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
 /// general loop then reads (or refuses). Every number the protocol itself writes is such a
 /// word, so a `refl` line's 64 coefficients cost a few instructions a byte: a load, a compare
 /// and a multiply-add a digit, with no separate pass to split the line into words.
+#[cfg(feature = "fast-refl")]
 #[inline(always)]
 pub(crate) fn word_f32(b: &[u8]) -> Option<(f32, usize)> {
     let ends = |i: usize| i == b.len() || b[i].is_ascii_whitespace();
