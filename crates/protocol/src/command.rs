@@ -446,7 +446,12 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     }
     // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as the
     // colour it would give is: it could not be written back as numbers.
-    if !product.coefficients().iter().flatten().all(|c| c.is_finite()) {
+    if !product
+        .coefficients()
+        .iter()
+        .flatten()
+        .all(|c| c.is_finite())
+    {
         return Err(Fault::new(ErrorCode::NotFinite));
     }
     Ok((product, factors))

@@ -275,7 +275,8 @@ fn main() -> ! {
         let mut out = [0u16; 216];
         asm.rows(&noise[..n], &mut out[..n], w, 5);
         for (i, (s, o)) in noise[..n].iter().zip(&out[..n]).enumerate() {
-            let t = specpoly_core::pixel::dither::BAYER8[(5 + i / w) & 7][(i % w) & 7] as u16 * 4 + 2;
+            let t =
+                specpoly_core::pixel::dither::BAYER8[(5 + i / w) & 7][(i % w) & 7] as u16 * 4 + 2;
             let c = PANEL.apply(*s, t);
             odd_ok &= *o == (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
         }
