@@ -430,9 +430,13 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     let mut f = Spectrum::<S, C, L>::ZERO;
     let mut factors = 0u8;
     loop {
-        // one call site: the reader is inlined once per preset
-        w.coefficients(S * C, |i, v| f.coefficients_mut()[i % C][i / C] = v)?;
-        product = if factors == 0 { f } else { mul(&product, &f) };
+        // one call site: the reader is inlined once per preset; the first factor is read into
+        // the product itself
+        let into = if factors == 0 { &mut product } else { &mut f };
+        w.coefficients(S * C, |i, v| into.coefficients_mut()[i % C][i / C] = v)?;
+        if factors > 0 {
+            product = mul(&product, &f);
+        }
         factors += 1;
         match w.next() {
             None => break,
