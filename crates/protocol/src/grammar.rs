@@ -83,9 +83,10 @@ impl<'a> Words<'a> {
     }
     /// The next `n` words as the coefficients of a `refl` factor, the `k`-th stored with
     /// `store(k, value)`: `err wrong-count` when the line ends or a word is `*` (a factor cut
-    /// short), else each word as [`number`] reads it. The common words (a plain decimal or the
-    /// hex form) are found and read in one pass over their bytes ([`word_f32`], inlined here:
-    /// the same value as [`parse_f32`], which reads the rest).
+    /// short), else each word as [`number`] reads it. With feature `fast-refl` the common words
+    /// (a plain decimal or the hex form) are found and read in one pass over their bytes
+    /// (`number::word_f32`, inlined here: the same value as [`parse_f32`], which reads the
+    /// rest).
     #[cfg_attr(feature = "fast-refl", inline(always))]
     pub(crate) fn coefficients(
         &mut self,
