@@ -24,6 +24,7 @@ command -v spotread >/dev/null 2>&1 || missing+=(argyll)
 command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`'s video LUT
 [ -x /bin/kill ] || missing+=(procps)   # that test ends the X server's process group with kill
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
+command -v g++ >/dev/null 2>&1 || missing+=(g++)   # compiles specpoly-c's C++ wrapper and examples
 command -v exrheader >/dev/null 2>&1 || missing+=(openexr)   # reads our EXR attributes
 command -v oiiotool >/dev/null 2>&1 || missing+=(openimageio-tools)   # so does OpenImageIO
 command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)   # applies `calibrate lut3d`'s LUTs in a test
