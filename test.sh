@@ -146,7 +146,7 @@ await "$fw_fast" "the micromath firmware build" "$logs/fw-fast-math.log"
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 await "$apt_pid" "installing ${missing[*]:-}" "$logs/apt.log"
-for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc g++ \
   exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
