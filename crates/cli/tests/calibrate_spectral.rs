@@ -267,6 +267,7 @@ fn simulate_and_fit_compute_xyz_under_the_observer() {
             worst = worst.max((got[k][i] - want[k]).abs());
         }
     }
+    eprintln!("simulate --observer 2015-10: largest |ΔXYZ| {worst:.2e} cd/m²");
     assert!(worst < 1e-5, "largest |ΔXYZ| {worst} cd/m²");
     // the fit under 2015-10 from the CIE 1931 file
     let (f1, rows1) = table(&std::fs::read_to_string(dir.path().join("q.ti3")).unwrap());
@@ -294,6 +295,10 @@ fn simulate_and_fit_compute_xyz_under_the_observer() {
     let w = &show("c10.toml")["white"];
     let sum = want.iter().sum::<f64>();
     for (k, v) in [("x", want[0] / sum), ("y", want[1] / sum)] {
+        eprintln!(
+            "fit --observer 2015-10: white {k} off by {:.2e}",
+            w[k].as_f64().unwrap() - v
+        );
         assert!((w[k].as_f64().unwrap() - v).abs() < 1e-6, "{k}: {w} vs {v}");
     }
     assert!(
