@@ -476,10 +476,20 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
         matched.white_lut16[2],
         100.0 * matched.luminance_ratio
     );
-    println!("observer          A u′      A v′      B u′      B v′      Δu′v′    ΔE00");
+    // a runtime observer's name (a CIE 2006 one, a file) may be longer than the CIE labels
+    let w = rows
+        .iter()
+        .map(|r| r.observer.label().chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(16);
+    println!(
+        "{:<w$}  A u′      A v′      B u′      B v′      Δu′v′    ΔE00",
+        "observer"
+    );
     for r in &rows {
         println!(
-            "{:<16}  {:.5}   {:.5}   {:.5}   {:.5}   {:.5}  {:.2}{}",
+            "{:<w$}  {:.5}   {:.5}   {:.5}   {:.5}   {:.5}  {:.2}{}",
             r.observer.label(),
             r.a_uv[0],
             r.a_uv[1],
