@@ -158,6 +158,16 @@ fn bad_spectral_input_is_one_line_and_writes_nothing() {
             vec!["calibrate", "ccss", "--ti3", name, "-o", "out.ccss"],
             vec![
                 "calibrate",
+                "fit",
+                "--ti3",
+                name,
+                "--observer",
+                "2015-10",
+                "-o",
+                "out.toml",
+            ],
+            vec![
+                "calibrate",
                 "match",
                 "--a",
                 "sim:qdoled",
@@ -174,7 +184,7 @@ fn bad_spectral_input_is_one_line_and_writes_nothing() {
             let e = err.trim();
             assert_eq!(e.lines().count(), 1, "{e}");
             assert!(e.contains(name) && e.contains(want), "{name}: {e}");
-            for f in ["out.ccss", "out.cal", "out.svg"] {
+            for f in ["out.ccss", "out.cal", "out.svg", "out.toml"] {
                 assert!(!dir.path().join(f).exists(), "{name}: {f} written");
             }
         }
