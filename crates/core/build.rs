@@ -73,6 +73,7 @@ fn main() {
             3,
         ),
         ("TCS14", "reflectances/cie13_3_tcs14_5nm.csv", 14),
+        ("TCS15", "reflectances/cie_tcs15_japanese_skin_5nm.csv", 1),
         ("CES99", "reflectances/cie224_2017_ces99_5nm.csv", 99),
     ] {
         let p = data.join(file);

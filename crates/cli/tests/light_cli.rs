@@ -59,6 +59,7 @@ fn light_json_matches_colour_science() {
         "rg",
         // the standards' checks (light_standards_cli.rs)
         "ri",
+        "r15",
         "peak_nm",
         "fwhm_nm",
         "dominant_nm",

@@ -51,6 +51,9 @@ fn light_reports_the_standards_checks() {
     }
     assert_eq!(v["ri"].as_array().unwrap().len(), 14);
     assert_eq!(v["ri"][8].as_f64(), v["r9"].as_f64());
+    // R15 (JIS Z 8726's skin sample) against colour-science's "CIE 2024" set
+    let r15 = reference("light_references_r15.csv", "rgbwa:0/0/0/1/0");
+    assert!((f("r15") - num(&r15, "r15")).abs() < 0.1, "{}", f("r15"));
     // 4103 K, Duv -0.0006: inside the 4000 K quadrangle; JA8 misses Ra, R9 and CCT
     assert_eq!(v["ansi_c78377"], 4000);
     assert_eq!(v["ja8"], false);

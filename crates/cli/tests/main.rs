@@ -32,6 +32,7 @@ mod fuzz_corpora;
 mod led_cli;
 mod led_lut;
 mod led_table;
+mod light_bad_input;
 mod light_cli;
 mod light_standards_cli;
 mod light_tm30_cli;

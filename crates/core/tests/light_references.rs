@@ -4,7 +4,8 @@
 //! series, measured lamps of the NIST and Philips/Luxeon sets) and 11 mixes of `data/leds/` at
 //! 1 nm. `data/light_references.csv` (CCT, Duv, Ra, R1–R14, Rf, Rg, hue bins) and
 //! `data/light_references_spd.csv` (the spectra at their own sampling) are made by
-//! `data/light_references.py`.
+//! `data/light_references.py`; `data/light_references_r15.csv` (R15, colour-science's "CIE 2024"
+//! sample set) by `data/light_references_r15.py`.
 
 use crate::common::light_data::csv;
 use specpoly_core::light::{cri::cri_spd, tm30::tm30_spd, Spd};
@@ -51,7 +52,7 @@ const NAMES: [&str; 9] = [
     "Rf,hj",
     "Rcs,hj",
     "Rhs,hj",
-    "",
+    "R15",
 ];
 
 #[test]
@@ -60,6 +61,9 @@ fn agrees_with_colour_science_on_118_lights() {
     let (head, refs) = csv(include_str!("data/light_references.csv"));
     assert_eq!(head.len(), 1 + 3 + 14 + 2 + 48);
     assert_eq!(refs.len(), 118);
+    let (head, r15) = csv(include_str!("data/light_references_r15.csv"));
+    assert_eq!(head, ["name", "r15"]);
+    assert_eq!(r15.len(), 118);
     let tol = [
         TOL.cct_rel,
         TOL.duv,
@@ -69,11 +73,12 @@ fn agrees_with_colour_science_on_118_lights() {
         TOL.rf_h,
         TOL.rcs_h,
         TOL.rhs_h,
+        TOL.ri,
     ];
-    let mut worst: [(f64, String); 8] = Default::default();
+    let mut worst: [(f64, String); 9] = Default::default();
     let (mut five, mut one) = (0, 0);
-    for (s, r) in spds.iter().zip(&refs) {
-        assert_eq!(s[0], r[0]);
+    for ((s, r), r15) in spds.iter().zip(&refs).zip(&r15) {
+        assert_eq!((&s[0], &s[0]), (&r[0], &r15[0]));
         let start: f32 = s[1].parse().unwrap();
         let step: f32 = s[2].parse().unwrap();
         let v: Vec<f32> = s[3..].iter().map(|x| x.parse().unwrap()).collect();
@@ -104,6 +109,7 @@ fn agrees_with_colour_science_on_118_lights() {
             for i in 0..14 {
                 diff(2, c.r[i] - want[3 + i]);
             }
+            diff(8, c.r15 - r15[1].parse::<f64>().unwrap());
         }
         diff(3, t.rf - want[17]);
         diff(4, t.rg - want[18]);
@@ -117,7 +123,7 @@ fn agrees_with_colour_science_on_118_lights() {
     }
     assert_eq!((five, one), (107, 11));
     let mut failed = vec![];
-    for k in 0..8 {
+    for k in 0..9 {
         println!("{:16} worst {:.3e} ({})", NAMES[k], worst[k].0, worst[k].1);
         if worst[k].0 > tol[k] {
             failed.push(format!("{}: {} > {}", NAMES[k], worst[k].0, tol[k]));

@@ -15,8 +15,20 @@
 //!   (ISO 8859-1), the encoding of older exports ([`crate::read::text_or_latin1`]);
 //! - blank lines, lines of empty cells (`;;;`), empty trailing columns and lines starting with
 //!   `#` are skipped.
+//!
+//! A table holds at most [`MAX_COLUMNS`] spectra and [`MAX_ROWS`] wavelengths; a larger one is
+//! refused at the header or at the first row past the limit, before the rest is parsed (with the
+//! input size limit of [`crate::read`] this bounds the time and memory any file can take).
 
 use crate::{Error, Result};
+
+/// The most spectrum columns a table may have (10 000): far more than any measured set (a
+/// colour checker has 24 patches, CIE 224's samples are 99, the largest reflectance sets in use a
+/// few thousand); a file of more is refused, not read.
+pub const MAX_COLUMNS: usize = 10_000;
+
+/// The most wavelength rows a table may have (100 000: 380–780 nm every 0.004 nm).
+pub const MAX_ROWS: usize = 100_000;
 
 /// A parsed spectral table.
 #[derive(Clone, Debug, PartialEq)]
@@ -151,6 +163,17 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
             ),
         ));
     }
+    if names.len() - 1 > MAX_COLUMNS {
+        return Err(at(
+            hline,
+            MAX_COLUMNS + 2,
+            format!(
+                "{} spectrum columns; a table holds at most {MAX_COLUMNS} (split it into files)",
+                names.len() - 1
+            ),
+        ));
+    }
+    let mut seen = std::collections::HashMap::with_capacity(names.len());
     for (i, n) in names.iter().enumerate().skip(1) {
         if n.is_empty() {
             return Err(at(
@@ -159,17 +182,24 @@ pub fn parse(text: &str, source: &str) -> Result<Table> {
                 format!("column {} has an empty name", i + 1),
             ));
         }
-        if let Some(j) = names[1..i].iter().position(|m| m == n) {
+        if let Some(j) = seen.insert(n.as_str(), i) {
             return Err(at(
                 hline,
                 i + 1,
-                format!("column name `{}` repeats column {}", shown(n), j + 2),
+                format!("column name `{}` repeats column {}", shown(n), j + 1),
             ));
         }
     }
     let mut wavelengths: Vec<f32> = Vec::new();
     let mut values: Vec<Vec<f32>> = vec![Vec::new(); names.len() - 1];
     while let Some((ln, mut cells)) = next(&mut records)? {
+        if wavelengths.len() == MAX_ROWS {
+            return Err(at(
+                ln,
+                1,
+                format!("more than {MAX_ROWS} wavelength rows; a table holds at most {MAX_ROWS}"),
+            ));
+        }
         if cells.len() > names.len() && cells[names.len()..].iter().all(String::is_empty) {
             cells.truncate(names.len());
         }

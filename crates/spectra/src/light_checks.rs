@@ -1,5 +1,6 @@
 //! What `specpoly light` adds to a light's colorimetry: the spectrum's shape and hue (peak
-//! wavelength, FWHM, dominant wavelength, excitation purity), CIE 13.3's R1–R14, CIE S 026's
+//! wavelength, FWHM, dominant wavelength, excitation purity), CIE 13.3's R1–R14 and JIS Z 8726's
+//! R15, CIE S 026's
 //! α-opic quantities and the checks against ANSI C78.377-2017 and California's JA8. The
 //! computations are `specpoly_core::light::{spectral, alpha_opic, ansi_c78377, ja8}`.
 
@@ -27,6 +28,8 @@ fn r3(v: f64) -> f64 {
 pub struct Checks {
     /// CIE 13.3 special indices R1–R14 (`None` without a CCT).
     pub ri: Option<[f64; 14]>,
+    /// R15, the Japanese skin sample of JIS Z 8726:1990 (`None` without a CCT).
+    pub r15: Option<f64>,
     /// Peak wavelength, nm: the largest value on the light's grid.
     pub peak_nm: f64,
     /// Full width at half maximum around the peak, nm (`None` for a broad-band light).
@@ -75,6 +78,7 @@ pub fn checks(s: &Spd, cri: Option<&Cri>, cct: Option<Cct>) -> Checks {
     };
     Checks {
         ri: cri.map(|c| c.r.map(r6)),
+        r15: cri.map(|c| r6(c.r15)),
         peak_nm: peak(s).0,
         fwhm_nm: fwhm(s).map(r6),
         dominant_nm: d.map(|d| r3(d.wavelength)),

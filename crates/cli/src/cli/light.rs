@@ -16,7 +16,7 @@ pub struct LightArgs {
     /// one row each.
     #[arg(value_name = "SPD", required = true, num_args = 1..)]
     pub spd: Vec<String>,
-    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg, ri (R1-R14),
+    /// Print JSON: {X, Y, Z, x, y, u_prime, v_prime, cct, duv, ra, r9, rf, rg, ri (R1-R14), r15,
     /// peak_nm, fwhm_nm, dominant_nm, purity, edi_* and der_* (CIE S 026: sc, mc, lc, rh, mel),
     /// ansi_c78377, ja8, ja8_fails} (and extrapolated_from_nm when --extrapolate was needed);
     /// several lights as JSON Lines, one object a light with its "name" first.
@@ -117,7 +117,7 @@ pub fn text(name: &str, r: &LightReport) -> String {
     o
 }
 
-/// The spectrum's shape and hue, CIE 13.3 R1-R14, CIE S 026 and the standards' checks.
+/// The spectrum's shape and hue, CIE 13.3 R1-R14 and R15, CIE S 026 and the standards' checks.
 fn details(r: &LightReport) -> String {
     let c = &r.checks;
     let mut o = String::new();
@@ -140,7 +140,10 @@ fn details(r: &LightReport) -> String {
             .enumerate()
             .map(|(i, v)| format!("R{} {v:.1}", i + 1))
             .collect();
-        let _ = writeln!(o, "# CIE 13.3: {}", list.join(", "));
+        let r15 = c
+            .r15
+            .map_or(String::new(), |v| format!("; JIS Z 8726: R15 {v:.1}"));
+        let _ = writeln!(o, "# CIE 13.3: {}{r15}", list.join(", "));
     }
     let _ = writeln!(
         o,
@@ -280,6 +283,7 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
         "r12",
         "r13",
         "r14",
+        "r15",
         "peak_nm",
         "fwhm_nm",
         "dominant_nm",
@@ -310,6 +314,7 @@ pub fn csv(rows: &[(Named, LightReport)]) -> Result<String> {
             .map(|i| cell(c.ri.map(|ri| ri[i])))
             .collect();
         let more = [
+            cell(c.r15),
             c.peak_nm.to_string(),
             cell(c.fwhm_nm),
             cell(c.dominant_nm),

@@ -1,5 +1,6 @@
 //! CIE 13.3-1995 colour rendering index: the general index Ra (mean of R1–R8) and the special
-//! indices R1–R14 (R9: saturated red).
+//! indices R1–R14 (R9: saturated red), with R15 (JIS Z 8726:1990's Japanese skin sample, TCS15,
+//! computed by the same rule; colour-science's "CIE 2024" method and luxpy's `ciera-15`).
 //!
 //! For the test light `k` and the reference `r` at the same CCT ([`super::reference`]), each test
 //! colour sample `i` is taken to CIE 1960 (u, v) with `Y` relative to the light's white (100)
@@ -10,6 +11,7 @@
 //! `U* = 13W*(u − u_r)`, `V* = 13W*(v − v_r)`, and `Rᵢ = 100 − 4.6·ΔEᵢ` (the Euclidean U*V*W*
 //! difference).
 
+use super::samples::tcs_table;
 use super::{
     cct,
     cct::Cct,
@@ -19,7 +21,6 @@ use super::{
     spd::Spd,
     sprague, LightError,
 };
-use crate::observer::TCS14;
 use crate::Observer;
 
 /// The CIE 13.3 indices of a light.
@@ -29,6 +30,8 @@ pub struct Cri {
     pub ra: f64,
     /// Special indices R1–R14 (`r[8]` is R9).
     pub r: [f64; 14],
+    /// R15, the Japanese skin sample of JIS Z 8726:1990 (not part of CIE 13.3).
+    pub r15: f64,
     /// CCT and Duv of the light (the reference's temperature).
     pub cct: Cct,
 }
@@ -52,7 +55,7 @@ fn uvw(y: f64, uv: [f64; 2], white: [f64; 2]) -> [f64; 3] {
 
 /// The CIE 13.3 indices of `light` with the test colour samples `tcs` (the light's moments
 /// and the fitted samples: the fast form, for the mixing optimiser).
-pub fn cri(light: &Source, tcs: &Samples<14>) -> Result<Cri, LightError> {
+pub fn cri(light: &Source, tcs: &Samples<15>) -> Result<Cri, LightError> {
     let uv_k = light.uv();
     let c = cct::cct_duv(uv_k)?;
     let reference = cri_reference(c.cct)?;
@@ -62,11 +65,7 @@ pub fn cri(light: &Source, tcs: &Samples<14>) -> Result<Cri, LightError> {
         |i| to64(light.m2.xyz(&tcs.spectra[i]).to_array()),
         |i| to64(reference.m2.xyz(&tcs.spectra[i]).to_array()),
     );
-    Ok(Cri {
-        ra: r[..8].iter().sum::<f64>() / 8.0,
-        r,
-        cct: c,
-    })
+    Ok(Cri::from_indices(r, c))
 }
 
 /// The CIE 13.3 indices of `light` by 1 nm sums with the tabulated test colour samples: a
@@ -87,8 +86,10 @@ pub fn cri_spd(light: &Spd) -> Result<Cri, LightError> {
     let uv_k = light.uv();
     let c = cct::cct_duv(uv_k)?;
     let reference = cri_reference_spd(c.cct, 1)?;
-    let tcs: [[f64; 401]; 14] =
-        core::array::from_fn(|i| sprague::to_1nm(&TCS14[i].map(|v| v as f64)));
+    let tcs: [[f64; 401]; 15] = core::array::from_fn(|i| {
+        let t = tcs_table(i);
+        sprague::to_1nm(&core::array::from_fn(|k| t.values()[k] as f64))
+    });
     let xyz = |s: &Spd, i: usize| {
         let y = s.sums(Observer::Cie1931)[1];
         s.sums_with(Observer::Cie1931, |k| tcs[i][k])
@@ -100,21 +101,29 @@ pub fn cri_spd(light: &Spd) -> Result<Cri, LightError> {
         |i| xyz(light, i),
         |i| xyz(&reference, i),
     );
-    Ok(Cri {
-        ra: r[..8].iter().sum::<f64>() / 8.0,
-        r,
-        cct: c,
-    })
+    Ok(Cri::from_indices(r, c))
 }
 
-/// `Rᵢ` of the 14 samples from the test light's and the reference's chromaticities and the
+impl Cri {
+    /// Ra and the named indices from R1–R15.
+    fn from_indices(r: [f64; 15], cct: Cct) -> Self {
+        Self {
+            ra: r[..8].iter().sum::<f64>() / 8.0,
+            r: core::array::from_fn(|i| r[i]),
+            r15: r[14],
+            cct,
+        }
+    }
+}
+
+/// `Rᵢ` of the 15 samples from the test light's and the reference's chromaticities and the
 /// samples' XYZ under each (white `Y = 100`).
 fn indices(
     uv_k: [f64; 2],
     uv_r: [f64; 2],
     xyz_k: impl Fn(usize) -> [f64; 3],
     xyz_r: impl Fn(usize) -> [f64; 3],
-) -> [f64; 14] {
+) -> [f64; 15] {
     let (ck, dk) = cd(uv_k);
     let (cr, dr) = cd(uv_r);
     core::array::from_fn(|i| {

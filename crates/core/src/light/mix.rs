@@ -65,7 +65,7 @@ pub enum Objective<'a> {
     /// Greatest CIE 224:2017 fidelity Rf (with the fitted colour evaluation samples).
     Rf(&'a Samples<99>),
     /// Greatest CIE 13.3 Ra (with the fitted test colour samples).
-    Ra(&'a Samples<14>),
+    Ra(&'a Samples<15>),
     /// Greatest luminous efficacy of radiation (least radiant power).
     Efficacy,
     /// Least total drive `Σ dᵢ`.

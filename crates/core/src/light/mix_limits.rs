@@ -50,7 +50,7 @@ pub struct Limited {
 fn shortfall(
     light: &Source,
     limits: &[Limit],
-    tcs: &Samples<14>,
+    tcs: &Samples<15>,
     ces: &Samples<99>,
 ) -> Result<f64, LightError> {
     let needs = |m: &[Metric]| limits.iter().any(|l| m.contains(&l.metric));
@@ -86,7 +86,7 @@ pub fn solve_mix_limited(
     luminance: f64,
     objective: Objective<'_>,
     limits: &[Limit],
-    tcs: &Samples<14>,
+    tcs: &Samples<15>,
     ces: &Samples<99>,
 ) -> Result<Limited, LightError> {
     let seen = cie1931(channels);

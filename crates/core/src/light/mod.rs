@@ -85,6 +85,16 @@ pub enum LightError {
         /// Last tabulated wavelength, nm.
         hi: f64,
     },
+    /// A tabulated value below −[`spd::NEGATIVE_NOISE`] × the light's peak: not measurement
+    /// noise around zero but a light emitting negative power, which no metric is defined for.
+    Negative {
+        /// Wavelength of the most negative value, nm.
+        nm: f64,
+        /// The most negative value.
+        value: f64,
+        /// The light's largest value.
+        peak: f64,
+    },
     /// An error from the core (mismatched breakpoints, singular matrices).
     Core(crate::Error),
 }
@@ -113,6 +123,12 @@ impl fmt::Display for LightError {
                 f,
                 "the light is tabulated over {lo}-{hi} nm; the colour metrics need 380-780 nm \
                  (or the end values held, as CIE 015:2018 allows)"
+            ),
+            LightError::Negative { nm, value, peak } => write!(
+                f,
+                "negative spectral power {value} at {nm} nm, below -{}% of the peak {peak}: a \
+                 light cannot emit negative power (subtract less dark signal, or clip the noise)",
+                spd::NEGATIVE_NOISE * 100.0
             ),
             LightError::Core(e) => write!(f, "{e}"),
         }

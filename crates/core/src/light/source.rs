@@ -35,7 +35,10 @@ impl Source {
     /// but zero outside the tabulated range (a light emits nothing where it was not measured:
     /// CIE 224:2017 fills missing values with zeros; holding the end values, the convention
     /// for reflectances, would invent light).
+    ///
+    /// A light with values below −1 % of its peak is refused ([`super::spd::check_sign`]).
     pub fn new(light: &Tabulated<'_>) -> Result<Self, LightError> {
+        super::spd::check_sign(light)?;
         let w = light.wavelengths();
         let (lo, hi) = (w[0] as f64, w[w.len() - 1] as f64);
         Self::from_fn(|nm| {

@@ -14,6 +14,13 @@
 //! gap with zeros would report a different light (FL1 cut to 450–650 nm: 4988 K instead of
 //! 6428 K). [`Spd::extrapolated`] instead holds the end values, the extrapolation CIE 015:2018
 //! (§7.2.2) allows when no better knowledge exists.
+//!
+//! A light with a tabulated value inside 380–780 nm below −[`NEGATIVE_NOISE`] of its peak is
+//! refused ([`LightError::Negative`]): a spectroradiometer's dark subtraction leaves noise of
+//! either sign around zero, but a value that far below zero is a light emitting negative power
+//! (a wrong dark frame, a sign error, a transmittance ratio): every metric of it would be a
+//! figure of no light. Values within the noise are summed as they are (colour-science and luxpy
+//! sum them too; clipping them at zero would bias every dark band upwards).
 
 use super::{cct, source::KM, LightError};
 use crate::{Observer, Tabulated};
@@ -22,6 +29,44 @@ use crate::{Observer, Tabulated};
 pub const START: f64 = 380.0;
 /// Longest wavelength of the colour-rendering sums, nm.
 pub const END: f64 = 780.0;
+
+/// The most negative value accepted in a light, as a fraction of its peak (1 %): the size of
+/// dark-subtraction noise of a spectroradiometer reading a dim light, far above that of a good
+/// measurement.
+pub const NEGATIVE_NOISE: f64 = 0.01;
+
+/// Refuses a light whose tabulated values over 380–780 nm (those the sums use, with the nodes
+/// just outside that the interpolant reaches, or the end values held) go below −[`NEGATIVE_NOISE`] of its
+/// largest value ([`LightError::Negative`]). A light with no positive value is [`LightError::Dark`].
+pub fn check_sign(light: &Tabulated<'_>) -> Result<(), LightError> {
+    let (w, v) = (light.wavelengths(), light.values());
+    // the nodes the interpolant over 380–780 nm uses: from the last at or below 380 nm (else
+    // the first) to the first at or above 780 nm (else the last)
+    let first = w.iter().rposition(|x| (*x as f64) <= START).unwrap_or(0);
+    let last = w
+        .iter()
+        .position(|x| (*x as f64) >= END)
+        .unwrap_or(w.len() - 1);
+    let (mut peak, mut low) = (f64::NEG_INFINITY, (0.0, f64::INFINITY));
+    for i in first..=last.max(first) {
+        let x = v[i] as f64;
+        peak = peak.max(x);
+        if x < low.1 {
+            low = (w[i] as f64, x);
+        }
+    }
+    if !(peak > 0.0) {
+        return Err(LightError::Dark);
+    }
+    if low.1 < -NEGATIVE_NOISE * peak {
+        return Err(LightError::Negative {
+            nm: low.0,
+            value: low.1,
+            peak,
+        });
+    }
+    Ok(())
+}
 
 /// A light sampled on the standards' grid: `n` values at `start + i·step`, `step` 1 or 5 nm.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,6 +108,7 @@ impl Spd {
         if lo > START || hi < END {
             return Err(LightError::Range { lo, hi });
         }
+        check_sign(light)?;
         Self::sample(light, false)
     }
 
@@ -71,6 +117,7 @@ impl Spd {
     pub fn extrapolated(light: &Tabulated<'_>) -> Result<Self, LightError> {
         let w = light.wavelengths();
         let short = (w[0] as f64) > START || (w[w.len() - 1] as f64) < END;
+        check_sign(light)?;
         Self::sample(light, short)
     }
 
@@ -175,6 +222,7 @@ impl Spd {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Source;
     use super::*;
 
     #[test]
@@ -209,6 +257,37 @@ mod tests {
         assert!(s.is_extrapolated());
         assert_eq!((s.values()[0], s.values()[400]), (1.0, 3.0));
         assert_eq!(s.values()[120], 2.0);
+    }
+
+    #[test]
+    fn negative_values_beyond_the_noise_are_refused() {
+        let nm: [f32; 81] = core::array::from_fn(|i| 380.0 + 5.0 * i as f32);
+        // dark-subtraction noise of ±0.5 % of the peak is summed as it is
+        let noisy: [f32; 81] = core::array::from_fn(|i| if i % 2 == 0 { 2.0 } else { -0.01 });
+        assert!(Spd::new(&Tabulated::new(&nm, &noisy).unwrap()).is_ok());
+        let mut bad = [1.0f32; 81];
+        bad[24] = -0.5;
+        let t = Tabulated::new(&nm, &bad).unwrap();
+        let want = Err(LightError::Negative {
+            nm: 500.0,
+            value: -0.5,
+            peak: 1.0,
+        });
+        assert_eq!(Spd::new(&t), want);
+        assert_eq!(Spd::extrapolated(&t), want);
+        assert_eq!(Source::new(&t).map(|_| ()), want.map(|_: Spd| ()));
+        // a negative value outside 380–780 nm that no sum reaches is not the light's
+        let (w, v) = ([300.0, 370.0, 380.0, 780.0], [-5.0, 0.0, 1.0, 1.0]);
+        assert!(Spd::new(&Tabulated::new(&w, &v).unwrap()).is_ok());
+        // the node just below 380 nm is interpolated from: it counts
+        let (w, v) = ([370.0, 390.0, 780.0], [-5.0, 1.0, 1.0]);
+        assert!(matches!(
+            Spd::new(&Tabulated::new(&w, &v).unwrap()),
+            Err(LightError::Negative { nm: 370.0, .. })
+        ));
+        // nothing positive: no light
+        let t = Tabulated::new(&nm, &[-0.001f32; 81]).unwrap();
+        assert_eq!(check_sign(&t), Err(LightError::Dark));
     }
 
     #[test]
