@@ -106,7 +106,7 @@ pub fn solve_mix_limited_seen(
     luminance: f64,
     objective: Objective<'_>,
     limits: &[Limit],
-    tcs: &Samples<14>,
+    tcs: &Samples<15>,
     ces: &Samples<99>,
 ) -> Result<Limited, LightError> {
     if limits.iter().any(|l| !l.min.is_finite()) {
