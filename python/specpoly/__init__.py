@@ -12,6 +12,8 @@ Spectra (``specpoly xyz``, ``specpoly fit``)
 Light (``specpoly light``)
     :func:`light_metrics`, :func:`CCT_Duv`, :func:`colour_rendering_index`,
     :func:`colour_fidelity_index`, :func:`tm30`
+LED mixing (``specpoly mix``)
+    :func:`mix`
 Displays (``specpoly calibrate``)
     :class:`DisplayModel` (``fit_ti3``, ``open``, ``predict``, ``inverse``, ``save``,
     ``write_icc``, ``write_lut3d``)
@@ -28,6 +30,7 @@ from ._specpoly import (
     colour_rendering_index,
     illuminants,
     light_metrics,
+    mix,
     sd_fit,
     sd_to_Lab,
     sd_to_XYZ,
@@ -44,6 +47,7 @@ __all__ = [
     "colour_rendering_index",
     "illuminants",
     "light_metrics",
+    "mix",
     "sd_fit",
     "sd_to_Lab",
     "sd_to_XYZ",

@@ -1,7 +1,7 @@
 """Type stubs of specpoly (shapes in the docstrings: n spectra or triples, k wavelengths)."""
 
 from os import PathLike
-from typing import Dict, List, Optional, Tuple, Union
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -81,7 +81,14 @@ def light_metrics(
     """`specpoly light --json` for SPDs (n, k) or (k,): {"XYZ": (n, 3), "xy": (n, 2),
     "uv_prime": (n, 2), "CCT", "Duv", "Ra", "R9", "Rf", "Rg": (n,)}; NaN where undefined.
     With `observer` (any of `sd_to_XYZ`'s; `light --observer`) also the light's colour under
-    it: "observer_XYZ" (n, 3), "observer_xy", "observer_uv_prime" (n, 2)."""
+    it: "observer_XYZ" (n, 3), "observer_xy", "observer_uv_prime" (n, 2). Also the spectrum's
+    shape and the standards' checks (`light --json`'s): CIE S 026 "alpha_opic_EDI" (lx) and
+    "alpha_opic_DER" (n, 5) (s-cone, m-cone, l-cone, rhodopic, melanopic; the SPD as W/m2/nm),
+    "R15", "peak_nm", "fwhm_nm", "dominant_nm" (negative: complementary), "purity",
+    "ANSI_C78377" (the ANSI C78.377-2017 nominal CCT whose quadrangle holds the light; NaN:
+    none) (n,), "JA8" (list of True/False/None: California JA8's colour clauses; None without
+    a CCT) and "JA8_fails" (list of lists of the failed clauses: "ra", "r9", "cct", "duv");
+    one light gives floats, a bool or None, and a list."""
 
 def CCT_Duv(values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False) -> Float:
     """CCT (K) and Duv: (n, 2) or (2,)."""
@@ -102,6 +109,27 @@ def tm30(
 ) -> Dict[str, object]:
     """TM-30-20 in full for one light (k,): Rf, Rg, CCT, Duv, Rf_hj, Rcs_hj (percent),
     Rhs_hj (16,), test_ab, reference_ab (16, 2), Rf_ces, bin_of_ces (99,), design_intents."""
+
+def mix(
+    channels: ArrayLike,
+    wavelengths: ArrayLike,
+    target: Union[str, float, Tuple[float, float]],
+    duv: float = 0.0,
+    luminance: float = 1.0,
+    optimize: str = "rf",
+    observer: str = "1931",
+    minimum: Optional[Dict[str, float]] = None,
+    bits: Optional[int] = None,
+    names: Optional[Sequence[str]] = None,
+) -> Dict[str, object]:
+    """`specpoly mix --json`: PWM duties of 3-6 LED channels (m, k) at full drive for a target
+    ("xy:X,Y", "cct:K[,duv:D]", "ansi:K", a CCT in K with `duv`, or a pair (x, y)) met under
+    `observer` at `luminance` (0, 1] of the most the channels give there. Returns {"channels",
+    "duties" (m,) (the mix is `duties @ channels`), "x", "y", "u_prime", "v_prime", "CCT",
+    "Duv", "Ra", "R9", "Rf", "Rg" (NaN where undefined), "efficacy" (lm/W), "limits" (list of
+    {"metric", "min", "value", "met"} for `minimum`, e.g. {"r9": 50}), "observer_xy" (under
+    another observer than 1931)}. `optimize` (rf, ra, efficacy, power) spends the freedom of
+    more than three channels; `bits` quantises the duties."""
 
 class DisplayModel:
     """A display's model: device RGB (0-1) <-> CIE XYZ."""

@@ -4,13 +4,15 @@
 //! batch first. Every function checks its arrays (shape, dtype, finiteness) before any work,
 //! converts them once to the library's types, releases the GIL for the batch and returns new
 //! arrays. Nothing here computes colour: the maths is the library's, called exactly as the CLI
-//! calls it (`specpoly xyz`, `light`, `calibrate fit|predict|icc|lut3d`), so the package and the
+//! calls it (`specpoly xyz`, `light`, `mix`, `calibrate fit|predict|icc|lut3d`), so the package and the
 //! CLI print the same numbers.
 //!
 //! - [`arrays`]: NumPy in and out (shapes, dtypes, the one-line errors for bad input);
 //! - [`spectra`]: reflectances → XYZ, xy, CIELAB and polynomial fits (`specpoly xyz`, `fit`);
 //! - [`grid`]: the batch path for reflectances on one shared wavelength grid (one matrix);
-//! - [`light`]: CCT/Duv, CIE 13.3 Ra/Ri, CIE 224 Rf, TM-30 Rg and hue bins (`specpoly light`);
+//! - [`light`]: CCT/Duv, CIE 13.3 Ra/Ri, CIE 224 Rf, TM-30 Rg and hue bins, CIE S 026 α-opic
+//!   quantities, the ANSI C78.377 and JA8 checks (`specpoly light`), LED channel mixing
+//!   (`specpoly mix`);
 //! - [`display`]: display models (`.ti3` fits, calibrations, ICC profiles), predict, inverse,
 //!   ICC and 3D LUT files (`specpoly calibrate`).
 //!

@@ -10,6 +10,7 @@ import pytest
 from colour.quality import tm3018
 
 import specpoly
+from conftest import ROOT
 
 warnings.filterwarnings("ignore")
 
@@ -109,3 +110,50 @@ def test_short_lights_need_extrapolate(leds):
         specpoly.light_metrics(v[3, keep], wl[keep])
     m = specpoly.light_metrics(v[3, keep], wl[keep], extrapolate=True)
     assert np.isfinite(m["CCT"])
+
+
+CHECKS = {"R15": "r15", "peak_nm": "peak_nm", "fwhm_nm": "fwhm_nm", "dominant_nm": "dominant_nm",
+          "purity": "purity", "ANSI_C78377": "ansi_c78377"}
+OPIC = ["sc", "mc", "lc", "rh", "mel"]
+
+
+def test_alpha_opic_and_standards_checks_equal_the_clis(leds, cli, tmp_path):
+    names, wl, v = leds
+    # the channels and a warm white (white plus amber)
+    lights = np.vstack([v, v[names.index("white")] + 0.3 * v[names.index("amber")]])
+    csv = tmp_path / "lights.csv"
+    head = "wavelength," + ",".join(f"l{i}" for i in range(len(lights)))
+    csv.write_text("\n".join([head] + [",".join(repr(float(x)) for x in (w, *c)) for w, c in zip(wl, lights.T)]) + "\n")
+    rows = [json.loads(line) for line in cli("light", f"{csv}#*", "--json").splitlines()]
+    m = specpoly.light_metrics(lights, wl)
+    one = specpoly.light_metrics(lights[5], wl)
+    edi = [[r["edi_" + k] for k in OPIC] for r in rows]
+    der = [[r["der_" + k] for k in OPIC] for r in rows]
+    np.testing.assert_array_equal(m["alpha_opic_EDI"], edi)
+    np.testing.assert_array_equal(m["alpha_opic_DER"], der)
+    np.testing.assert_array_equal(one["alpha_opic_EDI"], edi[5])
+    np.testing.assert_array_equal(one["alpha_opic_DER"], der[5])
+    for k, j in CHECKS.items():
+        want = np.array([np.nan if r[j] is None else r[j] for r in rows], dtype=float)
+        np.testing.assert_array_equal(m[k], want, err_msg=k)
+        np.testing.assert_array_equal(one[k], want[5], err_msg=k)
+    assert m["JA8"] == [r["ja8"] for r in rows]
+    assert m["JA8_fails"] == [r["ja8_fails"] for r in rows]
+    assert one["JA8"] == rows[5]["ja8"] and one["JA8_fails"] == rows[5]["ja8_fails"]
+    # the coloured channels have no CCT: no ANSI quadrangle, no JA8 verdict
+    assert np.isnan(m["ANSI_C78377"][0]) and m["JA8"][0] is None
+
+
+def test_alpha_opic_der_against_luxpy():
+    """The committed luxpy 1.12.5 references of the core's tests (light_standards_alpha_opic.py):
+    DER of the 1 nm lights within the core test's 0.5 %."""
+    data = ROOT / "crates/core/tests/data"
+    spd = [r.split(",") for r in (data / "light_standards_spd.csv").read_text().splitlines()[2:]]
+    ref = {r.split(",")[0]: r.split(",")[1:] for r in (data / "light_standards_alpha_opic.csv").read_text().splitlines()[2:]}
+    names = [r[0] for r in spd]
+    values = np.array([[float(x) for x in r[3:]] for r in spd])
+    wl = 380.0 + np.arange(values.shape[1])
+    der = specpoly.light_metrics(values, wl)["alpha_opic_DER"]
+    want = np.array([[float(x) for x in ref[n][5:10]] for n in names])
+    # the CLI (and so the package) prints DER to 6 decimals
+    np.testing.assert_allclose(der, want, rtol=5e-3, atol=1e-6)
