@@ -122,11 +122,56 @@ fn component_size(t: DataType) -> usize {
     }
 }
 
+/// Checks that every mesh primitive's `POSITION` names an accessor that exists, before the
+/// `gltf` crate validates the file: its validation indexes `accessors` with that number
+/// unchecked (a panic; `gltf-json` 1.4 `mesh.rs`). A file the check cannot parse is left to
+/// the crate, which reports it.
+fn check_positions(bytes: &[u8]) -> std::result::Result<(), String> {
+    use gltf::json::mesh::Semantic;
+    use gltf::json::validation::Checked;
+    let glb;
+    let json: &[u8] = if bytes.starts_with(b"glTF") {
+        match gltf::Glb::from_slice(bytes) {
+            Ok(g) => {
+                glb = g;
+                &glb.json
+            }
+            Err(_) => return Ok(()),
+        }
+    } else {
+        bytes
+    };
+    let Ok(root) = gltf::json::Root::from_slice(json) else {
+        return Ok(());
+    };
+    for (i, m) in root.meshes.iter().enumerate() {
+        for (j, p) in m.primitives.iter().enumerate() {
+            if let Some(a) = p.attributes.get(&Checked::Valid(Semantic::Positions)) {
+                if a.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "meshes[{i}].primitives[{j}].attributes.POSITION: accessor {} does not exist (the file has {})",
+                        a.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 impl GltfFile {
     /// Reads and checks `path` (a `.gltf` or `.glb` file) and its buffers.
     pub fn open(path: &Path) -> Result<Self> {
-        let bad = |why: String| mesh_error(path, why);
         let bytes = specpoly_formats::read::bytes(path)?;
+        Self::from_bytes(path, bytes, path.parent().or(Some(Path::new("."))))
+    }
+
+    /// [`GltfFile::open`] of a file's bytes already read; `path` names it in errors. External
+    /// buffers (`uri` a file name) are read from `folder`; with `None` they are refused (a
+    /// file-less reader: the fuzz target).
+    pub fn from_bytes(path: &Path, bytes: Vec<u8>, folder: Option<&Path>) -> Result<Self> {
+        let bad = |why: String| mesh_error(path, why);
         if bytes.starts_with(b"glTF") {
             // the crate subtracts the header's size from its length field unchecked
             let length = bytes
@@ -140,6 +185,7 @@ impl GltfFile {
                 )));
             }
         }
+        check_positions(&bytes).map_err(bad)?;
         let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| {
             let text = match e {
                 gltf::Error::Validation(v) => v
@@ -155,7 +201,6 @@ impl GltfFile {
                 text.replace(['\n', '\r'], " ")
             ))
         })?;
-        let folder = path.parent().unwrap_or(Path::new("."));
         let mut total = bytes.len() as u64;
         let limit = specpoly_formats::read::max_input_bytes();
         let mut blob = blob;
@@ -182,8 +227,10 @@ impl GltfFile {
                             .ok_or_else(|| {
                                 bad(format!("{at}.uri `{uri}`: only relative file names and data URIs are read"))
                             })?;
-                        let file = folder.join(&name);
-                        specpoly_formats::read::bytes(&file)
+                        let folder = folder.ok_or_else(|| {
+                            bad(format!("{at}.uri `{uri}`: external buffers are not read here"))
+                        })?;
+                        specpoly_formats::read::bytes(&folder.join(&name))
                             .map_err(|e| bad(format!("{at}.uri: {e}")))?
                     }
                 }
@@ -455,7 +502,16 @@ impl GltfFile {
 /// Reads a glTF file's triangles into `soup` (see the module docs for materials and frame);
 /// returns how many it added.
 pub fn load_gltf(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    let file = GltfFile::open(path)?;
+    add_gltf(&GltfFile::open(path)?, place, soup)
+}
+
+/// [`load_gltf`] of a file already read and checked.
+pub fn add_gltf(
+    file: &GltfFile,
+    place: &ObjPlacement<'_>,
+    soup: &mut TriangleSoup,
+) -> Result<usize> {
+    let path = &file.path;
     let materials: Vec<usize> = file
         .doc
         .materials()

@@ -7,6 +7,7 @@ mod cornell_data;
 mod gltf;
 mod hero;
 mod interaction;
+mod mesh_files;
 mod path;
 #[path = "../../core/tests/common/reference_1nm.rs"]
 mod reference_1nm;
