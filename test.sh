@@ -24,6 +24,7 @@ command -v spotread >/dev/null 2>&1 || missing+=(argyll)
 command -v Xvfb >/dev/null 2>&1 || missing+=(xvfb)   # an X server for `dispwin`'s video LUT
 [ -x /bin/kill ] || missing+=(procps)   # that test ends the X server's process group with kill
 command -v cc >/dev/null 2>&1 || missing+=(gcc)   # compiles `calibrate export`'s C in a test
+command -v g++ >/dev/null 2>&1 || missing+=(g++)   # compiles specpoly-c's C++ wrapper and examples
 command -v exrheader >/dev/null 2>&1 || missing+=(openexr)   # reads our EXR attributes
 command -v oiiotool >/dev/null 2>&1 || missing+=(openimageio-tools)   # so does OpenImageIO
 command -v ffmpeg >/dev/null 2>&1 || missing+=(ffmpeg)   # applies `calibrate lut3d`'s LUTs in a test
@@ -106,37 +107,53 @@ cargo fmt --all --check
 export RUSTC_WORKSPACE_WRAPPER="$PWD/.ci/clippy-deny-warnings"
 
 say "build and lint every target (clippy -D warnings)"
-cargo test --workspace --all-targets --no-run
+# Every build and test here uses the `dev` profile, tests included (`cargo test` alone would
+# use `test`, which has the same settings but other artefact names for proc macros and build
+# scripts): maturin builds the Python package with `dev`, and so reuses everything this build
+# compiled except the package's own crate.
+cargo test --profile dev --workspace --all-targets --no-run
 # the controller logic as the 32 KiB build compiles it (no settings, mixing, lut)
-cargo test -p specpoly-device --no-default-features --all-targets --no-run
+cargo test --profile dev -p specpoly-device --no-default-features --all-targets --no-run
 
-say "firmware builds (linted as they build; the QEMU tests run these very binaries)"
+say "firmware builds and the microcontroller builds (linted as they build; the QEMU tests run these very binaries)"
 await "$targets_pid" "installing the Rust targets ${targets[*]:-}" "$logs/rustup.log"
-# the same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops
-(cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
+# The same commands and target dirs as tests/tests/firmware_qemu.rs, so its builds are no-ops.
+# Each firmware build has a target dir of its own and ends in a one-thread link (LTO): the
+# variants build side by side, and the microcontroller builds of the library crates beside them.
+firmware() { local log=$1; shift; (cd firmware && cargo build "$@") >"$log" 2>&1; }
 # the STM32F4 board build (stm32f4xx-hal), run on netduinoplus2
-(cd firmware && cargo build --release --no-default-features --features stm32f4,full --bin stm32f4 \
-  --target thumbv7em-none-eabihf --target-dir target/stm32f4)
+firmware "$logs/fw-stm32f4.log" --release --no-default-features --features stm32f4,full --bin stm32f4 \
+  --target thumbv7em-none-eabihf --target-dir target/stm32f4 &
+fw_stm32f4=$!
 # the 32 KiB build (no settings store, no mixing)
-(cd firmware && cargo build --profile small --bins --target thumbv7em-none-eabihf \
-  --no-default-features --features mps2 --target-dir target/small)
-
-say "specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)"
+firmware "$logs/fw-small.log" --profile small --bins --target thumbv7em-none-eabihf \
+  --no-default-features --features mps2 --target-dir target/small &
+fw_small=$!
+# the micromath build, whose colour error a QEMU test measures against the libm build
+firmware "$logs/fw-fast-math.log" --release --bins --target thumbv7em-none-eabihf \
+  --target-dir target/fast-math --features fast-math &
+fw_fast=$!
+(cd firmware && cargo build --release --bins --target thumbv7em-none-eabihf --target-dir target)
+# specpoly-core, specpoly-graphics and specpoly-device for a microcontroller (thumbv7em-none-eabihf)
 cargo build -p specpoly-core -p specpoly-graphics -p specpoly-device --target thumbv7em-none-eabihf
 cargo build -p specpoly-device --no-default-features --target thumbv7em-none-eabihf
 # the C library's staticlibs as its QEMU tests link them (crates/capi/tests/c_program.rs)
 cargo build -p specpoly-c --release --target thumbv7em-none-eabihf
 cargo build -p specpoly-c --release --target riscv32imc-unknown-none-elf
+await "$fw_stm32f4" "the STM32F4 firmware build" "$logs/fw-stm32f4.log"
+await "$fw_small" "the 32 KiB firmware build" "$logs/fw-small.log"
+await "$fw_fast" "the micromath firmware build" "$logs/fw-fast-math.log"
 
 say "tests (host, core, cross-crate, firmware under QEMU)"
 await "$apt_pid" "installing ${missing[*]:-}" "$logs/apt.log"
-for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc \
+for tool in qemu-system-arm chromium spotread dispread dispwin targen colprof profcheck iccdump applycal Xvfb cc g++ \
   exrheader oiiotool ffmpeg ocioconvert arm-none-eabi-gcc riscv64-unknown-elf-gcc qemu-system-riscv32; do
   command -v "$tool" >/dev/null 2>&1 || { echo "test.sh: $tool is still missing after install" >&2; exit 1; }
 done
 
-# The Python package's wheel (maturin) compiles while the tests run: they mostly wait (on
-# ArgyllCMS, QEMU, Chromium, serial timeouts), so its compile fills idle cores. It starts once
+# The Python package's wheel (maturin) builds while the tests run: only the package's own crate
+# compiles (the workspace build above made everything else, with the same profile and features),
+# and the tests often wait (on ArgyllCMS, QEMU, Chromium, serial timeouts). It starts once
 # nextest's own build check has released the target directory's lock.
 await "$venv_pid" "making the Python test environment" "$logs/venv.log"
 rm -rf target/wheels
@@ -147,14 +164,14 @@ wheel_pid=$!
 
 if cargo nextest --version >/dev/null 2>&1; then
   # all test binaries at once, longest tests first (.config/nextest.toml)
-  cargo nextest run --workspace --no-fail-fast
-  cargo test --workspace --doc
+  cargo nextest run --cargo-profile dev --workspace --no-fail-fast
+  cargo test --profile dev --workspace --doc
 else
   echo "(cargo-nextest is not installed: cargo test runs the same tests, one binary at a time)"
-  cargo test --workspace --no-fail-fast
+  cargo test --profile dev --workspace --no-fail-fast
 fi
 # the controller's unit tests as the 32 KiB build compiles it (no settings, mixing, lut)
-cargo test -p specpoly-device --no-default-features --lib
+cargo test --profile dev -p specpoly-device --no-default-features --lib
 
 say "Python package: its wheel (built during the tests), installed in a virtual environment, pytest"
 await "$wheel_pid" "the Python package's wheel (maturin build)" "$logs/wheel.log"

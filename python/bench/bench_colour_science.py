@@ -3,15 +3,23 @@
 Run (from the repository root, with the package and colour-science installed):
     python python/bench/bench_colour_science.py [--lights N] [--colour-lights M]
 
-1. 10 000 reflectances × one light → XYZ (CIE 1931, D65): specpoly's `sd_to_XYZ` (poly, the
-   default: each spectrum fitted by 8 cubic spans, then three dot products; and `exact`, the
-   1 nm sum) against colour-science's `sd_to_XYZ` called per spectrum (ASTM E308, its default)
-   and its vectorised `msds_to_XYZ` (integration over an (n, k) array: one matrix product).
-2. Rf (with Rg, Ra, CCT) of N lights: `light_metrics` against colour-science's
-   `colour_fidelity_index` (ANSI/IES TM-30-18) per light, timed on M lights and scaled to N.
+1. 10 000 reflectances × one light → XYZ (CIE 1931, D65, 5 nm data): specpoly's `sd_to_XYZ`
+   (poly, the default, and `exact`, the 1 nm sum) on the batch (one shared grid: the grid's
+   (3, k) matrix, built on the first call and kept, then one pass over the rows), its first
+   call (which builds the matrix: k conversions), and one spectrum at a time (the
+   per-spectrum path: each spectrum fitted by 8 cubic spans, then three dot products; timed
+   on the same number of spectra as colour-science's loop and scaled), against
+   colour-science's `sd_to_XYZ` called per spectrum (ASTM E308, its default) and its
+   vectorised `msds_to_XYZ` (integration over an (n, k) array), and NumPy's bare product
+   `values @ W` with a (k, 3) matrix (the floor of any method that reads the array).
+2. Rf (and Rg) of N lights: `colour_fidelity_index` (TM-30 alone), and `light_metrics`
+   (everything `light --json` prints), against colour-science's `colour_fidelity_index`
+   (ANSI/IES TM-30-18) per light, timed on M lights and scaled to N.
 3. Display predict of 10⁶ RGB triples: `DisplayModel.predict` (sRGB, and a model fitted from a
    .ti3 with its interaction lattice) against colour-science's `sRGB_to_XYZ`.
-Best of 3 runs each (1 for the colour-science loops).
+Best of 3 runs each (15 for the batch XYZ calls of a few milliseconds, 1 for the
+colour-science loops). NumPy's BLAS threads (OPENBLAS_NUM_THREADS) change colour-science's
+vectorised figures a lot on a loaded machine: run it both ways.
 """
 
 import argparse
@@ -71,28 +79,42 @@ def main():
     rows = []
 
     wl, r = reflectances(a.reflectances, rng)
-    t_poly = best(lambda: specpoly.sd_to_XYZ(r, wl))
-    t_exact = best(lambda: specpoly.sd_to_XYZ(r, wl, repr="exact"))
+    s = time.perf_counter()
+    specpoly.sd_to_XYZ(r, wl, observer="1931")
+    t_first = time.perf_counter() - s
+    # milliseconds each on a shared machine: best of 15
+    t_poly = best(lambda: specpoly.sd_to_XYZ(r, wl, observer="1931"), runs=15)
+    t_exact = best(lambda: specpoly.sd_to_XYZ(r, wl, observer="1931", repr="exact"), runs=15)
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
     d65 = colour.SDS_ILLUMINANTS["D65"]
     shape = colour.SpectralShape(380, 780, 5)
-    t_vec = best(lambda: colour.msds_to_XYZ(r, cmfs, d65, method="Integration", shape=shape))
+    t_vec = best(lambda: colour.msds_to_XYZ(r, cmfs, d65, method="Integration", shape=shape), runs=15)
+    w = rng.random((len(wl), 3))
+    t_np = best(lambda: r @ w, runs=15)
     m = a.colour_loop
+    t_one = best(lambda: [specpoly.sd_to_XYZ(v, wl, observer="1931") for v in r[:m]], runs=1) * a.reflectances / m
     sds = [colour.SpectralDistribution(v, wl) for v in r[:m]]
     t_loop = best(lambda: [colour.sd_to_XYZ(sd, cmfs, d65) for sd in sds], runs=1) * a.reflectances / m
     n = a.reflectances
     rows += [
-        (f"{n} reflectances → XYZ", "sd_to_XYZ (poly)", t_poly, "sd_to_XYZ per spectrum (ASTM E308)", t_loop),
-        ("", "sd_to_XYZ (poly)", t_poly, "msds_to_XYZ vectorised (integration)", t_vec),
-        ("", "sd_to_XYZ (exact, 1 nm)", t_exact, "msds_to_XYZ vectorised (integration)", t_vec),
+        (f"{n} reflectances → XYZ", "sd_to_XYZ (poly) on the batch", t_poly, "msds_to_XYZ vectorised (integration)", t_vec),
+        ("", "sd_to_XYZ (exact, 1 nm) on the batch", t_exact, "msds_to_XYZ vectorised (integration)", t_vec),
+        ("", "sd_to_XYZ (poly), first call (builds W)", t_first, "msds_to_XYZ vectorised (integration)", t_vec),
+        ("", "sd_to_XYZ (poly) on the batch", t_poly, "sd_to_XYZ per spectrum (ASTM E308)", t_loop),
+        ("", "sd_to_XYZ (poly) per spectrum", t_one, "sd_to_XYZ per spectrum (ASTM E308)", t_loop),
+        ("", "sd_to_XYZ (poly) on the batch", t_poly, "NumPy `values @ W` alone", t_np),
     ]
 
     lwl, lv = lights(a.lights, rng)
-    t_rf = best(lambda: specpoly.light_metrics(lv, lwl))
+    t_rf = best(lambda: specpoly.colour_fidelity_index(lv, lwl))
+    t_all = best(lambda: specpoly.light_metrics(lv, lwl))
     k = a.colour_lights
     lsds = [colour.SpectralDistribution(v, lwl) for v in lv[:k]]
     t_crf = best(lambda: [colour.colour_fidelity_index(sd, method="ANSI/IES TM-30-18") for sd in lsds], runs=1) * a.lights / k
-    rows.append((f"Rf of {a.lights} lights", "light_metrics (XYZ, CCT, Ra, Rf, Rg)", t_rf, f"colour_fidelity_index per light (timed on {k})", t_crf))
+    rows += [
+        (f"Rf of {a.lights} lights", "colour_fidelity_index (Rf, Rg)", t_rf, f"colour_fidelity_index per light (timed on {k})", t_crf),
+        ("", "light_metrics (XYZ, CCT, Ra, R9, Rf, Rg, checks)", t_all, "colour_fidelity_index per light", t_crf),
+    ]
 
     rgb = rng.random((a.rgb, 3))
     srgb = specpoly.DisplayModel.open("sRGB")
@@ -105,7 +127,10 @@ def main():
         ("", "fitted .ti3 model (lattice: %s).predict" % acer.has_interaction, t_a, "sRGB_to_XYZ", t_cs),
     ]
 
-    print(f"CPU cores: {os.cpu_count()}; numpy {np.__version__}, colour-science {colour.__version__}\n")
+    print(
+        f"CPU cores: {os.cpu_count()}, load average {os.getloadavg()[0]:.1f}; "
+        f"numpy {np.__version__}, colour-science {colour.__version__}\n"
+    )
     print("| batch | specpoly | s | colour-science | s | speed-up |")
     print("| --- | --- | ---: | --- | ---: | ---: |")
     for b, sn, st, cn, ct in rows:

@@ -24,6 +24,7 @@ import numpy as np
 from ._specpoly import (
     DisplayModel,
     SpecpolyError,
+    colour_fidelity_index,
     colour_rendering_index,
     illuminants,
     light_metrics,
@@ -58,9 +59,3 @@ def CCT_Duv(values, wavelengths, extrapolate=False):
     m = light_metrics(values, wavelengths, extrapolate)
     return np.stack([np.asarray(m["CCT"]), np.asarray(m["Duv"])], axis=-1)
 
-
-def colour_fidelity_index(values, wavelengths, extrapolate=False):
-    """CIE 224:2017 Rf and ANSI/IES TM-30-20 Rg of SPDs: ``(Rf, Rg)``, each (n,) or a float
-    (``light_metrics``'s ``Rf`` and ``Rg``)."""
-    m = light_metrics(values, wavelengths, extrapolate)
-    return m["Rf"], m["Rg"]

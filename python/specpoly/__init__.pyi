@@ -24,9 +24,13 @@ def sd_to_XYZ(
 ) -> Float:
     """CIE XYZ of reflectances (n, k) or (k,) on `wavelengths` (k,) nm under `illuminant`
     (a built-in name, default D65, a FILE.csv#COLUMN or a tuple (wavelengths, values)) and
-    `observer` ("1964"/"10", the default as in the CLI, or "1931"/"2"), in representation `repr` ("poly", "paper",
-    "poly:SxD", "sampled:N", "rgb", "exact"); the white has Y = 100. Returns (n, 3), or (3,)
-    for one spectrum or with `product=True` (the product of all rows)."""
+    `observer` (as the CLI's --observer: "1964"/"10", the default, "1931"/"2", "2015-2",
+    "2015-10", "cie2006:age=A,field=F" for CIE 170-1 at age 20-80 and field 2-10 degrees, or
+    a CSV file of three sensitivities), in representation `repr` ("poly", "paper",
+    "poly:SxD", "sampled:N", "hero:4", "rgb", "exact"); the white has Y = 100. Returns
+    (n, 3), or (3,) for one spectrum or with `product=True` (the product of all rows).
+    A 2-D float64/float32 batch on one grid is computed as one (3, k) matrix product (the
+    grid's matrix is built once and kept; equal to the per-spectrum colours to f32 rounding)."""
 
 def sd_to_xy(
     values: ArrayLike,
@@ -51,7 +55,8 @@ def sd_to_Lab(
     """CIELAB against the light's exact white: (n, 3) or (3,)."""
 
 def white_XYZ(illuminant: Light = None, observer: str = "1964") -> Float:
-    """XYZ of the light's white (perfect reflector, Y = 100): (3,)."""
+    """XYZ of the light's white (perfect reflector, Y = 100) under `observer` (any of
+    `sd_to_XYZ`'s): (3,)."""
 
 def illuminants() -> List[str]:
     """The built-in illuminants' names."""
@@ -68,10 +73,15 @@ def sd_fit(
     "rms": (n, spans), "max": (n, spans), "delta_E00": (n,)} (batch axis dropped for (k,))."""
 
 def light_metrics(
-    values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False
+    values: ArrayLike,
+    wavelengths: ArrayLike,
+    extrapolate: bool = False,
+    observer: Optional[str] = None,
 ) -> Dict[str, Union[Float, float]]:
     """`specpoly light --json` for SPDs (n, k) or (k,): {"XYZ": (n, 3), "xy": (n, 2),
-    "uv_prime": (n, 2), "CCT", "Duv", "Ra", "R9", "Rf", "Rg": (n,)}; NaN where undefined."""
+    "uv_prime": (n, 2), "CCT", "Duv", "Ra", "R9", "Rf", "Rg": (n,)}; NaN where undefined.
+    With `observer` (any of `sd_to_XYZ`'s; `light --observer`) also the light's colour under
+    it: "observer_XYZ" (n, 3), "observer_xy", "observer_uv_prime" (n, 2)."""
 
 def CCT_Duv(values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False) -> Float:
     """CCT (K) and Duv: (n, 2) or (2,)."""
@@ -84,7 +94,8 @@ def colour_rendering_index(
 def colour_fidelity_index(
     values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False
 ) -> Tuple[Union[Float, float], Union[Float, float]]:
-    """CIE 224:2017 Rf and TM-30 Rg: (n,) each, or floats for one light."""
+    """CIE 224:2017 Rf and TM-30 Rg: (n,) each, or floats for one light; unrounded (TM-30
+    alone: faster than `light_metrics`, which also computes CIE 13.3 and rounds as the CLI)."""
 
 def tm30(
     values: ArrayLike, wavelengths: ArrayLike, extrapolate: bool = False

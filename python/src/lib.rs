@@ -9,6 +9,7 @@
 //!
 //! - [`arrays`]: NumPy in and out (shapes, dtypes, the one-line errors for bad input);
 //! - [`spectra`]: reflectances → XYZ, xy, CIELAB and polynomial fits (`specpoly xyz`, `fit`);
+//! - [`grid`]: the batch path for reflectances on one shared wavelength grid (one matrix);
 //! - [`light`]: CCT/Duv, CIE 13.3 Ra/Ri, CIE 224 Rf, TM-30 Rg and hue bins (`specpoly light`);
 //! - [`display`]: display models (`.ti3` fits, calibrations, ICC profiles), predict, inverse,
 //!   ICC and 3D LUT files (`specpoly calibrate`).
@@ -24,6 +25,7 @@ use pyo3::prelude::*;
 
 pub mod arrays;
 pub mod display;
+pub mod grid;
 pub mod light;
 pub mod spectra;
 

@@ -12,12 +12,14 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 use specpoly_core::light::cri::cri_spd;
-use specpoly_spectra::light::{report, standard_spd, LightReport};
+use specpoly_core::light::tm30::tm30_spd;
+use specpoly_spectra::light::{observer_colour, report, standard_spd, LightReport, ObserverColour};
 use specpoly_spectra::light_tm30::tm30_report;
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(light_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(colour_rendering_index, m)?)?;
+    m.add_function(wrap_pyfunction!(colour_fidelity_index, m)?)?;
     m.add_function(wrap_pyfunction!(tm30, m)?)?;
     Ok(())
 }
@@ -33,23 +35,33 @@ fn nan(v: Option<f64>) -> f64 {
 /// (`Km·Σ S x̄ Δλ`, CIE 1931: lumens for Y when the SPD is in W/nm), `xy` and `uv_prime`
 /// (n, 2), `CCT` (K), `Duv`, `Ra`, `R9`, `Rf`, `Rg` (n,); one light (k,) gives (3,), (2,) and
 /// floats. Lights tabulated over less than 380–780 nm are refused unless `extrapolate` (the
-/// end values held, CIE 015:2018).
+/// end values held, CIE 015:2018). With `observer` (any of `sd_to_XYZ`'s: `2015-10`,
+/// `cie2006:age=A,field=F`, a sensitivity CSV, …; `light --observer`), also the light's colour
+/// under it: `observer_XYZ` (`Km·Σ S·[x̄, ȳ, z̄]·Δλ`), `observer_xy`, `observer_uv_prime`; CCT,
+/// Duv, Ra and Rf stay on the observers their standards fix.
 #[pyfunction]
-#[pyo3(signature = (values, wavelengths, extrapolate=false))]
+#[pyo3(signature = (values, wavelengths, extrapolate=false, observer=None))]
 fn light_metrics<'py>(
     py: Python<'py>,
     values: &Bound<'py, PyAny>,
     wavelengths: &Bound<'py, PyAny>,
     extrapolate: bool,
+    observer: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (rows, wl) = sampled(values, wavelengths)?;
+    let obs = observer.map(crate::spectra::observer).transpose()?;
     let reports: Vec<LightReport> = py
         .detach(|| {
             (0..rows.n)
                 .into_par_iter()
                 .map(|i| {
                     let n = named(&rows, &wl, i).map_err(|e| e.to_string())?;
-                    report(&n, extrapolate).map_err(|e| e.to_string())
+                    let mut r = report(&n, extrapolate).map_err(|e| e.to_string())?;
+                    if let Some(o) = obs {
+                        let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
+                        r.observer = Some(observer_colour(&s, o));
+                    }
+                    Ok(r)
                 })
                 .collect::<Result<Vec<_>, String>>()
         })
@@ -62,6 +74,17 @@ fn light_metrics<'py>(
     d.set_item("XYZ", col(&|r| vec![r.big_x, r.big_y, r.big_z], 3)?)?;
     d.set_item("xy", col(&|r| vec![r.x, r.y], 2)?)?;
     d.set_item("uv_prime", col(&|r| vec![r.u_prime, r.v_prime], 2)?)?;
+    if obs.is_some() {
+        // every report has the observer's colour when one was asked for
+        let oc = |r: &LightReport, f: fn(&ObserverColour) -> Vec<f64>, k: usize| {
+            r.observer.as_ref().map_or(vec![f64::NAN; k], f)
+        };
+        let xyz = col(&|r| oc(r, |o| vec![o.big_x, o.big_y, o.big_z], 3), 3)?;
+        d.set_item("observer_XYZ", xyz)?;
+        d.set_item("observer_xy", col(&|r| oc(r, |o| vec![o.x, o.y], 2), 2)?)?;
+        let uv = col(&|r| oc(r, |o| vec![o.u_prime, o.v_prime], 2), 2)?;
+        d.set_item("observer_uv_prime", uv)?;
+    }
     let scalars: [(&str, Metric); 6] = [
         ("CCT", |r| r.cct),
         ("Duv", |r| r.duv),
@@ -115,6 +138,42 @@ fn colour_rendering_index<'py>(
         out_1d(py, ra)
     };
     Ok((ra, out_rows(py, ri, cri.len(), 14, rows.one)?))
+}
+
+/// CIE 224:2017 Rf and ANSI/IES TM-30-20 Rg: `(Rf, Rg)`, each (n,) (or floats for one light),
+/// unrounded (`light_metrics` rounds them as the CLI prints them, to 6 decimals); NaN where the
+/// light has no CCT. Only TM-30 is computed (`light_metrics` also computes CIE 13.3 and the
+/// standards' checks).
+#[pyfunction]
+#[pyo3(signature = (values, wavelengths, extrapolate=false))]
+fn colour_fidelity_index<'py>(
+    py: Python<'py>,
+    values: &Bound<'py, PyAny>,
+    wavelengths: &Bound<'py, PyAny>,
+    extrapolate: bool,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let (rows, wl) = sampled(values, wavelengths)?;
+    let rfg: Vec<[f64; 2]> = py
+        .detach(|| {
+            (0..rows.n)
+                .into_par_iter()
+                .map(|i| {
+                    let n = named(&rows, &wl, i).map_err(|e| e.to_string())?;
+                    let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
+                    Ok(tm30_spd(&s).map_or([f64::NAN; 2], |t| [t.rf, t.rg]))
+                })
+                .collect::<Result<Vec<_>, String>>()
+        })
+        .map_err(lib_err)?;
+    let out = |k: usize| -> PyResult<Bound<'py, PyAny>> {
+        let v: Vec<f64> = rfg.iter().map(|r| r[k]).collect();
+        if rows.one {
+            Ok(v[0].into_pyobject(py)?.into_any())
+        } else {
+            Ok(out_1d(py, v))
+        }
+    };
+    Ok((out(0)?, out(1)?))
 }
 
 /// ANSI/IES TM-30-20 in full for one light (k,) (`specpoly light --tm30 --json`): a dict with

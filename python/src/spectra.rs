@@ -6,7 +6,7 @@
 //! Batches are split into chunks computed in parallel with the GIL released.
 
 use crate::arrays::{self, out_1d, out_3d, out_rows, Rows};
-use crate::lib_err;
+use crate::{grid, lib_err};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
@@ -30,13 +30,12 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The observer named `s` (`1931`/`2`, `1964`/`10`).
+/// The observer `s` as the CLI's `--observer` takes it
+/// ([`specpoly_spectra::observer::parse`]): `1931` (`2`), `1964` (`10`), `2015-2`, `2015-10`,
+/// `cie2006:age=A,field=F`, or a CSV file of three sensitivities; anything else is the
+/// library's one-line error (a `ValueError`).
 pub fn observer(s: &str) -> PyResult<Observer> {
-    Observer::from_name(s).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "unknown observer `{s}`: give 1931 (or 2) or 1964 (or 10)"
-        ))
-    })
+    specpoly_spectra::observer::parse(s).map_err(lib_err)
 }
 
 /// The representation named `s` (as `--repr`).
@@ -162,12 +161,22 @@ fn batch<'py>(
     scale: f64,
     product: bool,
     k: usize,
-    f: impl Fn(&Colour) -> Vec<f64> + Send + Sync,
+    f: impl Fn(&Colour) -> [f64; 3] + Send + Sync,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let (rows, wl) = sampled(values, wavelengths)?;
+    // the arguments first (errors in the order of the per-spectrum path), then the grid's
+    // batch path, which reads the values in place; the per-spectrum path when it declines
+    let wl = arrays::vector(wavelengths, "wavelengths")?;
+    arrays::finite(&wl, "wavelengths", 0)?;
     let light = light(illuminant)?;
     let obs = observer(observer_name)?;
     let repr = repr(repr_name)?;
+    if !product {
+        if let Some((data, n)) = grid::try_colours(py, values, &wl, &light, obs, repr, scale, k, &f)
+        {
+            return out_rows(py, data, n, k, false);
+        }
+    }
+    let (rows, wl) = sampled(values, wavelengths)?;
     let (n, one) = if product {
         (1, true)
     } else {
@@ -175,8 +184,11 @@ fn batch<'py>(
     };
     let data = py
         .detach(|| {
-            colours(&rows, &wl, &light, obs, repr, scale, product)
-                .map(|cs| cs.iter().flat_map(&f).collect::<Vec<f64>>())
+            colours(&rows, &wl, &light, obs, repr, scale, product).map(|cs| {
+                cs.iter()
+                    .flat_map(|c| f(c).into_iter().take(k))
+                    .collect::<Vec<f64>>()
+            })
         })
         .map_err(lib_err)?;
     out_rows(py, data, n, k, one)
@@ -187,6 +199,10 @@ fn batch<'py>(
 /// values: (n, k) or (k,) reflectances (0–1) sampled at `wavelengths` (k,) nm, strictly
 /// increasing, covering 380–780 nm or held at the ends. Returns (n, 3), or (3,) for one
 /// spectrum or with `product=True` (the product of all rows: an inter-reflection chain).
+/// observer: as the CLI's `--observer`: "1964" (default), "1931", "2015-2", "2015-10",
+/// "cie2006:age=A,field=F", or a CSV file of three sensitivities. A 2-D float64/float32 batch
+/// on one grid is one (3, k) matrix product (the grid's matrix built once and kept; equal to
+/// the per-spectrum colours to f32 rounding).
 #[pyfunction]
 #[pyo3(name = "sd_to_XYZ", signature = (values, wavelengths, illuminant=None, observer="1964", repr="poly", scale=1.0, product=false))]
 #[allow(clippy::too_many_arguments)]
@@ -210,7 +226,7 @@ fn sd_to_xyz<'py>(
         scale,
         product,
         3,
-        |c| c.xyz.to_vec(),
+        |c| c.xyz,
     )
 }
 
@@ -238,7 +254,10 @@ fn sd_to_xy<'py>(
         scale,
         product,
         2,
-        |c| c.xy().to_vec(),
+        |c| {
+            let [x, y] = c.xy();
+            [x, y, 0.0]
+        },
     )
 }
 
@@ -268,7 +287,7 @@ fn sd_to_lab<'py>(
         3,
         |c| {
             let l = c.lab();
-            vec![l.l, l.a, l.b]
+            [l.l, l.a, l.b]
         },
     )
 }

@@ -31,6 +31,20 @@ def test_metrics_equal_the_clis(leds, cli):
     assert np.isnan(m["Rf"][0]) and not np.isnan(m["Rf"][names.index("white")])
 
 
+def test_observer_colours_equal_the_clis(leds, cli):
+    names, wl, v = leds
+    for observer in ["2015-10", "cie2006:age=60,field=4"]:
+        out = cli("light", "data/leds/rgbwa.csv#*", "--observer", observer, "--json")
+        rows = [json.loads(line)["observer"] for line in out.splitlines()]
+        m = specpoly.light_metrics(v, wl, observer=observer)
+        np.testing.assert_array_equal(m["observer_XYZ"], [[r["X"], r["Y"], r["Z"]] for r in rows])
+        np.testing.assert_array_equal(m["observer_xy"], [[r["x"], r["y"]] for r in rows])
+        np.testing.assert_array_equal(m["observer_uv_prime"], [[r["u_prime"], r["v_prime"]] for r in rows])
+    assert "observer_XYZ" not in specpoly.light_metrics(v, wl)
+    with pytest.raises(ValueError, match="unknown observer `2016`"):
+        specpoly.light_metrics(v, wl, observer="2016")
+
+
 def test_one_light_and_tm30_equal_the_clis(leds, cli):
     names, wl, v = leds
     white = v[names.index("white")]
@@ -77,7 +91,11 @@ def test_batch_helpers(leds):
     rf, rg = specpoly.colour_fidelity_index(v, wl)
     m = specpoly.light_metrics(v, wl)
     np.testing.assert_array_equal(cd[:, 0], m["CCT"])
-    np.testing.assert_array_equal(rf, m["Rf"])
+    # unrounded; light_metrics rounds to the CLI's 6 decimals
+    np.testing.assert_allclose(rf, m["Rf"], rtol=0, atol=5e-7)
+    np.testing.assert_allclose(rg, m["Rg"], rtol=0, atol=5e-7)
+    assert np.isnan(rf[0]) and not np.isnan(rf[names.index("white")])
+    assert isinstance(specpoly.colour_fidelity_index(v[names.index("white")], wl)[0], float)
     ra, ri = specpoly.colour_rendering_index(v, wl)
     assert ri.shape == (5, 14)
     w = names.index("white")

@@ -359,4 +359,10 @@ fn calibrated_framebuffer_on_target_matches_the_f64_reference() {
          tables {tables} B"
     );
     assert!(solid < image, "a solid fill transforms its colour once");
+    // the budget per pixel (docs/performance.md, "Calibrated framebuffer"): exact counts under
+    // `-icount shift=0`
+    assert!(
+        kernel <= 40.0 && xrgb <= 40.0,
+        "RGB565 {kernel}, RGB888 {xrgb} per pixel"
+    );
 }

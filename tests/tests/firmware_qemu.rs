@@ -289,6 +289,12 @@ fn selftest_passes_on_target_within_the_budgets() {
     for l in out.lines().filter(|l| l.starts_with("insns ")) {
         println!("{l}");
     }
+    // the firmware's instruction budgets (docs/performance.md, "Issue 13"): exact counts under
+    // `-icount shift=0`, the same on every run of the same build
+    let line: u64 = field(&out, "insns default line-2-factors ");
+    assert!(line <= 30_000, "decimal refl line {line} instructions");
+    let colour: u64 = field(&out, "insns default colour ");
+    assert!(colour <= 1_500, "colour step {colour} instructions");
     let (flash, ram) = budget(&dir.join("specpoly-firmware"));
     println!("flash {flash} B, static RAM {ram} B");
     assert!(

@@ -10,7 +10,9 @@
 //! the measurements next to the model's own; and the round trip device → `A2B0` → `B2A0` →
 //! device through Little CMS and through `xicclu` (`-ff` then `-fb`, relative) on a 52³ grid of
 //! 8-bit codes (max |Δ| in codes of 255, the share within 2 codes, the model's ΔE00 between the
-//! colour and what comes back), and the model's own inverse (the core's) on the same codes.
+//! colour and what comes back), and the model's own inverse (the core's) on the same codes; each
+//! round trip also over only the codes the model's own inverse gives back within 2 codes (where
+//! it does not, the model shows that code's colour at another code too).
 //!
 //! Run: `cargo run -p specpoly-calibrate --example icc_figures [GRID]`.
 
@@ -163,28 +165,46 @@ fn main() {
         let rgb_a = xicclu(&path, &["-fb", "-ir", "-px"], &fwd_a);
         // the model's own inverse (the core's): where the model cannot tell codes apart
         let rgb_m: Vec<[f64; 3]> = codes.iter().map(|c| cal.inverse(cal.predict(*c))).collect();
+        let off = |c: &[f64; 3], o: &[f64; 3]| {
+            (0..3)
+                .map(|k| (c[k] - o[k]).abs() * 255.0)
+                .fold(0.0, f64::max)
+        };
+        // the codes the model itself gives back (its own inverse within 2 codes): where it
+        // does not, the model shows the code's colour at another code too
+        let told: Vec<bool> = codes
+            .iter()
+            .zip(&rgb_m)
+            .map(|(c, m)| off(c, m) <= 2.0)
+            .collect();
         let trip = |out: &[[f64; 3]]| {
             let mut worst = (0.0f64, [0.0; 3]);
             let (mut within, mut worst_de) = (0usize, 0.0f64);
-            for (c, o) in codes.iter().zip(out) {
+            let (mut told_n, mut told_within, mut told_worst) = (0usize, 0usize, 0.0f64);
+            for ((c, o), t) in codes.iter().zip(out).zip(&told) {
+                if *t {
+                    told_n += 1;
+                    told_within += usize::from(off(c, o) <= 2.0);
+                    told_worst = told_worst.max(off(c, o));
+                }
                 worst_de = worst_de.max(delta_e00(
                     icc::predict_pcs(&cal, *o),
                     icc::predict_pcs(&cal, *c),
                     icc::D50,
                 ));
-                let d = (0..3)
-                    .map(|k| (c[k] - o[k]).abs() * 255.0)
-                    .fold(0.0, f64::max);
+                let d = off(c, o);
                 within += usize::from(d <= 2.0);
                 if d > worst.0 {
                     worst = (d, *c);
                 }
             }
             format!(
-                "{:.1} at {:?}, {:.2} % ≤ 2, model ΔE00 {worst_de:.2}",
+                "{:.1} at {:?}, {:.2} % ≤ 2, model ΔE00 {worst_de:.2}; of the {:.2} % the model gives back: {told_worst:.1}, {:.2} % ≤ 2",
                 worst.0,
                 worst.1.map(|v| (v * 255.0).round()),
-                100.0 * within as f64 / codes.len() as f64
+                100.0 * within as f64 / codes.len() as f64,
+                100.0 * told_n as f64 / codes.len() as f64,
+                100.0 * told_within as f64 / told_n.max(1) as f64
             )
         };
         let (trip_l, trip_a, trip_m) = (trip(&rgb), trip(&rgb_a), trip(&rgb_m));

@@ -110,6 +110,10 @@ pub struct FitOptions {
     pub interaction: InteractionChoice,
     /// Whether bad readings are found and dropped (least-squares matrix only).
     pub robust: bool,
+    /// The observer the measurements' XYZ are under (an instrument's: CIE 1931; another when
+    /// they were computed from spectra, `spectral_display::xyz_under`): the primaries are kept
+    /// inside its spectral locus.
+    pub observer: specpoly_core::Observer,
 }
 
 impl Default for FitOptions {
@@ -122,6 +126,7 @@ impl Default for FitOptions {
             iterations: 4,
             interaction: InteractionChoice::Auto,
             robust: true,
+            observer: specpoly_core::Observer::Cie1931,
         }
     }
 }
@@ -468,7 +473,7 @@ impl Model<'_> {
     ) -> Result<Calibration> {
         // physically possible primaries: inside the spectral locus
         let mut p = p;
-        let locus_notes = locus::constrain(&mut p);
+        let locus_notes = locus::constrain(&mut p, self.opts.observer);
         let prim = p.map(Primary::from_xyz);
         let model_white = [0, 1, 2].map(|r| p[0][r] + p[1][r] + p[2][r] + k[r]);
         Ok(Calibration::new(CalibrationData {

@@ -22,6 +22,39 @@ use specpoly_formats::cgats::Ti3;
 /// 1 nm samples over 380..=780 nm.
 pub const SAMPLES: usize = 401;
 
+/// Every patch's XYZ of a spectral `.ti3` recomputed from its spectrum under `observer`, on the
+/// file's own scale: `k · 683.002 · Σ S(λ) ō(λ)` at 1 nm over 380–780 nm (the spectra
+/// resampled linearly, 0 outside the measured bands), `k` making the brightest patch's CIE 1931
+/// `Y` of its spectrum equal to the `Y` the file gives it (so relative and absolute files keep
+/// their units). Under CIE 1931 this gives back the file's XYZ when they were computed from the
+/// same spectra. `source` names the file in errors.
+///
+/// Errors: [`Error::SpectralTi3`] without spectra, or when the brightest patch is dark.
+pub fn xyz_under(t: &Ti3, observer: Observer, source: &str) -> Result<Vec<[f64; 3]>> {
+    let bad = |why: &str| Error::SpectralTi3 {
+        file: source.to_string(),
+        why: why.to_string(),
+    };
+    let spectra = t.spectra.as_ref().ok_or_else(|| {
+        bad("no spectra (SPECTRAL_BANDS and SPEC_… fields) to compute XYZ under another observer from: measure with a spectrometer")
+    })?;
+    let resampled =
+        |i: usize| -> Vec<f64> { (380..=780).map(|nm| spectra.at(i, nm as f64)).collect() };
+    let brightest = (0..t.measurements.len())
+        .filter(|i| t.measurements[*i].xyz[1].is_finite())
+        .max_by(|a, b| t.measurements[*a].xyz[1].total_cmp(&t.measurements[*b].xyz[1]))
+        .ok_or_else(|| bad("no patches"))?;
+    let y_file = t.measurements[brightest].xyz[1];
+    let y_spec = spectrum_xyz(Observer::Cie1931, &resampled(brightest))[1];
+    if !(y_file > 0.0 && y_spec > 0.0 && y_spec.is_finite()) {
+        return Err(bad("the brightest patch is dark: no scale for the spectra"));
+    }
+    let k = y_file / y_spec;
+    Ok((0..t.measurements.len())
+        .map(|i| spectrum_xyz(observer, &resampled(i)).map(|v| v * k))
+        .collect())
+}
+
 /// A display's spectral model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpectralDisplay {

@@ -83,7 +83,8 @@ typedef int32_t SpGamutMap;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-// A CIE standard observer (the `observer` argument).
+// A CIE observer (the `observer` argument): the two standard observers and the CIE 2015
+// cone-fundamental-based ones (CIE 170-2:2015).
 enum SpObserver
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : int32_t
@@ -93,6 +94,10 @@ enum SpObserver
   SP_OBSERVER_CIE1931 = 0,
   // CIE 1964 10°.
   SP_OBSERVER_CIE1964 = 1,
+  // CIE 2015 2° (CIE 170-2:2015; zero below 390 nm, where it is undefined).
+  SP_OBSERVER_CIE2015_2 = 2,
+  // CIE 2015 10° (CIE 170-2:2015; zero below 390 nm).
+  SP_OBSERVER_CIE2015_10 = 3,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L

@@ -1,7 +1,7 @@
 /* specpoly-c for C++: a header-only wrapper over specpoly.h (docs/c.md). No exceptions, no
  * allocation, no RTTI: every call returns the library's SpStatus; the classes own their C
  * structs (caller-owned state, as the C API has it) and check nothing twice. C++11 or later;
- * compiled by the test `cpp::the_wrapper_and_the_examples_compile_for_a_cortex_m4f_and_an_rv32imc`. */
+ * compiled by the test `cpp::the_wrapper_and_the_examples_compile_for_the_host_a_cortex_m4f_and_an_rv32imc`. */
 #ifndef SPECPOLY_HPP
 #define SPECPOLY_HPP
 

@@ -5,8 +5,8 @@
 //!
 //! The XYZ is the core's [`Moments::xyz`]: three dot products with the moments of the light
 //! and observer, `Mₐ[k][s] = K Σ_λ w(λ) Tₖ(t(λ)) S(λ) ā(λ)` at 1 nm, `K = 100 / Σ S ȳ`
-//! (`specpoly_core::moments`). The moments of the 7 lights × 2 observers are compiled in
-//! (`src/lights.rs`, 5.5 KiB of flash, linked only when `sp_spectrum_xyz` or `sp_light_white`
+//! (`specpoly_core::moments`). The moments of the 7 lights × 4 observers are compiled in
+//! (`src/lights.rs`, 11 KiB of flash, linked only when `sp_spectrum_xyz` or `sp_light_white`
 //! is called), the values of [`Moments::new`] to the bit (a test checks), so no f64
 //! integration runs on the device.
 
@@ -30,7 +30,8 @@ pub struct SpSpectrum {
     pub coef: [[f32; SP_SPECTRUM_SPANS]; SP_SPECTRUM_COEFFS],
 }
 
-/// A CIE standard observer (the `observer` argument).
+/// A CIE observer (the `observer` argument): the two standard observers and the CIE 2015
+/// cone-fundamental-based ones (CIE 170-2:2015).
 #[repr(i32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SpObserver {
@@ -38,6 +39,10 @@ pub enum SpObserver {
     Cie1931 = 0,
     /// CIE 1964 10°.
     Cie1964 = 1,
+    /// CIE 2015 2° (CIE 170-2:2015; zero below 390 nm, where it is undefined).
+    Cie2015_2 = 2,
+    /// CIE 2015 10° (CIE 170-2:2015; zero below 390 nm).
+    Cie2015_10 = 3,
 }
 
 /// A built-in light (the `illuminant` argument), tabulated at 5 nm (CIE 015:2018).

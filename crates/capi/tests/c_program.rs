@@ -261,7 +261,7 @@ fn spectra(l: &mut Lines) {
         r.push(s);
     }
     for light in [Illuminant::A, Illuminant::D65, Illuminant::FL11] {
-        for o in Observer::CLASSIC {
+        for o in Observer::ALL {
             let m = Moments::<8, 4>::new(o, &light.tabulated());
             for (i, s) in r.iter().enumerate() {
                 for (sq, s) in [("r", *s), ("r2", s.mul(s))] {
@@ -278,6 +278,11 @@ fn spectra(l: &mut Lines) {
     for (name, o, light) in [
         ("light_white_d65_1931", Observer::Cie1931, Illuminant::D65),
         ("light_white_fl11_1964", Observer::Cie1964, Illuminant::FL11),
+        (
+            "light_white_d65_2015_10",
+            Observer::Cie2015_10,
+            Illuminant::D65,
+        ),
     ] {
         let w = Moments::<8, 4>::new(o, &light.tabulated()).white();
         l.line(name, OK, &floats(&w.to_array()));
@@ -289,7 +294,7 @@ fn spectra(l: &mut Lines) {
         ("spectrum_fit_not_increasing", DOMAIN),
         ("spectrum_mul_null", NULL),
         ("spectrum_eval_379", DOMAIN),
-        ("spectrum_xyz_observer_2", DOMAIN),
+        ("spectrum_xyz_observer_4", DOMAIN),
         ("spectrum_xyz_illuminant_7", DOMAIN),
         ("spectrum_xyz_nan", NOT_FINITE),
     ] {
@@ -401,7 +406,7 @@ fn check_references(got: &str, target: &str) {
         }
         n += 1;
     }
-    assert_eq!(n, 36);
+    assert_eq!(n, 72);
 }
 
 pub(crate) fn crate_dir() -> &'static Path {

@@ -1,7 +1,7 @@
 //! `specpoly calibrate lut3d` through the binary: the file it writes (format from the
 //! extension or `--format`), what it says, and bad input — a LUT size of 0, 1 or 1000, an unknown
-//! source space, an unknown extension, a display model that cannot invert its greys — one
-//! line on stderr, and no file written or clobbered. The LUTs' accuracy in ffmpeg and
+//! source space, a size that is not a number, an unknown extension, a display model that cannot
+//! invert its greys — one line on stderr, and no file written or clobbered. The LUTs' accuracy in ffmpeg and
 //! OpenColorIO is tested in `crates/calibrate/tests/lut3d.rs`.
 
 use crate::common::cli;
@@ -135,6 +135,12 @@ fn bad_sizes_sources_and_extensions_are_one_line_and_write_nothing() {
     std::fs::write(&kept, "keep me\n").unwrap();
     let r = lut3d(&d, &kept, &["--size", "1000"]);
     refused(&r, 2, "3D LUT size 1000", &kept, Some("keep me\n"));
+    let r = lut3d(&d, &kept, &["--size", "0"]);
+    refused(&r, 2, "3D LUT size 0", &kept, Some("keep me\n"));
+    let r = lut3d(&d, &kept, &["--source", "prophoto"]);
+    refused(&r, 2, "'prophoto' for '--source", &kept, Some("keep me\n"));
+    let r = lut3d(&d, &kept, &["--size", "many"]);
+    refused(&r, 2, "'many' for '--size", &kept, Some("keep me\n"));
 }
 
 /// A calibration of the given lattice (`None`: the matrix model), near-sRGB primaries.

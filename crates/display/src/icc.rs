@@ -261,7 +261,8 @@ pub const B2A_CHECK_DE: f64 = 0.05;
 /// How far beyond `[0, 1]` (in device linear light) `B2A0`'s table may reach: its nodes outside
 /// the gamut extend the model affinely ([`b2a0`]); nodes further out are clipped there.
 pub const B2A_OUT_REACH: f64 = 0.5;
-/// Margin kept below and above the model's colours in `B2A0`'s input and output ranges.
+/// Margin kept above the model's colours in `B2A0`'s input range, and below and above them in its
+/// output range.
 pub const B2A_IN_MARGIN: f64 = 0.002;
 /// The most of the other two channels mixed into a channel of `B2A0`'s input (`β`, [`b2a0`]).
 pub const B2A_BETA_MAX: f64 = 0.25;
@@ -518,7 +519,12 @@ impl B2a {
 ///   with `β_c` of the other two): a lut16 matrix has no offset and its input curves clip below
 ///   0, yet where the channels interact the gamut's faces lie a little outside the matrix/TRC
 ///   part's cube (`τ_c` down to −0.02 on the shipped displays); `β_c` is the least that keeps
-///   `u_c ≥ 0` over the model's colours on the cube's faces, `top_c` the largest `u_c` there;
+///   `u_c ≥ 0` over the model's colours on the cube's faces (0–0.023 on the shipped displays),
+///   `top_c` the largest `u_c` there. (Asking for `u_c ≥ 0.002` instead — more than the
+///   black's own `τ_c ≈ 0.001` — drove `β_c` to its cap of 0.25 near black on four of the five
+///   shipped displays: a fifth of the grid's span in `u_c` then held the other two channels, the
+///   face `D_c = 0` lay at `u_c ≈ 0.18` with blue full, red 0–30 within a quarter of one cell,
+///   and colours came back up to 16 codes off.);
 /// - **input curves**: piecewise linear, grid node `j` at `u = (j/(grid − 1))²` (rounded to the
 ///   curve's own samples, so the CMM's interpolation of the curve is exact): nodes dense in the
 ///   dark, and a function affine in `u` is reproduced exactly by the table;
@@ -547,8 +553,8 @@ fn b2a0(cal: &Calibration, part: &MatrixPart, grid: usize) -> Result<B2a> {
     let beta = [0, 1, 2].map(|c| {
         let (a, b) = ((c + 1) % 3, (c + 2) % 3);
         taus.iter()
-            .filter(|t| t[c] < B2A_IN_MARGIN)
-            .map(|t| (B2A_IN_MARGIN - t[c]) / (t[a] + t[b]).max(1e-6))
+            .filter(|t| t[c] < 0.0)
+            .map(|t| -t[c] / (t[a] + t[b]).max(1e-6))
             .fold(0.0f64, f64::max)
             .min(B2A_BETA_MAX)
     });

@@ -188,9 +188,8 @@ impl Command {
     /// Parses one line (without its newline). Never panics; any input gives a command or a
     /// [`Fault`].
     pub fn parse(line: &str) -> Result<Command, Fault> {
-        let mut it = line.split_ascii_whitespace();
-        let head = it.next().ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
-        let mut w = Words::new(it);
+        let (head, mut w) = Words::new(line);
+        let head = head.ok_or(Fault::at(ErrorCode::UnknownCommand, 0))?;
         let cmd = match head {
             "hello" => Command::Hello,
             "state" => Command::State,
@@ -427,24 +426,18 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
     w: &mut Words<'_>,
     mul: fn(&Spectrum<S, C, L>, &Spectrum<S, C, L>) -> Spectrum<S, C, L>,
 ) -> Result<(Spectrum<S, C, L>, u8), Fault> {
-    let mut product: Option<Spectrum<S, C, L>> = None;
+    let mut product = Spectrum::<S, C, L>::ZERO;
+    let mut f = Spectrum::<S, C, L>::ZERO;
     let mut factors = 0u8;
     loop {
-        let mut f = Spectrum::<S, C, L>::ZERO;
-        for i in 0..S * C {
-            let (tok, at) = w
-                .next()
-                .ok_or(Fault::at(ErrorCode::WrongCount, w.pos + 1))?;
-            if tok == "*" {
-                return Err(Fault::at(ErrorCode::WrongCount, at));
-            }
-            f.coefficients_mut()[i % C][i / C] = number(tok, at)?;
+        // one call site: the reader is inlined once per preset; the first factor is read into
+        // the product itself
+        let into = if factors == 0 { &mut product } else { &mut f };
+        w.coefficients(S * C, |i, v| into.coefficients_mut()[i % C][i / C] = v)?;
+        if factors > 0 {
+            product = mul(&product, &f);
         }
         factors += 1;
-        product = Some(match product {
-            None => f,
-            Some(p) => mul(&p, &f),
-        });
         match w.next() {
             None => break,
             Some(("*", at)) => {
@@ -455,15 +448,17 @@ fn read_product<const S: usize, const C: usize, L: Layout<S>>(
             Some((_, at)) => return Err(Fault::at(ErrorCode::WrongCount, at)),
         }
     }
-    match product {
-        // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as
-        // the colour it would give is: it could not be written back as numbers.
-        Some(p) if !p.coefficients().iter().flatten().all(|c| c.is_finite()) => {
-            Err(Fault::new(ErrorCode::NotFinite))
-        }
-        Some(p) => Ok((p, factors)),
-        None => Err(Fault::new(ErrorCode::WrongCount)),
+    // A product that overflows f32 (finite factors near `f32::MAX`) is refused here, as the
+    // colour it would give is: it could not be written back as numbers.
+    if !product
+        .coefficients()
+        .iter()
+        .flatten()
+        .all(|c| c.is_finite())
+    {
+        return Err(Fault::new(ErrorCode::NotFinite));
     }
+    Ok((product, factors))
 }
 
 /// Writes `refl PRESET ILLUMINANT c… * c… …` for the product of `factors` (at least one, all

@@ -101,6 +101,13 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
     if b.len() == 10 && b[0] == b'0' && b[1] == b'x' {
         return parse_hex(&b[2..]);
     }
+    #[cfg(feature = "fast-refl")]
+    if let Some((v, len)) = word_f32(b) {
+        if len == b.len() {
+            // the common token: a plain decimal whose digits fit a u32
+            return Ok(v);
+        }
+    }
     let mut i = 0;
     let negative = match b[0] {
         b'-' => {
@@ -113,6 +120,7 @@ pub fn parse_f32(s: &str) -> Result<f32, NumberError> {
         }
         _ => false,
     };
+    #[cfg(not(feature = "fast-refl"))]
     if let Some((m, fraction)) = plain(&b[i..]) {
         // the common token: no exponent, the digits fit a u32
         let v = if m == 0 {
@@ -235,10 +243,12 @@ pub fn write_f32_hex<W: Write>(w: &mut W, v: f32) -> fmt::Result {
     w.write_str(core::str::from_utf8(&out).map_err(|_| fmt::Error)?)
 }
 
-/// `digits ('.' digits?)?` or `'.' digits` (no sign, no exponent) whose digits read as one
+/// Without feature `fast-refl` (the 32 KiB firmware build, for flash): [`parse_f32`]'s common
+/// token, `digits ('.' digits?)?` or `'.' digits` (no sign, no exponent) whose digits read as one
 /// u32 `m`: `(m, digits after the point)`, so the value is `m · 10^−fraction`. `None` for
 /// anything else, which [`parse_f32`]'s general loop then reads (or refuses). A loop of a few
 /// instructions a digit for the numbers the protocol itself writes.
+#[cfg(not(feature = "fast-refl"))]
 fn plain(b: &[u8]) -> Option<(u32, u32)> {
     // the integer digits, then (after a point) the fraction's: two loops, so a digit costs a
     // load, a compare, a bound and a multiply-add
@@ -280,6 +290,79 @@ fn plain(b: &[u8]) -> Option<(u32, u32)> {
         return None;
     }
     Some((m, fraction))
+}
+
+/// The number word at the start of `b`, found and read in one pass: `Some((value, length))`
+/// when the word (the bytes up to the first ASCII whitespace or the end of `b`) is the compact
+/// hex form of a finite f32, or a plain decimal `[+-]? (digits ('.' digits?)? | '.' digits)`
+/// (no exponent) of at most 9 digits, read as one u32 `m`; the value is then
+/// `±m · 10^−fraction` rounded by [`decimal_to_f32`] (correctly rounded, as every path of
+/// [`parse_f32`], which calls this first). `None` for any other word, which [`parse_f32`]'s
+/// general loop then reads (or refuses). Every number the protocol itself writes is such a
+/// word, so a `refl` line's 64 coefficients cost a few instructions a byte: a load, a compare
+/// and a multiply-add a digit, with no separate pass to split the line into words.
+#[cfg(feature = "fast-refl")]
+#[inline(always)]
+pub(crate) fn word_f32(b: &[u8]) -> Option<(f32, usize)> {
+    let ends = |i: usize| i == b.len() || b[i].is_ascii_whitespace();
+    let (negative, mut i) = match b.first() {
+        Some(b'-') => (true, 1),
+        Some(b'+') => (false, 1),
+        _ => (false, 0),
+    };
+    // the integer digits, then (after a point) the fraction's, at most 9 in all after a leading
+    // zero (so `m < 10⁹` needs no overflow check: a 10th digit ends the loops and the word goes
+    // to the general reader): a digit is a load, a compare and a multiply-add
+    let first = i;
+    let lead = (b.get(i) == Some(&b'0')) as usize;
+    if lead == 1 && b.get(1) == Some(&b'x') && b.len() >= 10 && ends(10) {
+        // `0x` and 8 hexadecimal digits (no sign: `i` is 0)
+        return Some((parse_hex(&b[2..10]).ok()?, 10));
+    }
+    i += lead;
+    let mut m = 0u32;
+    let mut stop = b.len().min(i + 9);
+    while i < stop {
+        let d = (b[i] as u32).wrapping_sub(b'0' as u32);
+        if d >= 10 {
+            break;
+        }
+        m = m * 10 + d;
+        i += 1;
+    }
+    let mut digits = i - first;
+    let mut fraction = 0;
+    if i < b.len() && b[i] == b'.' {
+        i += 1;
+        let start = i;
+        stop = b.len().min(start + 9 + lead - digits);
+        while i < stop {
+            let d = (b[i] as u32).wrapping_sub(b'0' as u32);
+            if d >= 10 {
+                break;
+            }
+            m = m * 10 + d;
+            i += 1;
+        }
+        fraction = i - start;
+        digits += fraction;
+    }
+    if digits == 0 || !ends(i) {
+        return None;
+    }
+    let v = if m == 0 {
+        0.0
+    } else if m <= 1 << 24 && fraction <= 10 {
+        // `decimal_to_f32`'s first case (Clinger: both operands exact, one rounding), here
+        // without the call
+        m as f32 / POW10_F32[fraction]
+    } else if let Some(v) = short_decimal(m, -(fraction as i32)) {
+        // its second (`fraction ≤ 9 < 27`), also without the call
+        v
+    } else {
+        decimal_to_f32(m as u64, -(fraction as i32), false)?
+    };
+    Some((if negative { -v } else { v }, i))
 }
 
 /// `m · 10^e` (plus a little when `sticky`) as the nearest f32, `None` on overflow; `m > 0`,

@@ -106,6 +106,50 @@ const WORDS: &[&str] = &[
     "steps=3",
 ];
 
+/// A coefficient word as `core`'s `str::parse::<f32>` reads it (correctly rounded; an independent
+/// reader of the same decimal grammar), with the protocol's rules around it: at most 40 bytes,
+/// no `inf`/`nan` words, the compact form `0x` + 8 hexadecimal digits is an f32's bits, a value
+/// beyond f32 is `out-of-range`.
+fn std_reads(w: &str) -> Result<f32, ErrorCode> {
+    if w.len() > 40 {
+        return Err(ErrorCode::BadNumber);
+    }
+    if let Some(h) = w.strip_prefix("0x") {
+        if h.len() != 8 || !h.bytes().all(|c| c.is_ascii_hexdigit()) {
+            return Err(ErrorCode::BadNumber);
+        }
+        let v = f32::from_bits(u32::from_str_radix(h, 16).map_err(|_| ErrorCode::BadNumber)?);
+        return if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(ErrorCode::OutOfRange)
+        };
+    }
+    if !w
+        .bytes()
+        .all(|c| c.is_ascii_digit() || b"+-.eE".contains(&c))
+    {
+        return Err(ErrorCode::BadNumber);
+    }
+    match w.parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err(ErrorCode::OutOfRange),
+        Err(_) => Err(ErrorCode::BadNumber),
+    }
+}
+
+/// Coefficient words: mostly what hosts send (the protocol's shortest decimals, longer ones,
+/// signs, exponents, the hex form), some malformed.
+fn coefficient_word() -> impl Strategy<Value = String> {
+    prop_oneof![
+        8 => "-?0\\.[0-9]{1,10}",
+        4 => "[+-]?[0-9]{1,11}(\\.[0-9]{0,11})?",
+        2 => "[+-]?[0-9]{0,22}\\.?[0-9]{0,24}([eE][+-]?[0-9]{1,3})?",
+        1 => any::<u32>().prop_map(|b| format!("0x{b:08x}")),
+        1 => "[0-9.eEx+*-]{1,6}",
+    ]
+}
+
 fn spectrum_default(seed: f32) -> DefaultSpectrum {
     let mut s = DefaultSpectrum::ZERO;
     for k in 0..4 {
@@ -229,6 +273,39 @@ proptest! {
         );
         // the same either way, bit for bit (NaN products compare unequal as values)
         prop_assert_eq!(std::format!("{a:?}"), std::format!("{b:?}"));
+    }
+
+    #[test]
+    fn refl_coefficients_read_as_std_parses_them(
+        words in proptest::collection::vec(coefficient_word(), 8),
+        seps in proptest::collection::vec(prop_oneof![Just(" "), Just("  "), Just("\t"), Just(" \r ")], 8),
+    ) {
+        // the firmware reads each coefficient as it finds the word (one pass over the bytes):
+        // every value is std's, bit for bit, and the first word std refuses is the one named
+        let mut line = String::from("refl paper D65");
+        for (w, sep) in words.iter().zip(&seps) {
+            line.push_str(sep);
+            line.push_str(w);
+        }
+        let want: Result<Vec<f32>, Fault> = words
+            .iter()
+            .enumerate()
+            .map(|(i, w)| {
+                // `*` where a coefficient should be: the factor is cut short
+                let r = if w == "*" { Err(ErrorCode::WrongCount) } else { std_reads(w) };
+                r.map_err(|code| Fault { code, at: Some(3 + i as u16) })
+            })
+            .collect();
+        match (Command::parse(&line), want) {
+            (Ok(Command::Reflect { product: Reflectance::Paper(p), factors: 1, .. }), Ok(v)) => {
+                for (i, v) in v.iter().enumerate() {
+                    let got = p.coefficients()[i % 4][i / 4];
+                    prop_assert_eq!(got.to_bits(), v.to_bits(), "{} in {:?}", words[i], line);
+                }
+            }
+            (Err(f), Err(want)) => prop_assert_eq!(f, want, "{:?}", line),
+            (got, want) => prop_assert!(false, "{:?}: {:?}, want {:?}", line, got, want),
+        }
     }
 
     #[test]

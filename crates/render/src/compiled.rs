@@ -19,6 +19,7 @@ use crate::material::{Coef, Mat, MatTables};
 use crate::mesh::{Owner, Triangles};
 use crate::scene::{Material, Object, Scene};
 use crate::sections::Integrator;
+use crate::texture::MaterialTextures;
 use specpoly_core::{Shade, Xyz};
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -205,6 +206,15 @@ pub struct Compiled<T: Shade> {
     /// Hero-wavelength sampling: materials bound to wavelengths drawn per path; `None` in
     /// every other mode.
     per_path: Option<PerPath<T>>,
+    /// `[material]`: its textures, with the base colour's palette in `T`.
+    textures: Vec<Option<TexT<T>>>,
+}
+
+/// A material's textures in representation `T` ([`crate::texture`]).
+pub(crate) struct TexT<T> {
+    src: Arc<MaterialTextures>,
+    /// Each base-colour palette entry in `T` and its largest value over 380–780 nm.
+    palette: Vec<(T, f32)>,
 }
 
 impl<T: Shade> Compiled<T> {
@@ -315,6 +325,16 @@ impl<T: Shade> Compiled<T> {
             .map(|m| coef_xyz(&m.diffuse, &ambient).scale(ambient_k))
             .collect();
         let background_xyz = xyz_or_zero(&background, &ambient);
+        let textures = scene
+            .materials
+            .iter()
+            .map(|m| {
+                m.textures
+                    .as_ref()
+                    .map(|src| texture_palette(src.clone(), reference))
+                    .transpose()
+            })
+            .collect::<Result<Vec<_>, specpoly_core::Error>>()?;
         Ok(Self {
             objects: scene.objects.clone(),
             triangles: scene.triangles.clone(),
@@ -342,7 +362,59 @@ impl<T: Shade> Compiled<T> {
                 light_samples: scene.render.light_samples,
             },
             per_path: None,
+            textures,
         })
+    }
+
+    /// The material and shading normal at a hit on material `mi` (`m`: the scene's, or bound
+    /// to a path's wavelengths) of triangle `tri` at `p` with normal `normal`, where the
+    /// material has textures and the triangle texture coordinates: the diffuse reflectance the
+    /// base-colour texture's filtered palette (its largest value bounded by the taps'
+    /// weighted largest values), the normal the normal map's. `None` otherwise: the material
+    /// and normal stand.
+    #[inline]
+    pub(crate) fn textured(
+        &self,
+        m: &Mat<T>,
+        mi: usize,
+        tri: Option<u32>,
+        p: V3,
+        normal: V3,
+    ) -> Option<(Mat<T>, V3)> {
+        let tex = self.textures.get(mi)?.as_ref()?;
+        let (uv, tangent, bitangent) = self.triangles.surface_at(tri?, p, normal)?;
+        let mut out = *m;
+        let mut n = normal;
+        if let Some(base) = &tex.src.base {
+            let mut value: Option<T> = None;
+            let mut max = 0.0f32;
+            for (i, w) in base.taps(uv[0], uv[1]) {
+                if w <= 0.0 {
+                    continue;
+                }
+                let (v, vmax) = &tex.palette[i as usize];
+                let v = v.scale(w);
+                value = Some(match value {
+                    Some(acc) => acc.add(&v),
+                    None => v,
+                });
+                max += w * vmax;
+            }
+            out.diffuse = value.map(|value| Coef {
+                value,
+                flat: None,
+                max,
+            });
+        }
+        if let (Some(map), true) = (&tex.src.normal, tangent.length() > 0.0) {
+            let [x, y, z] = map.at(uv[0], uv[1]);
+            let mapped = tangent * x + bitangent * y + normal * z;
+            let l = mapped.length();
+            if l.is_finite() && l > 1e-6 {
+                n = mapped * (1.0 / l);
+            }
+        }
+        Some((out, n))
     }
 
     /// The light slot of area light `k` in the first-hit tables.
@@ -427,19 +499,24 @@ impl<T: Shade> Compiled<T> {
     }
 
     /// The ambient term (Whitted) at a hit on material `mi` (`m`) with throughput `tp`
-    /// (`None` = 1) and `td = tp·D` if formed: `k_a · xyz(T·D, L_a)`, tabulated at first hits;
-    /// `None` where there is none.
+    /// (`None` = 1) and `td = tp·D` if formed: `k_a · xyz(T·D, L_a)`, tabulated at first hits
+    /// when `mi` is given (`None`: a textured material, formed here); `None` where there is
+    /// none.
     #[inline]
     pub(crate) fn ambient_term(
         &self,
-        mi: usize,
+        mi: Option<usize>,
         m: &Mat<T>,
         tp: Option<&T>,
         td: Option<&T>,
     ) -> Option<Xyz> {
-        match (tp, &m.diffuse) {
-            (None, _) => Some(self.first_ambient[mi]),
-            (Some(tp), Some(d)) if self.ambient_k > 0.0 => {
+        match (tp, &m.diffuse, mi) {
+            (None, _, Some(mi)) => Some(self.first_ambient[mi]),
+            (None, Some(d), None) if self.ambient_k > 0.0 => {
+                Some(d.value.xyz(&self.ambient).scale(self.ambient_k))
+            }
+            (None, _, None) => None,
+            (Some(tp), Some(d), _) if self.ambient_k > 0.0 => {
                 let x = d.xyz(tp, td, &mut None, &self.ambient);
                 Some(x.scale(self.ambient_k))
             }
@@ -447,9 +524,11 @@ impl<T: Shade> Compiled<T> {
         }
     }
 
-    /// The nearest hit: `(t, outward normal, what)`: objects, triangles and area lights.
+    /// The nearest hit: `(t, outward normal, what, triangle)`: objects, triangles and area
+    /// lights; the triangle's index when it is one and the scene's triangles have texture
+    /// coordinates ([`Self::textured`]).
     #[inline]
-    pub(crate) fn nearest(&self, ray: &Ray) -> Option<(f32, V3, Surf)> {
+    pub(crate) fn nearest(&self, ray: &Ray) -> Option<(f32, V3, Surf, Option<u32>)> {
         count_ray();
         let mut best: Option<(f32, V3, usize)> = None;
         let mut t_max = f32::INFINITY;
@@ -459,8 +538,8 @@ impl<T: Shade> Compiled<T> {
                 best = Some((h.t, h.normal, i));
             }
         }
-        let mut other: Option<(f32, V3, Surf)> = None;
-        if let Some((t, n, m)) = self.triangles.intersect(ray, t_max) {
+        let mut other: Option<(f32, V3, Surf, Option<u32>)> = None;
+        if let Some((t, n, m, i)) = self.triangles.intersect_indexed(ray, t_max) {
             t_max = t;
             other = Some((
                 t,
@@ -469,12 +548,13 @@ impl<T: Shade> Compiled<T> {
                     Owner::Material(m) => Surf::Mat(m),
                     Owner::Light(k) => Surf::Light(k),
                 },
+                self.triangles.has_surface().then_some(i),
             ));
         }
         for (k, l) in self.area.iter().enumerate() {
             if let Some((t, n)) = l.shape.intersect(ray, t_max) {
                 t_max = t;
-                other = Some((t, n, Surf::Light(k)));
+                other = Some((t, n, Surf::Light(k), None));
             }
         }
         if other.is_some() {
@@ -499,7 +579,7 @@ impl<T: Shade> Compiled<T> {
                     m = m2;
                 }
             }
-            (t, n, Surf::Mat(m))
+            (t, n, Surf::Mat(m), None)
         })
     }
 
@@ -738,4 +818,31 @@ impl<T: Shade> Compiled<T> {
             acc
         })
     }
+}
+
+/// A material's textures with the base colour's palette formed in `T` (each entry's 1 nm
+/// reflectance from its sigmoid coefficients, converted as every reflectance is).
+fn texture_palette<T: Shade>(
+    src: Arc<MaterialTextures>,
+    reference: &T::Light,
+) -> Result<TexT<T>, specpoly_core::Error> {
+    use rayon::prelude::*;
+    let nm = crate::upsample::wavelengths();
+    let palette = match &src.base {
+        Some(b) => b
+            .palette
+            .par_iter()
+            .map(|c| {
+                let r: Vec<f32> = nm
+                    .iter()
+                    .map(|&l| crate::upsample::eval(*c, l as f64) as f32)
+                    .collect();
+                let max = r.iter().copied().fold(0.0f32, f32::max);
+                let t = specpoly_core::Tabulated::new(&nm, &r)?;
+                Ok((T::from_reflectance(&t, reference)?, max))
+            })
+            .collect::<Result<Vec<_>, specpoly_core::Error>>()?,
+        None => Vec::new(),
+    };
+    Ok(TexT { src, palette })
 }

@@ -66,6 +66,16 @@ pub(crate) fn bind<const N: usize>(
 /// tracer binds the materials to each path's wavelengths (the Whitted tracer uses the fixed
 /// ones).
 pub fn compile<const N: usize>(scene: &Scene) -> Result<Compiled<Hero<N>>> {
+    if let Some(m) = scene
+        .materials
+        .iter()
+        .find(|m| m.textures.as_ref().is_some_and(|t| t.base.is_some()))
+    {
+        return Err(Error::Invalid {
+            at: format!("material `{}`", m.name),
+            why: "a base-colour texture, which hero-wavelength sampling does not bind to a path's wavelengths: use another mode".into(),
+        });
+    }
     let c = Compiled::<Hero<N>>::new(scene).map_err(Error::Convert)?;
     Ok(c.with_per_path(PerPath {
         tables: tables(&scene.materials),
@@ -98,6 +108,7 @@ mod tests {
             mirror: None,
             transmission: None,
             ior: 1.0,
+            textures: None,
         }]);
         let k = 4096;
         let mut sum = [0.0f64; 3];

@@ -43,6 +43,7 @@ pub mod bvh_build;
 pub mod cpu_time;
 pub mod error;
 pub mod geometry;
+pub mod texture;
 pub mod upsample;
 // meshes and emitters
 pub mod lights;

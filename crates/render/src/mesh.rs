@@ -75,6 +75,9 @@ pub struct Triangles {
     shading: Vec<[V3; 3]>,
     /// Owner of each triangle, in BVH order.
     owners: Vec<Owner>,
+    /// Texture coordinates and tangent frames, in BVH order; empty when no triangle of the
+    /// scene has texture coordinates.
+    surface: Vec<Surface>,
     /// `None` when there are no triangles.
     bvh: Option<CwBvh>,
 }
@@ -89,6 +92,57 @@ pub struct TriangleSoup {
     /// Vertex normals of each (the geometric normal thrice for a flat triangle); empty until
     /// a triangle with vertex normals is added.
     pub shading: Vec<[V3; 3]>,
+    /// Texture coordinates and tangents of each (zeros for a triangle without); empty until
+    /// a triangle with texture coordinates is added.
+    pub surface: Vec<Surface>,
+}
+
+/// A triangle's texture coordinates (glTF `TEXCOORD_0`, origin at the image's top left) and
+/// tangent frame for normal maps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Surface {
+    /// `(u, v)` at each vertex.
+    pub uv: [[f32; 2]; 3],
+    /// The tangent (toward increasing `u`) at each vertex, in the scene frame.
+    pub tangent: [V3; 3],
+    /// The handedness: the bitangent is `handedness · (N × T)`; 0 for a triangle without
+    /// texture coordinates (in a scene where others have them).
+    pub handedness: f32,
+}
+
+impl Surface {
+    /// The tangent frame a triangle's texture coordinates give (the tangent `∂P/∂u` at every
+    /// vertex; the handedness that makes `N × T` point to decreasing `v` for the normal `N`
+    /// the hit will report: the mean of the vertex normals `vn` if given, else the geometric
+    /// one); the tangent is zero where `uv` is degenerate.
+    pub fn from_uv(t: &[V3; 3], uv: [[f32; 2]; 3], vn: Option<[V3; 3]>) -> Self {
+        let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+        let (du1, dv1) = (uv[1][0] - uv[0][0], uv[1][1] - uv[0][1]);
+        let (du2, dv2) = (uv[2][0] - uv[0][0], uv[2][1] - uv[0][1]);
+        let r = du1 * dv2 - du2 * dv1;
+        let (dpdu, dpdv) = if r != 0.0 && r.is_finite() {
+            (
+                (e1 * dv2 - e2 * dv1) * (1.0 / r),
+                (e2 * du1 - e1 * du2) * (1.0 / r),
+            )
+        } else {
+            (V3::new(0.0, 0.0, 0.0), V3::new(0.0, 0.0, 0.0))
+        };
+        let n = match vn {
+            Some(v) => v[0] + v[1] + v[2],
+            None => geometric(t),
+        };
+        let handedness = if n.cross(dpdu).dot(dpdv) > 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        Self {
+            uv,
+            tangent: [dpdu; 3],
+            handedness,
+        }
+    }
 }
 
 /// The unit geometric normal of a triangle (zero for a degenerate one).
@@ -116,6 +170,9 @@ impl TriangleSoup {
                 let n = geometric(&t);
                 self.shading.push([n; 3]);
             }
+            if !self.surface.is_empty() {
+                self.surface.push(Surface::default());
+            }
             self.tris.push(t);
             self.owners.push(owner);
         }
@@ -142,8 +199,37 @@ impl TriangleSoup {
             }
         };
         self.shading.push(n.map(unit));
+        if !self.surface.is_empty() {
+            self.surface.push(Surface::default());
+        }
         self.tris.push(t);
         self.owners.push(Owner::Material(material));
+    }
+
+    /// Adds one triangle of material `material` with vertex normals `n` (smooth shading, as
+    /// [`Self::push_smooth`]; `None`: flat) and texture coordinates and tangents `surface`.
+    /// Degenerate triangles are dropped.
+    pub fn push_textured(
+        &mut self,
+        t: [V3; 3],
+        n: Option<[V3; 3]>,
+        surface: Surface,
+        material: usize,
+    ) {
+        let before = self.tris.len();
+        match n {
+            Some(n) => self.push_smooth(t, n, material),
+            None => self.push(t, material),
+        }
+        if self.tris.len() == before {
+            return;
+        }
+        if self.surface.is_empty() {
+            self.surface = vec![Surface::default(); self.tris.len()];
+        }
+        if let Some(last) = self.surface.last_mut() {
+            *last = surface;
+        }
     }
 
     /// A planar quad `a b c d` (in order around its edge) as the triangles `abc` and `acd`.
@@ -178,6 +264,10 @@ impl TriangleSoup {
         if !self.shading.is_empty() {
             let mut k = keep.iter();
             self.shading.retain(|_| *k.next().unwrap_or(&true));
+        }
+        if !self.surface.is_empty() {
+            let mut k = keep.iter();
+            self.surface.retain(|_| *k.next().unwrap_or(&true));
         }
     }
 
@@ -214,11 +304,17 @@ impl TriangleSoup {
         } else {
             order.iter().map(|&i| self.shading[i]).collect()
         };
+        let surface = if self.surface.is_empty() {
+            Vec::new()
+        } else {
+            order.iter().map(|&i| self.surface[i]).collect()
+        };
         Triangles {
             tris,
             normals,
             shading,
             owners,
+            surface,
             bvh: Some(bvh),
         }
     }
@@ -238,6 +334,13 @@ impl Triangles {
     /// The nearest hit with `EPS < t < t_max`: `(t, unit normal, owner)`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, V3, Owner)> {
+        self.intersect_indexed(ray, t_max)
+            .map(|(t, n, o, _)| (t, n, o))
+    }
+
+    /// [`Self::intersect`] with the triangle's index (for [`Self::surface_at`]).
+    #[inline]
+    pub fn intersect_indexed(&self, ray: &Ray, t_max: f32) -> Option<(f32, V3, Owner, u32)> {
         let bvh = self.bvh.as_ref()?;
         let r = BvhRay::new(a3(ray.origin), a3(ray.dir), EPS, t_max);
         let mut hit = RayHit::none();
@@ -247,17 +350,47 @@ impl Triangles {
                 Some(vn) => self.interpolated(i, vn, ray.origin + ray.dir * hit.t),
                 None => self.normals[i],
             };
-            Some((hit.t, n, self.owners[i]))
+            Some((hit.t, n, self.owners[i], hit.primitive_id))
         } else {
             None
         }
     }
 
-    /// The vertex normals `vn` of triangle `i` interpolated at its point `p` (barycentric
-    /// coordinates from the normal equations of `p − v0 = b₁e₁ + b₂e₂`); the geometric normal
-    /// where they cancel, and where the equations have no finite solution in `f32` (a sliver
-    /// whose determinant rounds to 0, or edges whose squared lengths overflow).
-    fn interpolated(&self, i: usize, vn: &[V3; 3], p: V3) -> V3 {
+    /// Whether any triangle has texture coordinates.
+    #[inline]
+    pub fn has_surface(&self) -> bool {
+        !self.surface.is_empty()
+    }
+
+    /// The texture coordinates `(u, v)` and the unit tangent and bitangent of triangle `i` at
+    /// its point `p`, for the unit shading normal `n` there (the tangent interpolated and
+    /// orthogonalised against `n`, the bitangent `h·(n × t)`); `None` when the triangle has no
+    /// texture coordinates, a zero frame where the tangent is degenerate.
+    pub fn surface_at(&self, i: u32, p: V3, n: V3) -> Option<([f32; 2], V3, V3)> {
+        let s = self
+            .surface
+            .get(i as usize)
+            .filter(|s| s.handedness != 0.0)?;
+        // a sliver without finite barycentrics takes its first corner's values
+        let (b1, b2) = self.barycentric(i as usize, p).unwrap_or((0.0, 0.0));
+        let b0 = 1.0 - b1 - b2;
+        let uv = [0, 1].map(|k| s.uv[0][k] * b0 + s.uv[1][k] * b1 + s.uv[2][k] * b2);
+        let t = s.tangent[0] * b0 + s.tangent[1] * b1 + s.tangent[2] * b2;
+        let t = t - n * n.dot(t);
+        let l = t.length();
+        let zero = V3::new(0.0, 0.0, 0.0);
+        if !(l.is_finite() && l > 1e-12) {
+            return Some((uv, zero, zero));
+        }
+        let t = t * (1.0 / l);
+        Some((uv, t, n.cross(t) * s.handedness))
+    }
+
+    /// Barycentric coordinates `(b₁, b₂)` of point `p` of triangle `i` (from the normal
+    /// equations of `p − v0 = b₁e₁ + b₂e₂`), clamped into the triangle; `None` where the
+    /// equations have no finite solution in `f32` (a sliver whose determinant rounds to 0, or
+    /// edges whose squared lengths overflow).
+    fn barycentric(&self, i: usize, p: V3) -> Option<(f32, f32)> {
         let t = &self.tris[i];
         let (e1, e2, d) = (v3(t.v1 - t.v0), v3(t.v2 - t.v0), p - v3(t.v0));
         let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
@@ -265,10 +398,18 @@ impl Triangles {
         let det = a * c - b * b;
         let (b1, b2) = ((c * p1 - b * p2) / det, (a * p2 - b * p1) / det);
         if !(b1.is_finite() && b2.is_finite()) {
-            return self.normals[i];
+            return None;
         }
         let b1 = b1.clamp(0.0, 1.0);
-        let b2 = b2.clamp(0.0, 1.0 - b1);
+        Some((b1, b2.clamp(0.0, 1.0 - b1)))
+    }
+
+    /// The vertex normals `vn` of triangle `i` interpolated at its point `p` ([`Self::barycentric`]);
+    /// the geometric normal where they cancel or the barycentrics are not finite.
+    fn interpolated(&self, i: usize, vn: &[V3; 3], p: V3) -> V3 {
+        let Some((b1, b2)) = self.barycentric(i, p) else {
+            return self.normals[i];
+        };
         let n = vn[0] * (1.0 - b1 - b2) + vn[1] * b1 + vn[2] * b2;
         let l = n.length();
         if l.is_finite() && l > 1e-6 {

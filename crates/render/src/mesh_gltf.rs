@@ -8,7 +8,11 @@
 //! `TRIANGLE_STRIP` or `TRIANGLE_FAN` (others, points and lines, have no area and are skipped)
 //! becomes triangles: `POSITION` (float VEC3), `NORMAL` if present (smooth shading, transformed
 //! by the inverse transpose of the node's matrix), `indices` (unsigned byte, short or int) or
-//! the vertices in order.
+//! the vertices in order. Primitives whose material has a texture also give `TEXCOORD_0`
+//! (float, or normalized unsigned byte or short), and those with a normal map `TANGENT`
+//! (with `NORMAL`; else tangents are derived from the texture coordinates,
+//! [`crate::mesh::Surface::from_uv`]). Images ([`GltfFile::image`]) are PNG files beside the
+//! file, `data:` URIs or buffer views, decoded by [`crate::texture::decode_png`].
 //!
 //! **Frame.** glTF is right-handed with +Y up and +Z toward the viewer of the model's front;
 //! the scene frame is left-handed (x right, y up, z into the screen). The loader maps a glTF
@@ -31,7 +35,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::V3;
-use crate::mesh::{mesh_error, ObjPlacement, TriangleSoup, MAX_TRIANGLES};
+use crate::mesh::{mesh_error, ObjPlacement, Surface, TriangleSoup, MAX_TRIANGLES};
 use glam::{Mat3, Mat4, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
@@ -51,6 +55,8 @@ pub struct GltfFile {
     pub doc: gltf::Document,
     /// Each buffer's bytes (at least its `byteLength`).
     buffers: Vec<Vec<u8>>,
+    /// Where files its `uri`s name are read (buffers, images); `None`: none are read.
+    folder: Option<PathBuf>,
 }
 
 /// A node placed in the scene: its index and its world matrix (glTF frame).
@@ -168,8 +174,8 @@ impl GltfFile {
     }
 
     /// [`GltfFile::open`] of a file's bytes already read; `path` names it in errors. External
-    /// buffers (`uri` a file name) are read from `folder`; with `None` they are refused (a
-    /// file-less reader: the fuzz target).
+    /// buffers and images (`uri` a file name) are read from `folder`; with `None` they are
+    /// refused (a file-less reader: the fuzz target).
     pub fn from_bytes(path: &Path, bytes: Vec<u8>, folder: Option<&Path>) -> Result<Self> {
         let bad = |why: String| mesh_error(path, why);
         if bytes.starts_with(b"glTF") {
@@ -268,7 +274,62 @@ impl GltfFile {
             path: path.to_path_buf(),
             doc: document,
             buffers,
+            folder: folder.map(Path::to_path_buf),
         })
+    }
+
+    /// The decoded image `images[i]` (a PNG in a buffer view, a `data:` URI or a file beside
+    /// the glTF file, read through the `--max-input-size` limit; its decoded size is bounded
+    /// too, before it is allocated: [`crate::texture::decode_png`]).
+    pub fn image(&self, i: usize) -> Result<crate::texture::Image> {
+        let at = format!("images[{i}]");
+        let image = self
+            .doc
+            .images()
+            .nth(i)
+            .ok_or_else(|| self.bad(format!("{at}: no such image")))?;
+        let owned;
+        let bytes: &[u8] = match image.source() {
+            gltf::image::Source::View { view, .. } => {
+                &self.buffers[view.buffer().index()][view.offset()..view.offset() + view.length()]
+            }
+            gltf::image::Source::Uri { uri, .. } => {
+                owned = self.uri_bytes(uri, &format!("{at}.uri"))?;
+                &owned
+            }
+        };
+        if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+            return Err(self.bad(format!(
+                "{at}: a JPEG image; textures are read from PNG images only"
+            )));
+        }
+        crate::texture::decode_png(bytes, specpoly_formats::read::max_input_bytes())
+            .map_err(|why| self.bad(format!("{at}: {why}")))
+    }
+
+    /// The bytes a buffer's or an image's `uri` names: a base64 `data:` URI, or a relative
+    /// file name (percent-escapes decoded) beside the glTF file, read through the bounded read.
+    fn uri_bytes(&self, uri: &str, at: &str) -> Result<Vec<u8>> {
+        if let Some(rest) = uri.strip_prefix("data:") {
+            let payload = rest
+                .split_once(";base64,")
+                .map(|(_, p)| p)
+                .ok_or_else(|| self.bad(format!("{at}: a data URI that is not base64")))?;
+            return base64(payload).ok_or_else(|| self.bad(format!("{at}: malformed base64 data")));
+        }
+        let name = percent_decode(uri)
+            .filter(|n| !n.contains("://"))
+            .ok_or_else(|| {
+                self.bad(format!(
+                    "{at} `{uri}`: only relative file names and data URIs are read"
+                ))
+            })?;
+        let folder = self
+            .folder
+            .as_ref()
+            .ok_or_else(|| self.bad(format!("{at} `{uri}`: external files are not read here")))?;
+        specpoly_formats::read::bytes(&folder.join(&name))
+            .map_err(|e| self.bad(format!("{at}: {e}")))
     }
 
     fn bad(&self, why: String) -> Error {
@@ -419,13 +480,63 @@ impl GltfFile {
         Ok(out)
     }
 
+    /// A float VEC2, or normalized unsigned byte or short VEC2 accessor's elements (glTF's
+    /// `TEXCOORD_n` types).
+    fn vec2s(&self, a: &gltf::Accessor<'_>, what: &str) -> Result<Vec<[f32; 2]>> {
+        let (data, stride, _) = self.elements(a, what)?;
+        let ok = a.dimensions() == Dimensions::Vec2
+            && (a.data_type() == DataType::F32
+                || (a.normalized() && matches!(a.data_type(), DataType::U8 | DataType::U16)));
+        if !ok {
+            return Err(self.bad(format!(
+                "accessors[{}] ({what}): {:?} {:?}, where glTF requires float, or normalized unsigned byte or short, VEC2",
+                a.index(),
+                a.data_type(),
+                a.dimensions()
+            )));
+        }
+        let t = a.data_type();
+        let read = |e: &[u8], k: usize| -> f32 {
+            match t {
+                DataType::U8 => e[k] as f32 / 255.0,
+                DataType::U16 => u16::from_le_bytes([e[2 * k], e[2 * k + 1]]) as f32 / 65535.0,
+                _ => f32::from_le_bytes([e[4 * k], e[4 * k + 1], e[4 * k + 2], e[4 * k + 3]]),
+            }
+        };
+        Ok((0..a.count())
+            .map(|i| {
+                let e = &data[i * stride..];
+                [read(e, 0), read(e, 1)]
+            })
+            .collect())
+    }
+
+    /// A float VEC4 accessor's elements (glTF's `TANGENT`: xyz and the handedness w).
+    fn vec4s(&self, a: &gltf::Accessor<'_>, what: &str) -> Result<Vec<[f32; 4]>> {
+        if a.data_type() != DataType::F32 || a.dimensions() != Dimensions::Vec4 {
+            return Err(self.bad(format!(
+                "accessors[{}] ({what}): {:?} {:?}, where glTF requires float VEC4",
+                a.index(),
+                a.data_type(),
+                a.dimensions()
+            )));
+        }
+        let (data, stride, _) = self.elements(a, what)?;
+        Ok((0..a.count())
+            .map(|i| {
+                let e = &data[i * stride..];
+                [0, 1, 2, 3].map(|k| {
+                    f32::from_le_bytes([e[4 * k], e[4 * k + 1], e[4 * k + 2], e[4 * k + 3]])
+                })
+            })
+            .collect())
+    }
+
     /// Every triangle of the placed meshes, in the scene frame ([`to_scene`]) before any mesh
-    /// entry's placement: `(vertices, vertex normals if the primitive has them, glTF material
-    /// index)`, given to `f` one by one.
-    pub fn triangles(
-        &self,
-        mut f: impl FnMut([V3; 3], Option<[V3; 3]>, Option<usize>) -> Result<()>,
-    ) -> Result<()> {
+    /// entry's placement, given to `f` one by one. Texture coordinates (`TEXCOORD_0`) are
+    /// read for primitives whose material has a texture, tangents (`TANGENT`, else derived from
+    /// the texture coordinates) for those whose material has a normal map.
+    pub fn triangles(&self, mut f: impl FnMut(Tri) -> Result<()>) -> Result<()> {
         let nodes: Vec<gltf::Node<'_>> = self.doc.nodes().collect();
         for p in self.placed_nodes()? {
             let Some(mesh) = nodes[p.node].mesh() else {
@@ -445,19 +556,51 @@ impl GltfFile {
                     .get(&Semantic::Positions)
                     .ok_or_else(|| self.bad(format!("{at}: no POSITION attribute")))?;
                 let pos = self.vec3s(&pos, "POSITION")?;
+                let same_count = |n: usize, what: &str| {
+                    if n != pos.len() {
+                        Err(self.bad(format!(
+                            "{at}.attributes.{what}: {n} elements for {} positions",
+                            pos.len()
+                        )))
+                    } else {
+                        Ok(())
+                    }
+                };
                 let normals = match prim.get(&Semantic::Normals) {
                     Some(a) => {
                         let n = self.vec3s(&a, "NORMAL")?;
-                        if n.len() != pos.len() {
-                            return Err(self.bad(format!(
-                                "{at}: {} normals for {} positions",
-                                n.len(),
-                                pos.len()
-                            )));
-                        }
+                        same_count(n.len(), "NORMAL")?;
                         Some(n)
                     }
                     None => None,
+                };
+                let material = prim.material();
+                let normal_map = material.normal_texture().is_some();
+                let textured = normal_map
+                    || material
+                        .pbr_metallic_roughness()
+                        .base_color_texture()
+                        .is_some();
+                let uvs = match (textured, prim.get(&Semantic::TexCoords(0))) {
+                    (true, Some(a)) => {
+                        let uv = self.vec2s(&a, "TEXCOORD_0")?;
+                        same_count(uv.len(), "TEXCOORD_0")?;
+                        Some(uv)
+                    }
+                    _ => None,
+                };
+                // glTF's tangents complete its normals: without normals (flat shading) the
+                // tangents are derived as for a primitive without them
+                let tangents = match (
+                    normal_map && uvs.is_some() && normals.is_some(),
+                    prim.get(&Semantic::Tangents),
+                ) {
+                    (true, Some(a)) => {
+                        let t = self.vec4s(&a, "TANGENT")?;
+                        same_count(t.len(), "TANGENT")?;
+                        Some(t)
+                    }
+                    _ => None,
                 };
                 let idx: Vec<u32> = match prim.indices() {
                     Some(a) => self.indices(&a)?,
@@ -480,23 +623,72 @@ impl GltfFile {
                 let world_n: Option<Vec<V3>> = normals
                     .as_ref()
                     .map(|ns| ns.iter().map(|&n| to_scene(normal_matrix * n)).collect());
+                // a given tangent T with handedness w means the bitangent w·(N × T) in the
+                // model's frame: both are carried to the scene frame (which mirrors z), and
+                // the handedness there is the sign that gives the carried bitangent back
+                let world_t: Option<Vec<(V3, f32)>> = tangents.as_ref().map(|ts| {
+                    ts.iter()
+                        .enumerate()
+                        .map(|(k, t)| {
+                            let tv = Vec3::new(t[0], t[1], t[2]);
+                            let n = normals.as_ref().map_or(Vec3::Z, |ns| normal_matrix * ns[k]);
+                            let tw = p.world.transform_vector3(tv);
+                            let b = n.cross(tw) * if t[3] < 0.0 { -1.0 } else { 1.0 };
+                            let ts = to_scene(tw);
+                            let bs = to_scene(b);
+                            let ns = world_n.as_ref().map_or(V3::new(0.0, 0.0, 1.0), |w| w[k]);
+                            let h = if ns.cross(ts).dot(bs) < 0.0 {
+                                -1.0
+                            } else {
+                                1.0
+                            };
+                            (ts, h)
+                        })
+                        .collect()
+                });
                 for c in corners {
                     let get = |k: u32| {
                         world.get(k as usize).copied().ok_or_else(|| {
                             self.bad(format!(
-                                "{at}: index {k} is beyond its {} vertices",
+                                "{at}.indices: index {k} is beyond its {} vertices",
                                 world.len()
                             ))
                         })
                     };
                     let t = [get(c[0])?, get(c[1])?, get(c[2])?];
                     let n = world_n.as_ref().map(|ns| c.map(|k| ns[k as usize]));
-                    f(t, n, prim.material().index())?;
+                    let surface = uvs.as_ref().map(|uv| {
+                        let uv = c.map(|k| uv[k as usize]);
+                        let mut s = Surface::from_uv(&t, uv, n);
+                        if let Some(wt) = &world_t {
+                            s.tangent = c.map(|k| wt[k as usize].0);
+                            s.handedness = wt[c[0] as usize].1;
+                        }
+                        s
+                    });
+                    f(Tri {
+                        vertices: t,
+                        normals: n,
+                        surface,
+                        material: prim.material().index(),
+                    })?;
                 }
             }
         }
         Ok(())
     }
+}
+
+/// One triangle of a glTF file ([`GltfFile::triangles`]), in the scene frame.
+pub struct Tri {
+    /// Its vertices.
+    pub vertices: [V3; 3],
+    /// Its vertex normals, if the primitive has them.
+    pub normals: Option<[V3; 3]>,
+    /// Its texture coordinates and tangents, if its material has textures.
+    pub surface: Option<Surface>,
+    /// Its glTF material's index.
+    pub material: Option<usize>,
 }
 
 /// Reads a glTF file's triangles into `soup` (see the module docs for materials and frame);
@@ -525,18 +717,21 @@ pub fn add_gltf(
         })
         .collect();
     let before = soup.tris.len();
-    file.triangles(|t, n, m| {
-        let material = m
+    file.triangles(|tri| {
+        let material = tri
+            .material
             .and_then(|i| materials.get(i))
             .copied()
             .unwrap_or(place.default);
         let mut placed = [V3::default(); 3];
         for k in 0..3 {
-            placed[k] = crate::mesh::placed(t[k], place).map_err(|why| mesh_error(path, why))?;
+            placed[k] =
+                crate::mesh::placed(tri.vertices[k], place).map_err(|why| mesh_error(path, why))?;
         }
-        match n {
-            Some(n) => soup.push_smooth(placed, n, material),
-            None => soup.push(placed, material),
+        match (tri.normals, tri.surface) {
+            (n, Some(s)) => soup.push_textured(placed, n, s, material),
+            (Some(n), None) => soup.push_smooth(placed, n, material),
+            (None, None) => soup.push(placed, material),
         }
         if soup.tris.len() > MAX_TRIANGLES {
             return Err(mesh_error(

@@ -129,7 +129,7 @@ fn path<T: Shade>(
     let mut count_emission = true;
     let mut depth = 0u32;
     loop {
-        let Some((t, normal, surf)) = c.nearest(&ray) else {
+        let Some((t, normal, surf, tri)) = c.nearest(&ray) else {
             if let (true, Some(e)) = (count_emission, c.environment()) {
                 out = out + c.emitted(tp.as_ref(), &e.light, e.radiance, e.emit_xyz);
             }
@@ -145,7 +145,12 @@ fn path<T: Shade>(
                 break;
             }
         };
-        let m = &mats[mi];
+        // a textured material is formed at the hit; the first-hit tables hold the untextured one
+        let textured = c.textured(&mats[mi], mi, tri, ray.at(t), normal);
+        let (m, normal) = match &textured {
+            Some((m, n)) => (m, *n),
+            None => (&mats[mi], normal),
+        };
         let hit = Frame::at(&ray, t, normal);
         let Frame { n, lift, .. } = hit;
 
@@ -157,7 +162,8 @@ fn path<T: Shade>(
             Formed { td: None, ts: None }
         };
         if lit {
-            out = out + direct(c, mats, mi, tp.as_ref(), &formed, &hit, rng);
+            let table = textured.is_none().then_some(mi);
+            out = out + direct(c, mats, m, table, tp.as_ref(), &formed, &hit, rng);
         }
         if depth >= c.settings().max_depth {
             break;
@@ -220,30 +226,36 @@ fn path<T: Shade>(
     out
 }
 
-/// Direct light at a hit on material `mi` (next-event estimation; see the module docs),
-/// with `T·D`, `T·S` formed ([`Mat::times`]).
+/// Direct light at a hit on material `m` (next-event estimation; see the module docs),
+/// with `T·D`, `T·S` formed ([`Mat::times`]); `mi` its index when the first-hit tables hold
+/// it (`None` for a textured material).
+#[allow(clippy::too_many_arguments)]
 fn direct<T: Shade>(
     c: &Compiled<T>,
     mats: &[Mat<T>],
-    mi: usize,
+    m: &Mat<T>,
+    mi: Option<usize>,
     tp: Option<&T>,
     formed: &Formed<T>,
     hit: &Frame,
     rng: &mut Sampler,
 ) -> Xyz {
     let Frame { lift, n, .. } = *hit;
-    let m = &mats[mi];
     let (td, ts) = (&formed.td, &formed.ts);
     let mut acc = Xyz::default();
     // the first-hit tables hold the frame's materials: not those bound per path (hero)
     let first = tp.is_none() && c.per_path().is_none();
+    let first = match (first, mi) {
+        (true, Some(mi)) => Some(mi),
+        _ => None,
+    };
     for (li, l) in c.point_lights().iter().enumerate() {
         let mut scratch = None;
         let Some((filter, a, b)) = c.point_weights(mats, &mut scratch, l, m, hit, lift, true)
         else {
             continue;
         };
-        let at = first.then_some((mi, li));
+        let at = first.map(|mi| (mi, li));
         acc = acc + c.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
     }
     for (k, l) in c.area_lights().iter().enumerate() {
@@ -255,7 +267,7 @@ fn direct<T: Shade>(
         else {
             continue;
         };
-        let at = first.then_some((mi, c.area_slot(k)));
+        let at = first.map(|mi| (mi, c.area_slot(k)));
         acc = acc + c.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
     }
     if let (Some(e), Some(_)) = (c.environment(), &m.diffuse) {

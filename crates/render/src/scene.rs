@@ -27,6 +27,9 @@ pub struct Material {
     pub transmission: Option<Named>,
     /// Index of refraction.
     pub ior: f32,
+    /// Image textures (glTF materials): a base colour replacing the diffuse reflectance where
+    /// a triangle has texture coordinates, a normal map.
+    pub textures: crate::texture::Textures,
 }
 
 /// A point light with its spectrum.

@@ -219,6 +219,7 @@ impl SceneFile {
                 mirror: reflectance(&m.mirror, "mirror")?,
                 transmission: reflectance(&m.transmission, "transmission")?,
                 ior: m.ior,
+                textures: None,
             });
         }
         Ok(materials)

@@ -19,8 +19,15 @@
 //!
 //! A material whose `extras` has a `specpoly` object takes it as written instead: the fields
 //! of a scene file's `[materials.NAME]` (`{"specpoly": {"diffuse": "colorchecker#red",
-//! "phong": 60}}`), so spectral data rides in a glTF file. Textures are not read (the factors
-//! alone are used). A primitive without a material is a grey Lambertian 0.8.
+//! "phong": 60}}`), so spectral data rides in a glTF file. A primitive without a material is a
+//! grey Lambertian 0.8.
+//!
+//! **Textures** ([`crate::texture`]): a material's `baseColorTexture` (PNG, `TEXCOORD_0`)
+//! replaces the diffuse reflectance `(1 − m)(1 − t)·c` by `(1 − m)(1 − t)·c·texel` (each
+//! texel decoded from sRGB and upsampled) where a triangle has texture coordinates; the
+//! specular, mirror and transmission terms keep the factor `c`. Its `normalTexture` perturbs
+//! the shading normal. Not with `extras.specpoly` for the base colour (the spectra written
+//! there stand), nor with hero-wavelength sampling (refused).
 //!
 //! **Camera**: the first perspective camera met walking the scene's nodes (its node's
 //! position, looking down its −Z with its +Y up; `yfov`; `aspectRatio` sets the width for a
@@ -43,10 +50,12 @@ use crate::sections::{
     AmbientSection, CameraSection, LightSection, MaterialSection, MeshSection, RenderSection,
     SpectrumSpec, SpectrumTable,
 };
+use crate::texture::{BaseColour, Image, MaterialTextures, NormalMap, Sampling, Wrap};
 use glam::Vec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// The scene material of primitives without a glTF material.
 pub const DEFAULT_MATERIAL: &str = "gltf#default";
@@ -158,8 +167,8 @@ pub fn scene_file_of(file: &GltfFile) -> Result<SceneFile> {
     );
     // the triangles' bounds (scene frame)
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    file.triangles(|t, _, _| {
-        for v in t {
+    file.triangles(|tri| {
+        for v in tri.vertices {
             if ![v.x, v.y, v.z]
                 .iter()
                 .all(|c| c.is_finite() && c.abs() <= crate::mesh::MAX_COORDINATE)
@@ -330,7 +339,90 @@ pub fn load(path: &Path, source: &str) -> Result<crate::scene::Scene> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    scene_file(path)?.resolve_in(source, Some(base))
+    let mut scene = scene_file(path)?.resolve_in(source, Some(base))?;
+    attach_textures(&GltfFile::open(path)?, &mut scene)?;
+    Ok(scene)
+}
+
+/// How glTF texture `t` is looked up.
+fn sampling(t: &gltf::Texture<'_>) -> Sampling {
+    use gltf::texture::{MagFilter, WrappingMode};
+    let wrap = |w: WrappingMode| match w {
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+        WrappingMode::Repeat => Wrap::Repeat,
+    };
+    let s = t.sampler();
+    Sampling {
+        wrap_s: wrap(s.wrap_s()),
+        wrap_t: wrap(s.wrap_t()),
+        nearest: s.mag_filter() == Some(MagFilter::Nearest),
+    }
+}
+
+/// Gives each scene material `gltf#i` the textures of glTF material `i`: its base-colour
+/// texture (unless its `extras` define the material: then the spectra written there stand),
+/// times the factor its diffuse reflectance has ([`material`]), and its normal map. Each
+/// image is decoded once.
+fn attach_textures(file: &GltfFile, scene: &mut crate::scene::Scene) -> Result<()> {
+    let mut images: BTreeMap<usize, Arc<Image>> = BTreeMap::new();
+    let mut image = |i: usize| -> Result<Arc<Image>> {
+        if let Some(im) = images.get(&i) {
+            return Ok(im.clone());
+        }
+        let im = Arc::new(file.image(i)?);
+        images.insert(i, im.clone());
+        Ok(im)
+    };
+    let bad = |why: String| crate::mesh::mesh_error(&file.path, why);
+    for (i, m) in file.doc.materials().enumerate() {
+        let at = format!("materials[{i}]");
+        let pbr = m.pbr_metallic_roughness();
+        let mut tex = MaterialTextures::default();
+        let spectral = extras::<serde_json::Value>(m.extras(), &at, &file.path)?.is_some();
+        if let (Some(info), false) = (pbr.base_color_texture(), spectral) {
+            if info.tex_coord() != 0 {
+                return Err(bad(format!(
+                    "{at}.pbrMetallicRoughness.baseColorTexture.texCoord: only TEXCOORD_0 is read"
+                )));
+            }
+            let t = info.texture();
+            let f = pbr.base_color_factor();
+            let (metal, trans) = (
+                pbr.metallic_factor().clamp(0.0, 1.0),
+                m.transmission()
+                    .map_or(0.0, |t| t.transmission_factor().clamp(0.0, 1.0)),
+            );
+            let k = (1.0 - metal) * (1.0 - trans);
+            let factor = [f[0], f[1], f[2]].map(|v| v.clamp(0.0, 1.0) * k);
+            let im = image(t.source().index())?;
+            tex.base = Some(BaseColour::new(&im, sampling(&t), factor));
+        }
+        if let Some(n) = m.normal_texture() {
+            if n.tex_coord() != 0 {
+                return Err(bad(format!(
+                    "{at}.normalTexture.texCoord: only TEXCOORD_0 is read"
+                )));
+            }
+            let t = n.texture();
+            if !n.scale().is_finite() {
+                return Err(bad(format!("{at}.normalTexture.scale: not finite")));
+            }
+            tex.normal = Some(NormalMap {
+                image: image(t.source().index())?,
+                sampling: sampling(&t),
+                scale: n.scale(),
+            });
+        }
+        if tex.base.is_none() && tex.normal.is_none() {
+            continue;
+        }
+        let name = format!("gltf#{i}");
+        if let Some(sm) = scene.materials.iter_mut().find(|sm| sm.name == name) {
+            sm.textures = Some(Arc::new(tex));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ fn trace<T: Shade>(
     depth: u32,
     out: &mut Xyz,
 ) {
-    let Some((t, normal, surf)) = c.nearest(ray) else {
+    let Some((t, normal, surf, tri)) = c.nearest(ray) else {
         *out = *out + c.background(tp);
         // the environment, if any, is seen behind the background
         if let Some(e) = c.environment() {
@@ -55,7 +55,13 @@ fn trace<T: Shade>(
             return;
         }
     };
-    let m = &c.materials()[mi];
+    // a textured material is formed at the hit; the first-hit tables hold the untextured one
+    let textured = c.textured(&c.materials()[mi], mi, tri, ray.at(t), normal);
+    let (m, normal) = match &textured {
+        Some((m, n)) => (m, *n),
+        None => (&c.materials()[mi], normal),
+    };
+    let tables = textured.is_none();
     let hit = Frame::at(ray, t, normal);
     let Frame { p, n, lift, .. } = hit;
 
@@ -63,7 +69,7 @@ fn trace<T: Shade>(
         let mut acc = Xyz::default();
         let formed = m.times(tp);
         let (td, ts) = (&formed.td, &formed.ts);
-        if let Some(x) = c.ambient_term(mi, m, tp, td.as_ref()) {
+        if let Some(x) = c.ambient_term(tables.then_some(mi), m, tp, td.as_ref()) {
             acc = acc + x;
         }
         for (li, l) in c.point_lights().iter().enumerate() {
@@ -73,14 +79,14 @@ fn trace<T: Shade>(
             else {
                 continue;
             };
-            let at = tp.is_none().then_some((mi, li));
+            let at = (tp.is_none() && tables).then_some((mi, li));
             acc = acc + c.light_term(m, tp, td, ts, &filter, a, b, &l.light, at);
         }
         // area lights: an n × n stratified grid of samples each (deterministic)
         let ns = c.settings().light_samples;
         let inv_n = 1.0 / (ns * ns) as f32;
         for (k, l) in c.area_lights().iter().enumerate() {
-            let at = tp.is_none().then_some((mi, c.area_slot(k)));
+            let at = (tp.is_none() && tables).then_some((mi, c.area_slot(k)));
             let (mut a_sum, mut b_sum) = (0.0f32, 0.0f32);
             for i in 0..ns {
                 for j in 0..ns {

@@ -5,6 +5,7 @@ mod chain_error;
 mod common;
 mod cornell_data;
 mod gltf;
+mod gltf_texture;
 mod hero;
 mod interaction;
 mod mesh_files;

@@ -167,6 +167,18 @@ pub enum Error {
         /// What is wrong.
         why: String,
     },
+    /// A mix target that has no meaning under the chosen observer: a Duv off the Planckian
+    /// locus is defined on the CIE 1931 (u, v) diagram only.
+    #[error(
+        "--target {target}: a Duv is defined on the CIE 1931 diagram only; under the {observer} \
+         observer give xy:X,Y or cct:K (the Planckian radiator's chromaticity under it)"
+    )]
+    ObserverTarget {
+        /// The target as described.
+        target: String,
+        /// The observer's name.
+        observer: String,
+    },
     /// A mix the core cannot solve or drive (a wrong channel count or target, a dark channel,
     /// …).
     #[error("{0}")]

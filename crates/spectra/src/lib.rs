@@ -4,7 +4,8 @@
 //! command line or in a file ([`spectrum_names`]), refusing data that cannot be a reflectance
 //! ([`plausible`]), the representations a user picks and the dispatch from that runtime choice
 //! to monomorphised code ([`repr`], [`hero`]), the colours of chains of reflectances
-//! ([`colour`]), observers given as data — CSV sensitivities and the CIE 2006 model for an
+//! ([`colour`]) and of many reflectances on one grid as one matrix
+//! ([`grid_weights`]), observers given as data — CSV sensitivities and the CIE 2006 model for an
 //! age and field size ([`observer`], [`cie2006`]) — and the light-metric and LED-mixing reports ([`light`], TM-30 in full:
 //! [`light_tm30`]).
 //!
@@ -18,6 +19,7 @@ pub mod cie2006;
 pub mod colour;
 pub mod data;
 pub mod error;
+pub mod grid_weights;
 pub mod hero;
 pub mod light;
 pub mod light_checks;

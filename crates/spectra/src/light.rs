@@ -8,8 +8,9 @@ use serde::Serialize;
 use specpoly_core::light::{
     cct::Cct,
     cri::cri_spd,
-    mix::{solve_mix, Mix, Objective, Target},
-    mix_limits::{solve_mix_limited, Limit, Metric},
+    mix::{solve_mix_seen, Mix, Objective, Target},
+    mix_limits::{solve_mix_limited_seen, Limit, Metric},
+    reference::planck,
     spd,
     tm30::tm30_spd,
     LightError, Samples, Source, Spd,
@@ -376,6 +377,55 @@ pub struct MixReport {
     /// The lower limits asked for and what the mix gives (absent without limits).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub limits: Vec<LimitReport>,
+    /// The mix under the observer the target was met in (absent for CIE 1931, where it is
+    /// `x`, `y`, `u_prime`, `v_prime` above).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub observer: Option<ObserverColour>,
+}
+
+/// The chromaticity a mix is solved to under `observer`: an `xy` target as given (it is read
+/// under that observer); a CCT target with Duv 0 is the Planckian radiator's chromaticity
+/// under it (`Σ M(λ, T)·c̄(λ)` at 1 nm over 380–780 nm, CIE 015:2018's `c₂`). A Duv is
+/// defined on the CIE 1931 (u, v) diagram only, so a CCT target off the locus under another
+/// observer is refused. Under CIE 1931 the target is kept as it is.
+pub fn target_under(target: Target, observer: Observer) -> Result<Target> {
+    match target {
+        _ if observer == Observer::Cie1931 => Ok(target),
+        Target::Xy(_) => Ok(target),
+        Target::Cct(c) if c.duv == 0.0 && c.cct.is_finite() && c.cct > 0.0 => {
+            let t = observer.table();
+            let mut s = [0.0f64; 3];
+            for (i, row) in t.iter().enumerate() {
+                let p = planck(380.0 + i as f64, c.cct);
+                for k in 0..3 {
+                    s[k] += p * row[k] as f64;
+                }
+            }
+            let sum = s[0] + s[1] + s[2];
+            Ok(Target::Xy([s[0] / sum, s[1] / sum]))
+        }
+        Target::Cct(_) => Err(Error::ObserverTarget {
+            target: describe(&target),
+            observer: observer.name().to_string(),
+        }),
+    }
+}
+
+/// A channel's tristimulus values under `observer`: `Km·Σ S(λ)·c̄(λ)` at 1 nm over 380–780 nm,
+/// the SPD's linear interpolant, zero outside its table (as [`Source`] sums it for CIE 1931).
+fn channel_xyz(n: &Named, observer: Observer) -> [f64; 3] {
+    let t = n.tabulated();
+    let w = t.wavelengths();
+    let (lo, hi) = (w[0] as f64, w[w.len() - 1] as f64);
+    let mut s = [0.0f64; 3];
+    for (i, row) in observer.table().iter().enumerate() {
+        let nm = 380.0 + i as f64;
+        let p = if nm < lo || nm > hi { 0.0 } else { t.at(nm) };
+        for k in 0..3 {
+            s[k] += p * row[k] as f64;
+        }
+    }
+    s.map(|v| specpoly_core::light::source::KM * v)
 }
 
 /// One lower limit of a mix and the mix's figure (the standards' sums).
@@ -414,9 +464,14 @@ fn figure(r: &LightReport, m: Metric) -> Option<f64> {
 /// Solves a mix and reports what it achieves. With `limits`, the mix meets them (as the
 /// standards' sums report the driven, quantised mix) or is the closest the channels get, and
 /// the report says which limits it misses.
+///
+/// The target is met under `observer` ([`target_under`]; the relative luminance on its ȳ);
+/// CCT, Duv, Ra, R9, Rf, Rg and efficacy are reported on the observers their standards fix.
+#[allow(clippy::too_many_arguments)] // the command line's options, one each
 pub fn mix(
     channels: &[Channel],
     target: Target,
+    observer: Observer,
     luminance: f64,
     optimize: Optimize,
     transfer: &Transfer,
@@ -427,6 +482,16 @@ pub fn mix(
         .iter()
         .map(|c| source(&c.spd))
         .collect::<Result<Vec<_>>>()?;
+    let asked_target = target;
+    let target = target_under(target, observer)?;
+    let seen: Vec<[f64; 3]> = if observer == Observer::Cie1931 {
+        sources.iter().map(Source::xyz).collect()
+    } else {
+        channels
+            .iter()
+            .map(|c| channel_xyz(&c.spd, observer))
+            .collect()
+    };
     let tcs = Samples::cie13_3();
     let ces = Samples::cie224();
     let objective = match optimize {
@@ -437,7 +502,7 @@ pub fn mix(
     };
     let err = |e: LightError| match e {
         LightError::OutOfGamut => Error::OutOfGamut {
-            target: describe(&target),
+            target: describe(&asked_target),
             channels: channels
                 .iter()
                 .map(|c| c.name.as_str())
@@ -453,14 +518,20 @@ pub fn mix(
     let mut rounds = 0;
     let (driven, r) = loop {
         let m: Mix = if asked.is_empty() {
-            solve_mix(&sources, target, luminance, objective).map_err(err)?
+            solve_mix_seen(&sources, &seen, target, luminance, objective).map_err(err)?
         } else {
-            solve_mix_limited(&sources, target, luminance, objective, &asked, &tcs, &ces)
-                .map_err(err)?
-                .mix
+            solve_mix_limited_seen(
+                &sources, &seen, target, luminance, objective, &asked, &tcs, &ces,
+            )
+            .map_err(err)?
+            .mix
         };
         let driven = m.drive(&sources, transfer, bits).map_err(err)?;
-        let r = metrics(&mixed_spd(channels, driven.mix.duties())?);
+        let spd = mixed_spd(channels, driven.mix.duties())?;
+        let r = LightReport {
+            observer: (observer != Observer::Cie1931).then(|| observer_colour(&spd, observer)),
+            ..metrics(&spd)
+        };
         let misses: Vec<f64> = limits
             .iter()
             .map(|l| figure(&r, l.metric).map_or(f64::INFINITY, |v| (l.min - v).max(0.0)))
@@ -501,6 +572,7 @@ pub fn mix(
         efficacy: (driven.mix.light.efficacy() * 1000.0).round() / 1000.0,
         r9: r.r9,
         limits: limit_reports,
+        observer: r.observer,
     })
 }
 

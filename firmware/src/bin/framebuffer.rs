@@ -266,6 +266,22 @@ fn main() -> ! {
         .count();
     hprintln!("asm-equals-portable-random {} of {}", same, PIXELS);
     check("asm-equals-portable-random", same == PIXELS);
+    // rows an odd number of 8-pixel groups wide (the loop does 16 pixels a turn and starts such
+    // a row halfway): 9 rows of 24 and 5 rows of 40 random pixels from y = 5, against the
+    // portable transform pixel by pixel
+    let mut odd_ok = true;
+    for (w, rows) in [(24usize, 9usize), (40, 5)] {
+        let n = w * rows;
+        let mut out = [0u16; 216];
+        asm.rows(&noise[..n], &mut out[..n], w, 5);
+        for (i, (s, o)) in noise[..n].iter().zip(&out[..n]).enumerate() {
+            let t =
+                specpoly_core::pixel::dither::BAYER8[(5 + i / w) & 7][(i % w) & 7] as u16 * 4 + 2;
+            let c = PANEL.apply(*s, t);
+            odd_ok &= *o == (c[0] as u16) << 11 | (c[1] as u16) << 5 | c[2] as u16;
+        }
+    }
+    check("asm-odd-groups", odd_ok);
 
     // 1b. the panel in RGB888 (no dither): the assembly kernel's XRGB8888 words and packed
     // bytes against the portable transform, on the gradient and on the random frame

@@ -1,14 +1,14 @@
-//! The realisable chromaticities: the convex hull of the spectral locus of the CIE 1931
-//! observer (the instruments' XYZ), 380–780 nm at 1 nm. Every light is a mixture of
+//! The realisable chromaticities: the convex hull of the spectral locus of the observer the
+//! measurements' XYZ are under (CIE 1931 for an instrument's XYZ), 380–780 nm at 1 nm. Every light is a mixture of
 //! monochromatic ones, so its chromaticity lies in that hull (the locus closed by the purple
 //! line); a fitted primary outside it is physically impossible. The fit moves such a primary
 //! onto the hull's nearest point (its luminance kept) and says so.
 
 use specpoly_core::Observer;
 
-/// The hull's vertices (x, y), counter-clockwise (Andrew's monotone chain).
-pub fn hull() -> Vec<[f64; 2]> {
-    let mut p: Vec<[f64; 2]> = Observer::Cie1931
+/// The hull's vertices (x, y) under `observer`, counter-clockwise (Andrew's monotone chain).
+pub fn hull(observer: Observer) -> Vec<[f64; 2]> {
+    let mut p: Vec<[f64; 2]> = observer
         .table()
         .iter()
         .filter_map(|c| {
@@ -87,9 +87,9 @@ pub fn nearest(h: &[[f64; 2]], xy: [f64; 2]) -> [f64; 2] {
 
 /// Moves primaries (columns, XYZ) whose chromaticity is outside the hull onto it, keeping
 /// their luminance; one sentence per primary moved.
-pub fn constrain(p: &mut [[f64; 3]; 3]) -> Vec<String> {
+pub fn constrain(p: &mut [[f64; 3]; 3], observer: Observer) -> Vec<String> {
     const NAMES: [&str; 3] = ["red", "green", "blue"];
-    let h = hull();
+    let h = hull(observer);
     let mut notes = Vec::new();
     for c in 0..3 {
         let s = p[c][0] + p[c][1] + p[c][2];
@@ -104,8 +104,8 @@ pub fn constrain(p: &mut [[f64; 3]; 3]) -> Vec<String> {
         let y = p[c][1];
         p[c] = [q[0] * y / q[1], y, (1.0 - q[0] - q[1]) * y / q[1]];
         notes.push(format!(
-            "the fitted {} primary x = {:.4}, y = {:.4} is outside the spectral locus (CIE 1931): moved to its nearest point, x = {:.4}, y = {:.4}",
-            NAMES[c], xy[0], xy[1], q[0], q[1]
+            "the fitted {} primary x = {:.4}, y = {:.4} is outside the spectral locus ({}): moved to its nearest point, x = {:.4}, y = {:.4}",
+            NAMES[c], xy[0], xy[1], observer.label(), q[0], q[1]
         ));
     }
     notes

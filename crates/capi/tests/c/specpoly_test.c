@@ -139,18 +139,21 @@ static void spectra(void) {
         spectrum("spectrum_fit", sp_spectrum_fit(SAMPLE_NM, SAMPLE_VALUE[i], SAMPLES, &r[i]), &r[i]);
         spectrum("spectrum_mul", sp_spectrum_mul(&r[i], &r[i], &r2[i]), &r2[i]);
     }
-    /* XYZ of each reflectance and its square under A, D65, FL11 for both observers */
+    /* XYZ of each reflectance and its square under A, D65, FL11 for every built-in observer */
     static const int32_t LIGHT[3] = {SP_ILLUMINANT_A, SP_ILLUMINANT_D65, SP_ILLUMINANT_FL11};
     static const char *const LIGHT_NAME[3] = {"A", "D65", "FL11"};
+    static const int32_t OBSERVER[4] = {SP_OBSERVER_CIE1931, SP_OBSERVER_CIE1964,
+                                        SP_OBSERVER_CIE2015_2, SP_OBSERVER_CIE2015_10};
+    static const char *const OBSERVER_NAME[4] = {":1931", ":1964", ":2015-2", ":2015-10"};
     for (int l = 0; l < 3; l++)
-        for (int o = 0; o < 2; o++)
+        for (int o = 0; o < 4; o++)
             for (int i = 0; i < 3; i++)
                 for (int sq = 0; sq < 2; sq++) {
                     SpXyz v;
-                    SpStatus st = sp_spectrum_xyz(sq ? &r2[i] : &r[i], o, LIGHT[l], &v);
+                    SpStatus st = sp_spectrum_xyz(sq ? &r2[i] : &r[i], OBSERVER[o], LIGHT[l], &v);
                     len = 0;
                     put("xyz:"); put(PATCH[i]); put(sq ? ":r2:" : ":r:"); put(LIGHT_NAME[l]);
-                    put(o ? ":1964" : ":1931");
+                    put(OBSERVER_NAME[o]);
                     __builtin_memcpy(name, line, len + 1);
                     xyz(name, st, &v);
                 }
@@ -165,6 +168,7 @@ static void spectra(void) {
     SpXyz w;
     xyz("light_white_d65_1931", sp_light_white(SP_OBSERVER_CIE1931, SP_ILLUMINANT_D65, &w), &w);
     xyz("light_white_fl11_1964", sp_light_white(SP_OBSERVER_CIE1964, SP_ILLUMINANT_FL11, &w), &w);
+    xyz("light_white_d65_2015_10", sp_light_white(SP_OBSERVER_CIE2015_10, SP_ILLUMINANT_D65, &w), &w);
 
     SpSpectrum s;
     const float nm3[3] = {400.0f, 500.0f, 500.0f}, v3[3] = {0.1f, nan, 0.2f};
@@ -175,7 +179,7 @@ static void spectra(void) {
     spectrum("spectrum_mul_null", sp_spectrum_mul(&r[0], NULL, &s), &s);
     float v;
     begin("spectrum_eval_379", sp_spectrum_eval(&r[0], 379.0f, &v)); end();
-    xyz("spectrum_xyz_observer_2", sp_spectrum_xyz(&r[0], 2, SP_ILLUMINANT_D65, &w), &w);
+    xyz("spectrum_xyz_observer_4", sp_spectrum_xyz(&r[0], 4, SP_ILLUMINANT_D65, &w), &w);
     xyz("spectrum_xyz_illuminant_7", sp_spectrum_xyz(&r[0], 0, 7, &w), &w);
     s = r[0];
     s.coef[1][3] = nan;

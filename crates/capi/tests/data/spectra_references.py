@@ -10,10 +10,11 @@ It writes, beside itself and in tests/c/:
   ../c/spectra_samples.h the same numbers as C arrays, for the C program
   spectra_references.csv CIE XYZ (perfect white Y = 100) of each reflectance r, and of r*r (an
                          inter-reflection), under A, D65 and FL11 for the CIE 1931 and 1964
-                         observers: colour.sd_to_XYZ (method 'Integration') of the samples'
+                         observers and the CIE 2015 2 and 10 degree ones (zero below 390 nm): colour.sd_to_XYZ (method 'Integration') of the samples'
                          linear interpolant at 1 nm over 380-780 nm with the end values held
                          (the data stop at 730 nm), the light's 5 nm table (data/illuminants)
-                         linearly interpolated to 1 nm, colour's CIE 1931/1964 tables at 1 nm.
+                         linearly interpolated to 1 nm, colour's CIE 1931/1964/2015 tables at
+                         1 nm.
 The library's XYZ is that of an 8-span cubic fit of the samples, so the two differ by the fit's
 error (the test's tolerance says by how much).
 """
@@ -51,7 +52,8 @@ with open(os.path.join(HERE, "..", "c", "spectra_samples.h"), "w") as f:
         f.write("    {%s}, /* %s */\n" % (", ".join("%sf" % ("%.6g" % v if "." in "%.6g" % v or "e" in "%.6g" % v else "%.6g.0" % v) for v in samples[p]), p))
     f.write("};\n")
 
-OBSERVERS = {"1931": "CIE 1931 2 Degree Standard Observer", "1964": "CIE 1964 10 Degree Standard Observer"}
+OBSERVERS = {"1931": "CIE 1931 2 Degree Standard Observer", "1964": "CIE 1964 10 Degree Standard Observer",
+             "2015-2": "CIE 2015 2 Degree Standard Observer", "2015-10": "CIE 2015 10 Degree Standard Observer"}
 shape = colour.SpectralShape(380, 780, 1)
 rows = []
 for light in ["A", "D65", "FL11"]:
@@ -59,6 +61,10 @@ for light in ["A", "D65", "FL11"]:
     s = colour.SpectralDistribution(np.interp(NM, d[:, 0], d[:, 1]), NM)
     for o, name in OBSERVERS.items():
         cmfs = colour.MSDS_CMFS[name].copy().align(shape)
+        # the CIE 2015 observers start at 390 nm: zero below, as the project's tables are
+        # (align would hold the 390 nm values)
+        start = colour.MSDS_CMFS[name].wavelengths[0]
+        cmfs[NM[NM < start]] = 0.0
         for p in PATCHES:
             r = np.interp(NM, wl, samples[p])
             for what, v in [("r", r), ("r2", r * r)]:

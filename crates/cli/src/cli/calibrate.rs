@@ -101,6 +101,11 @@ pub struct FitArgs {
     /// Keep every patch (no outlier test).
     #[arg(long)]
     pub keep_outliers: bool,
+    /// Fit the model under this observer: every patch's XYZ recomputed from its spectrum in a
+    /// spectral .ti3 (1931, 1964, 2015-2, 2015-10, cie2006:age=A,field=F, or FILE.csv of three
+    /// sensitivities) [default: the file's XYZ, CIE 1931].
+    #[arg(long, value_name = "NAME|FILE", value_parser = crate::cli::args::observer)]
+    pub observer: Option<specpoly_core::Observer>,
     /// JSON instead of text (keys in docs/calibration.md).
     #[arg(long)]
     pub json: bool,
@@ -195,10 +200,17 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
     // the bytes read are the bytes hashed: the calibration names the readings it came from
     let bytes = specpoly_formats::read::bytes(&a.ti3)?;
     let readings_sha256 = specpoly_calibrate::session::sha256_hex(&bytes);
-    let ti3 = cgats::read_ti3(
+    let mut ti3 = cgats::read_ti3(
         &specpoly_formats::read::decode(bytes),
         &a.ti3.display().to_string(),
     )?;
+    if let Some(o) = a.observer {
+        let xyz =
+            specpoly_calibrate::spectral_display::xyz_under(&ti3, o, &a.ti3.display().to_string())?;
+        for (m, v) in ti3.measurements.iter_mut().zip(xyz) {
+            m.xyz = v;
+        }
+    }
     let (meas, absolute) = ti3.best_units();
     // repeated white and black readings that disagree (patches numbered in the file)
     let drift = specpoly_calibrate::drift::check(&meas);
@@ -221,6 +233,7 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         absolute,
         interaction: a.interaction,
         robust: !a.keep_outliers,
+        observer: a.observer.unwrap_or(specpoly_core::Observer::Cie1931),
         ..Default::default()
     };
     let mut cal = fit::fit_and_verify(&fit_set, &verify_set, &opts)
@@ -232,6 +245,13 @@ fn fit_cmd(a: &FitArgs) -> Result<()> {
         }
     }
     prov.notes.extend(drift.iter().map(|d| d.note()));
+    if let Some(o) = a.observer {
+        prov.notes.push(format!(
+            "XYZ computed from the readings' spectra under the {} observer (observer {})",
+            o.label(),
+            o.name()
+        ));
+    }
     fit::provenance::record(
         &mut cal,
         &ti3,

@@ -5,6 +5,7 @@
 //! Every output is checked whole before it is written (atomically): a bad input writes
 //! nothing.
 
+use crate::cli::args::observer;
 use crate::error::{CliError, Result};
 use specpoly_calibrate::corrections::{fit_ccmx, Colorimeter};
 use specpoly_calibrate::matching::{self, Mismatch};
@@ -43,6 +44,11 @@ pub struct SimulateArgs {
     /// Verification patches of the patch set.
     #[arg(long, default_value_t = 8, value_name = "N")]
     pub verify: usize,
+    /// The observer the spectrometer's XYZ fields are computed under (1931, 1964, 2015-2,
+    /// 2015-10, cie2006:age=A,field=F, or FILE.csv); the colorimeter reads through its own
+    /// filters, so it takes 1931 only.
+    #[arg(long, default_value = "1931", value_name = "NAME|FILE", value_parser = observer)]
+    pub observer: Observer,
     /// The .ti3 to write.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -94,11 +100,13 @@ pub struct MatchArgs {
     /// Display B, the one set to A's white: `sim:…` or a spectral .ti3.
     #[arg(long)]
     pub b: String,
-    /// The observer the whites match under: 1931, 1964, 2015-2, 2015-10.
-    #[arg(long, default_value = "2015-10", value_parser = observer)]
+    /// The observer the whites match under: 1931, 1964, 2015-2, 2015-10,
+    /// cie2006:age=A,field=F (CIE 170-1, ages 20-80, fields 2-10°), or FILE.csv of three
+    /// sensitivities.
+    #[arg(long, default_value = "2015-10", value_name = "NAME|FILE", value_parser = observer)]
     pub observer: Observer,
-    /// The viewer's observer, reported besides the CIE ones.
-    #[arg(long, value_parser = observer)]
+    /// The viewer's observer (the same forms), reported besides the CIE ones.
+    #[arg(long, value_name = "NAME|FILE", value_parser = observer)]
     pub viewer: Option<Observer>,
     /// B's video LUT to write (ArgyllCMS .cal, 256 entries, 16-bit values).
     #[arg(short, long)]
@@ -109,10 +117,6 @@ pub struct MatchArgs {
     /// JSON instead of text.
     #[arg(long)]
     pub json: bool,
-}
-
-fn observer(s: &str) -> std::result::Result<Observer, String> {
-    Observer::from_name(s).ok_or_else(|| format!("`{s}`: expected 1931, 1964, 2015-2 or 2015-10"))
 }
 
 /// The simulated model of `sim:…`.
@@ -136,10 +140,16 @@ fn display(spec: &str) -> Result<SpectralDisplay> {
 
 /// Runs `calibrate simulate`.
 pub fn simulate(a: &SimulateArgs) -> Result<()> {
+    let spectral = a.instrument == SimInstrumentValue::Spectrometer;
+    if !spectral && a.observer != Observer::Cie1931 {
+        return Err(CliError::usage(format!(
+            "--observer {}: the colorimeter reads through its own filters (factory-calibrated to CIE 1931); simulate a spectrometer for another observer",
+            a.observer.name()
+        )));
+    }
     let m = sim(&a.display)?;
     let set = patches::standard(a.ramp_steps, a.verify)?;
     let spectra: Vec<Vec<f64>> = set.iter().map(|p| m.spectrum(p.device)).collect();
-    let spectral = a.instrument == SimInstrumentValue::Spectrometer;
     let colorimeter = Colorimeter::simulated();
     let meas: Vec<Measurement> = set
         .iter()
@@ -147,7 +157,7 @@ pub fn simulate(a: &SimulateArgs) -> Result<()> {
         .map(|(p, s)| Measurement {
             device: p.device,
             xyz: if spectral {
-                spectrum_xyz(Observer::Cie1931, s)
+                spectrum_xyz(a.observer, s)
             } else {
                 colorimeter.read(s)
             },
@@ -198,9 +208,12 @@ pub fn simulate(a: &SimulateArgs) -> Result<()> {
             meas.len(),
             m.describe(),
             if spectral {
-                "spectra 380–780 nm at 1 nm"
+                format!(
+                    "spectra 380–780 nm at 1 nm, XYZ under the {} observer",
+                    a.observer.label()
+                )
             } else {
-                "simulated colorimeter"
+                "simulated colorimeter".to_string()
             }
         ),
     );
@@ -392,7 +405,7 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
     let db = display(&a.b)?;
     let matched = matching::match_white(&da, &db, a.observer)?;
     let mut observers = Observer::ALL.to_vec();
-    if let Some(v) = a.viewer {
+    for v in [Some(a.observer), a.viewer].into_iter().flatten() {
         if !observers.contains(&v) {
             observers.push(v);
         }
@@ -463,10 +476,20 @@ pub fn match_cmd(a: &MatchArgs) -> Result<()> {
         matched.white_lut16[2],
         100.0 * matched.luminance_ratio
     );
-    println!("observer          A u′      A v′      B u′      B v′      Δu′v′    ΔE00");
+    // a runtime observer's name (a CIE 2006 one, a file) may be longer than the CIE labels
+    let w = rows
+        .iter()
+        .map(|r| r.observer.label().chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(16);
+    println!(
+        "{:<w$}  A u′      A v′      B u′      B v′      Δu′v′    ΔE00",
+        "observer"
+    );
     for r in &rows {
         println!(
-            "{:<16}  {:.5}   {:.5}   {:.5}   {:.5}   {:.5}  {:.2}{}",
+            "{:<w$}  {:.5}   {:.5}   {:.5}   {:.5}   {:.5}  {:.2}{}",
             r.observer.label(),
             r.a_uv[0],
             r.a_uv[1],

@@ -1,7 +1,7 @@
 //! `specpoly mix`: PWM duties of 3–6 LED channels for a chromaticity or CCT target
 //! (computations in [`specpoly_spectra::light`] and `specpoly_core::light::mix`).
 
-use crate::cli::args::{transfer, Curve};
+use crate::cli::args::{observer, transfer, Curve};
 use crate::cli::light::{chromaticity_cells, chromaticity_head, opt};
 use crate::error::{CliError, Result};
 use specpoly_core::light::{
@@ -9,6 +9,7 @@ use specpoly_core::light::{
     mix_limits::{Limit, Metric},
     Target,
 };
+use specpoly_core::Observer;
 use specpoly_formats::stdout::print_json;
 use specpoly_spectra::light::{self, describe, load_channel, parse_target};
 use std::fmt::Write as _;
@@ -86,7 +87,7 @@ pub struct MixArgs {
         value_name = "NAME=FILE.csv[#COLUMN]"
     )]
     pub channels: Vec<String>,
-    /// The target: xy:X,Y (CIE 1931), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv
+    /// The target: xy:X,Y (under --observer), cct:K or cct:K,duv:D (Planckian locus, ANSI Duv
     /// offset), ansi:K (an ANSI C78.377-2017 nominal CCT's target, e.g. ansi:3000K); given
     /// twice, `ja8` adds California JA8's colour clauses (Ra >= 90, R9 >= 50 on the mix; CCT
     /// <= 4000 K, |Duv| <= 0.0033 on the target).
@@ -99,6 +100,12 @@ pub struct MixArgs {
     /// A greatest value of the target's cct (K) or |duv| (repeatable; checked on the target).
     #[arg(long = "max", value_parser = limit_arg, value_name = "cct|duv=VALUE")]
     pub max: Vec<(String, f64)>,
+    /// The observer the target chromaticity is met under: 1931 (2°), 1964 (10°), 2015-2,
+    /// 2015-10, cie2006:age=A,field=F, or FILE.csv of three sensitivities. Under another than
+    /// 1931 a cct:K target is the Planckian radiator's chromaticity under it (a Duv is defined
+    /// on CIE 1931 only); CCT, Duv, Ra, Rf and efficacy stay on their standards' observers.
+    #[arg(long, default_value = "1931", value_name = "NAME|FILE", value_parser = observer)]
+    pub observer: Observer,
     /// Relative luminance: the fraction of the most the channels give at that chromaticity.
     #[arg(long, default_value = "1", value_parser = luminance, value_name = "0..1")]
     pub luminance: f64,
@@ -135,6 +142,7 @@ pub fn run(a: &MixArgs) -> Result<()> {
     let r = light::mix(
         &channels,
         target,
+        a.observer,
         a.luminance,
         a.optimize.into(),
         &a.trc.into(),
@@ -202,6 +210,17 @@ pub fn run(a: &MixArgs) -> Result<()> {
         opt(r.rg, 1),
         r.efficacy
     );
+    if let Some(c) = &r.observer {
+        let _ = writeln!(
+            o,
+            "# under observer {}: x {:.6} y {:.6}, u' {:.6} v' {:.6}",
+            specpoly_formats::escape::one_line(&c.name),
+            c.x,
+            c.y,
+            c.u_prime,
+            c.v_prime
+        );
+    }
     for l in &r.limits {
         let _ = writeln!(
             o,
@@ -264,6 +283,13 @@ fn specification(a: &MixArgs) -> Result<(Target, Vec<Limit>)> {
     for (k, v) in most {
         let (cct, duv) = match target {
             Target::Cct(c) => (c.cct, c.duv),
+            Target::Xy(_) if a.observer != Observer::Cie1931 => {
+                return Err(CliError::usage(format!(
+                    "--target {}: a CCT and Duv limit is checked on the CIE 1931 diagram; under the {} observer give the target as cct:K",
+                    describe(&target),
+                    a.observer.name()
+                )))
+            }
             Target::Xy(xy) => {
                 let c = cct::cct_duv(cct::xy_to_uv(xy))
                     .map_err(|e| CliError::usage(format!("--target {}: {e}", describe(&target))))?;

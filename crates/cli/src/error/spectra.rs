@@ -21,6 +21,7 @@ impl From<Error> for CliError {
             | Error::UnlistedLayout(_)
             | Error::UnknownObserver(_)
             | Error::Cie2006 { .. }
+            | Error::ObserverTarget { .. }
             | Error::Mix(LightError::Channels(_) | LightError::BadTarget) => {
                 CliError::Usage(e.to_string())
             }

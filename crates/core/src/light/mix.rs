@@ -21,6 +21,11 @@
 //!
 //! With three channels the duties are unique. The duties are fractions of each channel's light;
 //! [`Mix::drive`] turns them into device values through a transfer curve and quantises them.
+//!
+//! The matrix `A` is the channels' CIE 1931 tristimulus values ([`Source::xyz`]) unless the
+//! caller gives it ([`solve_mix_seen`]): the channels' `X, Y, Z` under another observer (CIE 1964,
+//! CIE 2015, a runtime table), the target chromaticity then read under that observer and the
+//! relative luminance on its `Y`. Linear in the duties either way, so the solve is the same.
 
 use super::{cct, cri, source::Source, tm30, Cct, LightError, Samples};
 use crate::display::{quantize, Transfer};
@@ -171,15 +176,21 @@ pub(super) struct Problem<'c> {
 }
 
 impl<'c> Problem<'c> {
-    fn new(channels: &'c [Source], xy: [f64; 2]) -> Result<Self, LightError> {
+    fn new(channels: &'c [Source], seen: &[[f64; 3]], xy: [f64; 2]) -> Result<Self, LightError> {
         let n = channels.len();
         if !(3..=MAX_CHANNELS).contains(&n) {
             return Err(LightError::Channels(n));
         }
+        if seen.len() != n {
+            return Err(LightError::Channels(seen.len()));
+        }
+        if !seen.iter().flatten().all(|v| v.is_finite()) {
+            return Err(LightError::BadTarget);
+        }
         let mut a = [[0.0; MAX_CHANNELS]; 3];
         let mut scale = 0.0f64;
-        for (i, c) in channels.iter().enumerate() {
-            for (k, v) in c.xyz().iter().enumerate() {
+        for (i, c) in seen.iter().enumerate() {
+            for (k, v) in c.iter().enumerate() {
                 a[k][i] = *v;
                 scale = scale.max(v.abs());
             }
@@ -277,7 +288,35 @@ pub fn solve_mix(
     luminance: f64,
     objective: Objective<'_>,
 ) -> Result<Mix, LightError> {
-    let (p, t, verts) = setup(channels, target, luminance)?;
+    solve_mix_seen(channels, &cie1931(channels), target, luminance, objective)
+}
+
+/// The channels' CIE 1931 tristimulus values ([`Source::xyz`]), the default `A`.
+pub(super) fn cie1931(channels: &[Source]) -> Vec<[f64; 3], MAX_CHANNELS> {
+    channels
+        .iter()
+        .take(MAX_CHANNELS)
+        .map(Source::xyz)
+        .collect()
+}
+
+/// [`solve_mix`] with the target met under another observer: `seen[i]` is channel `i`'s
+/// tristimulus values under it (any common scale), `target` a chromaticity under it (a
+/// [`Target::Cct`] is converted on the CIE 1931 diagram, where CCT is defined: give the
+/// Planckian radiator's chromaticity under the observer as a [`Target::Xy`] instead), and
+/// `luminance` a fraction of the most its `Y` reaches there. Colour rendering and efficacy are
+/// the standards' own, whatever the observer.
+///
+/// Errors as [`solve_mix`], and [`LightError::Channels`] when `seen` and `channels` differ in
+/// length, [`LightError::BadTarget`] for a non-finite entry of `seen`.
+pub fn solve_mix_seen(
+    channels: &[Source],
+    seen: &[[f64; 3]],
+    target: Target,
+    luminance: f64,
+    objective: Objective<'_>,
+) -> Result<Mix, LightError> {
+    let (p, t, verts) = setup(channels, seen, target, luminance)?;
     let n = p.n;
     let linear = |cost: &dyn Fn(usize) -> f64| -> [f64; MAX_CHANNELS] {
         let mut best = (f64::INFINITY, verts[0]);
@@ -309,6 +348,7 @@ pub(super) type Vertices = Vec<[f64; MAX_CHANNELS], MAX_VERTICES>;
 /// tristimulus values `t` and the vertices of the polytope `A·d = t`, `0 ≤ d ≤ 1`.
 pub(super) fn setup<'c>(
     channels: &'c [Source],
+    seen: &[[f64; 3]],
     target: Target,
     luminance: f64,
 ) -> Result<(Problem<'c>, [f64; 3], Vertices), LightError> {
@@ -316,7 +356,7 @@ pub(super) fn setup<'c>(
         return Err(LightError::BadTarget);
     }
     let xy = target.xy()?;
-    let p = Problem::new(channels, xy)?;
+    let p = Problem::new(channels, seen, xy)?;
     let y_max = p.max_luminance();
     if y_max <= 1e-9 {
         return Err(LightError::OutOfGamut);

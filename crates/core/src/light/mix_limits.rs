@@ -12,7 +12,7 @@
 //! channels get. A chromaticity limit (CCT, Duv, an ANSI C78.377 quadrangle) is a limit on the
 //! target, not on the duties, and is checked there.
 
-use super::mix::{make, search, setup, Mix, Objective, Target, MAX_CHANNELS};
+use super::mix::{cie1931, make, search, setup, Mix, Objective, Target, MAX_CHANNELS};
 use super::{cri, source::Source, tm30, LightError, Samples};
 
 /// A colour-rendering figure of a mix.
@@ -89,10 +89,30 @@ pub fn solve_mix_limited(
     tcs: &Samples<14>,
     ces: &Samples<99>,
 ) -> Result<Limited, LightError> {
+    let seen = cie1931(channels);
+    solve_mix_limited_seen(
+        channels, &seen, target, luminance, objective, limits, tcs, ces,
+    )
+}
+
+/// [`solve_mix_limited`] with the target met under another observer (`seen`, as
+/// [`super::mix::solve_mix_seen`]); the limits are the standards' figures, whatever the
+/// observer.
+#[allow(clippy::too_many_arguments)] // the limited solve's inputs plus the observer's matrix
+pub fn solve_mix_limited_seen(
+    channels: &[Source],
+    seen: &[[f64; 3]],
+    target: Target,
+    luminance: f64,
+    objective: Objective<'_>,
+    limits: &[Limit],
+    tcs: &Samples<14>,
+    ces: &Samples<99>,
+) -> Result<Limited, LightError> {
     if limits.iter().any(|l| !l.min.is_finite()) {
         return Err(LightError::BadTarget);
     }
-    let (p, t, verts) = setup(channels, target, luminance)?;
+    let (p, t, verts) = setup(channels, seen, target, luminance)?;
     let n = p.n;
     let dearest = |cost: &dyn Fn(usize) -> f64| (0..n).map(cost).fold(f64::MIN_POSITIVE, f64::max);
     let radiant = |i: usize| channels[i].radiant_sum();

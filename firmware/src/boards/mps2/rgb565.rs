@@ -2,19 +2,22 @@
 //! [`PixelTransform`] ([`GamutMap::Clip`]), the Bayer 8×8 threshold and the RGB565 pack, for rows
 //! of 8-bit source pixels — the same integers as the portable code, bit for bit (checked by the
 //! demo on every pixel of its frame and by `tests/tests/firmware_framebuffer.rs` against the
-//! host), in 42.4 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
+//! host), in 39.8 instructions per pixel instead of the compiler's 64.4 (docs/performance.md,
 //! "Calibrated framebuffer"). The transform stores each channel's levels top-aligned for its
-//! bits (`specpoly_core::pixel::transform`), so the dither is an add with a shifted threshold and
-//! the pack two masks and two `orr`s with shifted operands.
+//! bits (`specpoly_core::pixel::transform`) and no add carries past bit 15, so two pixels'
+//! levels, packed in one word's halves, are dithered, masked and stored together: per pair one
+//! threshold word, three adds, three masks, two `orr`s with shifted operands and one store.
 //!
 //! Assembly because the two instructions that make it short are the DSP extension's, which
 //! stable Rust does not emit on its own here: `SMLAD` (two 16 × 16 products and a 32-bit
 //! accumulate: the matrix is 3 × (`SMUL<x>B` + `SMLAD`) on the packed decoded pair `d₀ | d₁ << 16`
 //! instead of 9 multiplies with their constants rematerialised) and `PKHBT` (the packing); the
 //! index's `USAT`s with shifts the compiler finds too. The 14 registers hold the pointers, the
-//! tables' bases and three of the five packed coefficient words; the other two and the row's
-//! eight thresholds are on the stack. The loop does 8 pixels per turn (threshold `k` is
-//! `[sp, #2k]`).
+//! tables' bases and three of the five packed coefficient words; the other two (one `LDM` or
+//! `LDRD` a pixel) and the row's four threshold pairs are on the stack, and the first pixel's
+//! levels are pushed while the second is computed. The loop does 16 pixels per turn (pair `j` of
+//! an 8-pixel group: threshold word `[sp, #12 + 4j]`); a row of an odd number of 8-pixel groups
+//! starts halfway into it.
 //!
 //! Cortex-M4 generic (no mps2 peripheral); here because board support is where the firmware keeps
 //! its `unsafe`.
@@ -47,8 +50,10 @@ struct Frame {
     row_bytes: u32,
     /// 52: the first row's `y`.
     y: u32,
-    /// 56: the thresholds, `[y & 7][x & 7]`.
-    thresholds: *const [[u16; 8]; 8],
+    /// 56: the thresholds in pairs, `[y & 7][(x & 7) / 2]` ([`PAIRS`]).
+    pairs: *const [[u32; 4]; 8],
+    /// 60: 1 when a row is an odd number of 8-pixel groups (the loop does 16 pixels a turn).
+    odd: u32,
 }
 
 /// The Bayer thresholds `4b + 2` by `[y & 7][x & 7]` (`specpoly_core::pixel::Dither`).
@@ -66,6 +71,23 @@ static THRESHOLDS: [[u16; 8]; 8] = {
     t
 };
 
+/// The thresholds of pixel pairs, shifted for the RGB565 fields' least bits: `[y & 7][j]` is
+/// `t(2j) << 3 | t(2j + 1) << 19` of [`THRESHOLDS`]`[y & 7]` (the red and blue fields' shift;
+/// green's `<< 2` is this word `>> 1`).
+static PAIRS: [[u32; 4]; 8] = {
+    let mut p = [[0u32; 4]; 8];
+    let mut y = 0;
+    while y < 8 {
+        let mut j = 0;
+        while j < 4 {
+            p[y][j] = (THRESHOLDS[y][2 * j] as u32) << 3 | (THRESHOLDS[y][2 * j + 1] as u32) << 19;
+            j += 1;
+        }
+        y += 1;
+    }
+    p
+};
+
 core::arch::global_asm!(concat!(
     r#"
     .syntax unified
@@ -75,40 +97,53 @@ core::arch::global_asm!(concat!(
     .type specpoly_rgb565_run,%function
     .thumb_func
 
-@ one pixel; \k = x & 7. Registers: r0 src, r1 dst, r2 decode, r3/r4/r5 curves R/G/B,
-@ r6/r7 m01 R/G, r8 m2rg; temporaries r9-r12, lr. Stack: [sp, 0..16) thresholds, 16 end,
-@ 20 m01b, 24 m2b.
-.macro PIXEL k
+@ two pixels, A then B; \j = (x & 7) / 2. Registers: r0 src, r1 dst, r2 decode, r3/r4/r5
+@ curves R/G/B, r6/r7 m01 R/G, r8 m2rg (A's levels after the second pixel, so reloaded by the
+@ first pixel's LDM); temporaries r9-r12, lr. Stack: [sp, 0] m2rg, 4 m2b, 8 m01b, 12 + 4j the
+@ pair's thresholds tA << 3 | tB << 19. A's levels are pushed while B is computed.
+.macro PAIR j
 "#,
-    super::transform_asm::transform_asm!("20", "24", ", lsl #1", "ldrh"),
-    r#"    ldrh    r9, [sp, #(2 * \k)]         @ threshold t
-    add     r10, r10, r9, lsl #3        @ levels top-aligned: R << 3, G << 2, B << 3
-    and     r10, r10, #0xF800           @ R code << 11
-    add     r12, r12, r9, lsl #2
-    and     r12, r12, #0xFC00           @ G code << 10
-    add     r11, r11, r9, lsl #3        @ B code << 11 (no add carries past bit 15)
+    super::transform_asm::transform_asm!("ldm     sp, {{r8, r11, r12}}", ", lsl #1", "ldrh"),
+    r#"    push    {{r10, r11, r12}}           @ A's R, B, G levels
+"#,
+    super::transform_asm::transform_asm!("ldrd    r11, r12, [sp, #16]", ", lsl #1", "ldrh"),
+    r#"    pop     {{r8, r9, lr}}              @ A's R, B, G levels
+    pkhbt   r10, r8, r10, lsl #16       @ R of A | R of B << 16 (levels top-aligned: R << 3,
+    pkhbt   r11, r9, r11, lsl #16       @ G << 2, B << 3; no add carries past bit 15, so the
+    pkhbt   r12, lr, r12, lsl #16       @ two halves add and mask as one word)
+    ldr     r9, [sp, #(12 + 4 * \j)]    @ tA << 3 | tB << 19
+    add     r10, r10, r9
+    add     r11, r11, r9
+    add     r12, r12, r9, lsr #1        @ tA << 2 | tB << 18
+    and     r10, r10, #0xF800F800       @ R codes << 11, << 27
+    and     r11, r11, #0xF800F800       @ B codes << 11, << 27
+    and     r12, r12, #0xFC00FC00       @ G codes << 10, << 26
     orr     r10, r10, r12, lsr #5
     orr     r10, r10, r11, lsr #11
-    strh    r10, [r1], #2
+    str     r10, [r1], #4               @ A, then B
 .endm
 
 specpoly_rgb565_run:
     push    {{r4-r11, lr}}
-    sub     sp, sp, #48
-    @ stack: [0, 16) the row's thresholds, 16 end of the row, 20 m01b, 24 m2b, 28 rows left,
-    @ 32 y, 36 row bytes, 40 the threshold table
-    ldr     r1, [r0, #36]
-    str     r1, [sp, #20]
+    sub     sp, sp, #56
+    @ stack: 0 m2rg, 4 m2b, 8 m01b, [12, 28) the row's four threshold pairs, 28 end of the row,
+    @ 32 rows left, 36 y, 40 row bytes, 44 the threshold-pair table, 48 odd
+    ldr     r1, [r0, #40]
+    str     r1, [sp, #0]
     ldr     r1, [r0, #44]
-    str     r1, [sp, #24]
+    str     r1, [sp, #4]
+    ldr     r1, [r0, #36]
+    str     r1, [sp, #8]
     ldr     r1, [r0, #8]
-    str     r1, [sp, #28]
-    ldr     r1, [r0, #52]
     str     r1, [sp, #32]
-    ldr     r1, [r0, #48]
+    ldr     r1, [r0, #52]
     str     r1, [sp, #36]
-    ldr     r1, [r0, #56]
+    ldr     r1, [r0, #48]
     str     r1, [sp, #40]
+    ldr     r1, [r0, #56]
+    str     r1, [sp, #44]
+    ldr     r1, [r0, #60]
+    str     r1, [sp, #48]
     ldr     r2, [r0, #12]
     ldr     r3, [r0, #16]
     ldr     r4, [r0, #20]
@@ -119,35 +154,40 @@ specpoly_rgb565_run:
     ldr     r1, [r0, #4]
     ldr     r0, [r0, #0]
 3:
-    ldr     r9, [sp, #32]               @ this row's thresholds: table[y & 7]
-    ldr     r10, [sp, #40]
+    ldr     r9, [sp, #36]               @ this row's threshold pairs: table[y & 7]
+    ldr     r10, [sp, #44]
     and     r9, r9, #7
     add     r10, r10, r9, lsl #4
     ldm     r10, {{r9, r10, r11, r12}}
-    stm     sp, {{r9, r10, r11, r12}}
-    ldr     r9, [sp, #36]
+    add     lr, sp, #12
+    stm     lr, {{r9, r10, r11, r12}}
+    ldr     r9, [sp, #40]
     add     r9, r0, r9
-    str     r9, [sp, #16]
+    str     r9, [sp, #28]
+    ldr     r9, [sp, #48]               @ an odd number of 8-pixel groups: start halfway
+    cmp     r9, #0
+    bne     2f
 1:
-    PIXEL 0
-    PIXEL 1
-    PIXEL 2
-    PIXEL 3
-    PIXEL 4
-    PIXEL 5
-    PIXEL 6
-    PIXEL 7
-    ldr     r9, [sp, #16]
+    PAIR 0
+    PAIR 1
+    PAIR 2
+    PAIR 3
+2:
+    PAIR 0
+    PAIR 1
+    PAIR 2
+    PAIR 3
+    ldr     r9, [sp, #28]
     cmp     r0, r9
     bne     1b
-    ldr     r9, [sp, #32]
+    ldr     r9, [sp, #36]
     add     r9, r9, #1
-    str     r9, [sp, #32]
-    ldr     r9, [sp, #28]
+    str     r9, [sp, #36]
+    ldr     r9, [sp, #32]
     subs    r9, r9, #1
-    str     r9, [sp, #28]
+    str     r9, [sp, #32]
     bne     3b
-    add     sp, sp, #48
+    add     sp, sp, #56
     pop     {{r4-r11, pc}}
     .size specpoly_rgb565_run, . - specpoly_rgb565_run
 "#
@@ -220,15 +260,18 @@ impl<'t> Rgb565Kernel<'t> {
             m2b: self.m2b,
             row_bytes: (3 * width) as u32,
             y: y0 as u32,
-            thresholds: &THRESHOLDS,
+            pairs: &PAIRS,
+            odd: ((width / 8) % 2) as u32,
         };
         // SAFETY: the assembly reads `rows × width` pixels (3 bytes each) from `src` and writes
         // as many u16 to `dst`, both exactly their lengths (checked above; `width` a multiple of
-        // 8, so every row ends on its 8-pixel loop); it reads the decode table at code values
-        // (0‥255 < 256 entries), each curve table at indices ≤ 127 + 511 + 511 = `LEN − 1`
-        // (`usat` bounds every term) and `THRESHOLDS[y & 7]`, all borrowed or static for the
-        // call. It restores the callee-saved registers and `sp` (AAPCS) and touches no other
-        // memory than its own 48 bytes of stack.
+        // 8, so every row ends on its loop: 16 pixels a turn, entered halfway when `odd`; the
+        // 32-bit stores of pixel pairs need no alignment on the Cortex-M4); it reads the decode
+        // table at code values (0‥255 < 256 entries), each curve table at indices
+        // ≤ 127 + 511 + 511 = `LEN − 1` (`usat` bounds every term) and `PAIRS[y & 7]`, all
+        // borrowed or static for the call. It restores the callee-saved registers and `sp`
+        // (AAPCS) and touches no other memory than its own 56 + 12 bytes of stack (the 12 pushed
+        // and popped within a pair, always above `sp`).
         unsafe { specpoly_rgb565_run(&frame) };
     }
 }

@@ -11,7 +11,7 @@
 //!
 //! No dither, so rows do not matter: the loop runs over the whole run of pixels, 8 per turn.
 //! The same integers as the portable code, bit for bit (checked by the demo on its frames and by
-//! `tests/tests/firmware_framebuffer.rs` against the host); 36.4 instructions per pixel
+//! `tests/tests/firmware_framebuffer.rs` against the host); 35.4 instructions per pixel
 //! (docs/performance.md, "Calibrated framebuffer").
 
 use specpoly_core::pixel::transform::LEN;
@@ -51,11 +51,11 @@ core::arch::global_asm!(concat!(
     .thumb
 
 @ one pixel. Registers: r0 src, r1 dst, r2 decode, r3/r4/r5 code tables R/G/B, r6/r7 m01 R/G,
-@ r8 m2rg; temporaries r9-r12, lr. Stack: [sp, 0] end, 4 m01b, 8 m2b. \packed: 3 bytes R G B,
+@ r8 m2rg; temporaries r9-r12, lr. Stack: [sp, 0] end, 4 m2b, 8 m01b. \packed: 3 bytes R G B,
 @ else one word 0x00RRGGBB.
 .macro PIXEL888 packed
 "#,
-    super::transform_asm::transform_asm!("4", "8", "", "ldrb"),
+    super::transform_asm::transform_asm!("ldrd    r11, r12, [sp, #4]", "", "ldrb"),
     r#".if \packed
     strb    r12, [r1, #1]
     strb    r11, [r1, #2]
@@ -77,9 +77,9 @@ core::arch::global_asm!(concat!(
     sub     sp, sp, #12
     ldr     r1, [r0, #8]
     str     r1, [sp, #0]
-    ldr     r1, [r0, #36]
-    str     r1, [sp, #4]
     ldr     r1, [r0, #44]
+    str     r1, [sp, #4]
+    ldr     r1, [r0, #36]
     str     r1, [sp, #8]
     ldr     r2, [r0, #12]
     ldr     r3, [r0, #16]

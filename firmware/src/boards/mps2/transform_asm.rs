@@ -1,10 +1,11 @@
 //! The per-pixel transform of the framebuffer kernels ([`super::rgb565`], [`super::rgb888`]) as
 //! assembler text, written once: decode (three byte loads, three table loads), the 3×3 in Q14
 //! (`PKHBT`, 3 × `SMUL<x>B` + `SMLAD`) and each channel's inverse-curve index (three `USAT`
-//! ramps, `Σ usat(acc >> (14 + a), n)`) and table load. The kernels differ only in where two
-//! coefficient words sit on their stack and in their curve tables' entries (RGB565: u16 levels,
-//! RGB888: u8 codes), so the macro takes those; the dither, pack and store follow it in each
-//! kernel. Leaves the R, G, B entries in `r10`, `r12`, `r11`.
+//! ramps, `Σ usat(acc >> (14 + a), n)`) and table load. The kernels differ only in how two
+//! coefficient words come off their stack (one `LDRD`, or one `LDM` that restores `r8` too) and
+//! in their curve tables' entries (RGB565: u16 levels, RGB888: u8 codes), so the macro takes
+//! those; the dither, pack and store follow it in each kernel. Leaves the R, G, B entries in
+//! `r10`, `r12`, `r11`.
 //!
 //! Registers: `r0` source (advanced by 3), `r2` decode table, `r3`/`r4`/`r5` curve tables R/G/B,
 //! `r6`/`r7` `m01` R/G, `r8` `m2rg`; temporaries `r9`–`r12`, `lr`. A Rust macro (text spliced with
@@ -12,11 +13,12 @@
 //! blocks of the crate end up in one assembly unit, where a `.macro` defined in two of them
 //! would clash and one defined in only one would depend on their order.
 
-/// The transform's assembler text. `$m01b`, `$m2b`: stack offsets (bytes, as literals) of
-/// `m01b` and `m2b`; `$scale`: the index operand's shift, `", lsl #1"` for u16 curve entries,
-/// `""` for u8; `$load`: `"ldrh"` or `"ldrb"`.
+/// The transform's assembler text. `$coef`: one instruction that loads `m2b` into `r11` and
+/// `m01b` into `r12` (`r9`, `r10` and `lr` are live; `r8` may be reloaded too); `$scale`: the
+/// index operand's shift, `", lsl #1"` for u16 curve entries, `""` for u8; `$load`: `"ldrh"` or
+/// `"ldrb"`.
 macro_rules! transform_asm {
-    ($m01b:literal, $m2b:literal, $scale:literal, $load:literal) => {
+    ($coef:literal, $scale:literal, $load:literal) => {
         concat!(
             "    ldrb    r9, [r0, #2]
     ldrb    r10, [r0, #1]
@@ -25,13 +27,10 @@ macro_rules! transform_asm {
     ldrh    r10, [r2, r10, lsl #1]      @ d1
     ldrh    r11, [r2, r11, lsl #1]      @ d0
     pkhbt   r10, r11, r10, lsl #16      @ d0 | d1 << 16
-    ldr     r11, [sp, #",
-            $m2b,
-            "]
+    ",
+            $coef,
+            "          @ r11 m2b, r12 m01b
     smulbb  r11, r11, r9
-    ldr     r12, [sp, #",
-            $m01b,
-            "]
     smlad   r11, r12, r10, r11          @ acc B
     smultb  r12, r8, r9
     smlad   r12, r7, r10, r12           @ acc G
