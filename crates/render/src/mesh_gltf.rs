@@ -28,7 +28,9 @@
 //! together may not exceed that limit. Every buffer view and accessor is checked to lie inside
 //! its data before it is read (the `gltf` crate's own readers index without checking), a GLB
 //! header shorter than itself is refused before the crate reads it (its length arithmetic
-//! would underflow), children that form a cycle are refused, node trees are walked at most
+//! would underflow), a primitive whose `POSITION` names a missing accessor is refused before
+//! the crate validates the file (its validation indexes with it unchecked), children that
+//! form a cycle are refused, node trees are walked at most
 //! [`MAX_NODE_VISITS`] node visits in total (subtrees shared many times in malformed files),
 //! and a non-finite transform is refused. Every error is one line naming the file and the JSON path (`accessors[3]`,
 //! `nodes[2].matrix`, `buffers[0].uri`).
