@@ -18,7 +18,7 @@ pub type Target = fn(&[u8]);
 
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpora `fuzz/corpus/NAME/`
 /// call them.
-pub const TARGETS: [(&str, Target); 10] = [
+pub const TARGETS: [(&str, Target); 15] = [
     ("csv", csv),
     ("cgats", cgats),
     ("scene_toml", scene_toml),
@@ -29,6 +29,11 @@ pub const TARGETS: [(&str, Target); 10] = [
     ("argyll_ti3", argyll_ti3),
     ("obj_mesh", obj_mesh),
     ("ply_mesh", ply_mesh),
+    ("gltf", gltf),
+    ("ccss", ccss),
+    ("ccmx", ccmx),
+    ("spectral_ti3", spectral_ti3),
+    ("calibration_blob", calibration_blob),
 ];
 
 fn one_line(e: &dyn std::fmt::Display) {
@@ -202,45 +207,18 @@ pub fn pr655_reply(data: &[u8]) {
     }
 }
 
-/// A file of this process's own in the temporary folder, removed when dropped (the mesh
-/// readers take a path: the `.mtl` beside an OBJ is found through it).
-struct TempFile(std::path::PathBuf);
-
-impl TempFile {
-    fn new(ext: &str, data: &[u8]) -> Option<Self> {
-        use std::sync::atomic::{AtomicU64, Ordering};
-        static N: AtomicU64 = AtomicU64::new(0);
-        let dir = std::env::temp_dir().join(format!("specpoly-fuzz-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).ok()?;
-        let path = dir.join(format!("{}.{ext}", N.fetch_add(1, Ordering::Relaxed)));
-        std::fs::write(&path, data).ok()?;
-        Some(Self(path))
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
-
-/// A mesh read by `load` from `data`: either a one-line error, or triangles whose vertices
-/// are finite and within [`specpoly_render::mesh::MAX_COORDINATE`], whose BVH builds, and
-/// which rays from six sides cross at finite distances.
+/// A mesh read by `load` (given the placement and the soup to fill) from bytes: either a
+/// one-line error, or triangles whose vertices are finite and within
+/// [`specpoly_render::mesh::MAX_COORDINATE`], whose BVH builds, and which rays from six sides
+/// cross at finite distances.
 fn mesh(
-    data: &[u8],
-    ext: &str,
-    load: fn(
-        &std::path::Path,
+    load: impl FnOnce(
         &specpoly_render::mesh::ObjPlacement<'_>,
         &mut specpoly_render::mesh::TriangleSoup,
     ) -> specpoly_render::Result<usize>,
 ) {
     use specpoly_render::geometry::{Ray, V3};
     use specpoly_render::mesh::{ObjPlacement, TriangleSoup, MAX_COORDINATE};
-    let Some(file) = TempFile::new(ext, data) else {
-        return;
-    };
     let map = std::collections::BTreeMap::new();
     let place = ObjPlacement {
         scale: 1.0,
@@ -249,7 +227,7 @@ fn mesh(
         map: &map,
     };
     let mut soup = TriangleSoup::default();
-    match load(&file.0, &place, &mut soup) {
+    match load(&place, &mut soup) {
         Err(e) => one_line(&crate::error::CliError::from(e)),
         Ok(n) => {
             assert_eq!(n, soup.tris.len());
@@ -290,13 +268,184 @@ fn mesh(
     }
 }
 
-/// An OBJ mesh ([`specpoly_render::mesh::load_obj`], `tobj` underneath): see [`mesh`].
+/// An OBJ mesh ([`specpoly_render::mesh::parse_obj`], `tobj` underneath): see [`mesh`]. Every
+/// `mtllib` reads the same bytes as its material library, so one input exercises the `.mtl`
+/// check and parser too.
 pub fn obj_mesh(data: &[u8]) {
-    mesh(data, "obj", specpoly_render::mesh::load_obj);
+    use specpoly_render::mesh::{parse_obj, MtlSource};
+    let path = std::path::Path::new("fuzz.obj");
+    mesh(|place, soup| parse_obj(path, data, MtlSource::Bytes(data), place, soup));
 }
 
-/// A PLY mesh, ASCII or binary ([`specpoly_render::mesh_ply::load_ply`], `ply-rs-bw`
+/// A PLY mesh, ASCII or binary ([`specpoly_render::mesh_ply::parse_ply`], `ply-rs-bw`
 /// underneath): see [`mesh`].
 pub fn ply_mesh(data: &[u8]) {
-    mesh(data, "ply", specpoly_render::mesh_ply::load_ply);
+    let path = std::path::Path::new("fuzz.ply");
+    mesh(|place, soup| specpoly_render::mesh_ply::parse_ply(path, data, place, soup));
+}
+
+/// A glTF 2.0 file, JSON or binary ([`specpoly_render::mesh_gltf::GltfFile::from_bytes`],
+/// external buffers refused): the scene it makes ([`specpoly_render::scene_gltf::scene_file_of`]:
+/// materials, camera, lights) and its triangles as [`mesh`] checks them.
+pub fn gltf(data: &[u8]) {
+    use specpoly_render::mesh_gltf::{add_gltf, GltfFile};
+    let path = std::path::Path::new("fuzz.glb");
+    let file = match GltfFile::from_bytes(path, data.to_vec(), None) {
+        Ok(f) => f,
+        Err(e) => return one_line(&crate::error::CliError::from(e)),
+    };
+    if let Err(e) = specpoly_render::scene_gltf::scene_file_of(&file) {
+        one_line(&crate::error::CliError::from(e));
+    }
+    mesh(|place, soup| add_gltf(&file, place, soup));
+}
+
+/// Bands read back from a written file: the same count, the ends within the six decimals
+/// written (`SPECTRAL_START_NM "%f"`, as ArgyllCMS writes them).
+fn same_bands(back: &specpoly_formats::spectral::Bands, b: &specpoly_formats::spectral::Bands) {
+    assert_eq!(back.count, b.count);
+    for (x, y) in [(back.start_nm, b.start_nm), (back.end_nm, b.end_nm)] {
+        assert!((x - y).abs() <= 5e-7 + 1e-15 * y.abs(), "{back:?} vs {b:?}");
+    }
+}
+
+/// A `.ccss` ([`specpoly_formats::ccss::read`]): an accepted file has at least
+/// [`specpoly_formats::ccss::MIN_SAMPLES`] finite samples of its band count; written again
+/// ([`specpoly_formats::ccss::write`]) it reads back with the same bands (to the six decimals
+/// written) and samples (to the 7 significant digits written), and writing that gives the same
+/// text.
+pub fn ccss(data: &[u8]) {
+    use specpoly_formats::ccss::{read, write, MIN_SAMPLES};
+    match read(&text(data), "fuzz.ccss") {
+        Err(e) => one_line(&e),
+        Ok(c) => {
+            let s = &c.samples;
+            assert!(s.samples.len() >= MIN_SAMPLES);
+            assert!(s
+                .samples
+                .iter()
+                .all(|v| v.len() == s.bands.count && v.iter().all(|x| x.is_finite())));
+            // the writer may refuse (no technology: the file gave only DISPLAY)
+            if let Ok(out) = write(&c) {
+                let back = read(&out, "again.ccss")
+                    .unwrap_or_else(|e| panic!("a written .ccss does not read back: {e}\n{out}"));
+                same_bands(&back.samples.bands, &s.bands);
+                assert_eq!(back.samples.samples.len(), s.samples.len());
+                for (a, b) in back
+                    .samples
+                    .samples
+                    .iter()
+                    .flatten()
+                    .zip(s.samples.iter().flatten())
+                {
+                    assert!((a - b).abs() <= 1e-6 * b.abs().max(1e-300), "{a} vs {b}");
+                }
+                assert_eq!(write(&back).ok(), Some(out));
+            }
+        }
+    }
+}
+
+/// A `.ccmx` ([`specpoly_formats::ccmx::read`]): an accepted matrix is finite; written again
+/// ([`specpoly_formats::ccmx::write`], six decimals) it reads back within 5·10⁻⁷ of each entry,
+/// and writing that gives the same text.
+pub fn ccmx(data: &[u8]) {
+    use specpoly_formats::ccmx::{read, write};
+    match read(&text(data), "fuzz.ccmx") {
+        Err(e) => one_line(&e),
+        Ok(c) => {
+            assert!(c.matrix.iter().flatten().all(|v| v.is_finite()));
+            if let Ok(out) = write(&c) {
+                let back = read(&out, "again.ccmx")
+                    .unwrap_or_else(|e| panic!("a written .ccmx does not read back: {e}\n{out}"));
+                for (a, b) in back.matrix.iter().flatten().zip(c.matrix.iter().flatten()) {
+                    assert!((a - b).abs() <= 5e-7 + 1e-15 * b.abs(), "{a} vs {b}\n{out}");
+                }
+                assert_eq!(write(&back).ok(), Some(out));
+            }
+        }
+    }
+}
+
+/// A spectral `.ti3` ([`specpoly_formats::cgats::read_ti3`] with `SPEC_…` fields): the spectra
+/// are one per measurement, of the band count, finite; written again
+/// ([`specpoly_formats::cgats::write_spectral_ti3`]) the file reads back with as many spectra
+/// on the same bands.
+pub fn spectral_ti3(data: &[u8]) {
+    use specpoly_formats::cgats::{read_ti3, write_spectral_ti3, Ti3Info};
+    let t = match read_ti3(&text(data), "fuzz.ti3") {
+        Err(e) => return one_line(&e),
+        Ok(t) => t,
+    };
+    let Some(s) = &t.spectra else {
+        return;
+    };
+    assert_eq!(s.samples.len(), t.measurements.len());
+    assert!(s
+        .samples
+        .iter()
+        .all(|v| v.len() == s.bands.count && v.iter().all(|x| x.is_finite())));
+    for absolute in [false, true] {
+        let info = Ti3Info {
+            descriptor: "fuzz".into(),
+            absolute,
+            ..Ti3Info::default()
+        };
+        if let Ok(out) = write_spectral_ti3(&t.measurements, s, &info) {
+            let back = read_ti3(&out, "again.ti3").unwrap_or_else(|e| {
+                panic!("a written spectral .ti3 does not read back: {e}\n{out}")
+            });
+            let b = back.spectra.expect("the written file has spectra");
+            same_bands(&b.bands, &s.bands);
+            assert_eq!(b.samples.len(), s.samples.len());
+        }
+    }
+}
+
+/// The C library's calibration blob ([`specpoly_core::blob::read`]), given both as the bytes
+/// are and sealed: the input with its length field set and its CRC-32 appended, so mutations
+/// reach the fields behind the checksum. A blob that reads is a display whose colours of
+/// drives in `[0, 1]` are finite; its fields written again ([`specpoly_core::blob::write_parts`])
+/// read back equal, and the display written ([`specpoly_core::blob::write`]) reads back.
+pub fn calibration_blob(data: &[u8]) {
+    use specpoly_core::blob::{crc32, parts, read, write, write_parts, MAX_BYTES};
+    let mut sealed = data.to_vec();
+    if sealed.len() >= 12 {
+        let len = (sealed.len() + 4) as u32;
+        sealed[8..12].copy_from_slice(&len.to_le_bytes());
+        let crc = crc32(&sealed);
+        sealed.extend_from_slice(&crc.to_le_bytes());
+    }
+    for bytes in [data, &sealed[..]] {
+        let Ok(p) = parts(bytes) else {
+            assert!(read(bytes).is_err());
+            continue;
+        };
+        let mut buf = vec![0u8; MAX_BYTES];
+        let n = write_parts(&p, &mut buf).expect("read fields are written");
+        // (bytes compared: the fields may hold NaN, which no `==` equals)
+        let again = parts(&buf[..n]).expect("written fields read back");
+        let mut buf2 = vec![0u8; MAX_BYTES];
+        let m = write_parts(&again, &mut buf2).expect("read fields are written");
+        assert_eq!(buf[..n], buf2[..m]);
+        let Ok(d) = p.display() else {
+            continue;
+        };
+        for rgb in [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.5; 3],
+            [1.0; 3],
+        ] {
+            let c = d.device_to_xyz(rgb);
+            assert!(
+                c.x.is_finite() && c.y.is_finite() && c.z.is_finite(),
+                "{rgb:?} → {c:?}"
+            );
+        }
+        let n = write(&d, &mut buf).expect("a display that reads is written");
+        read(&buf[..n]).expect("a written display reads back");
+    }
 }

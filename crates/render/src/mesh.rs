@@ -371,7 +371,8 @@ impl Triangles {
             .surface
             .get(i as usize)
             .filter(|s| s.handedness != 0.0)?;
-        let (b1, b2) = self.barycentric(i as usize, p);
+        // a sliver without finite barycentrics takes its first corner's values
+        let (b1, b2) = self.barycentric(i as usize, p).unwrap_or((0.0, 0.0));
         let b0 = 1.0 - b1 - b2;
         let uv = [0, 1].map(|k| s.uv[0][k] * b0 + s.uv[1][k] * b1 + s.uv[2][k] * b2);
         let t = s.tangent[0] * b0 + s.tangent[1] * b1 + s.tangent[2] * b2;
@@ -386,22 +387,29 @@ impl Triangles {
     }
 
     /// Barycentric coordinates `(b₁, b₂)` of point `p` of triangle `i` (from the normal
-    /// equations of `p − v0 = b₁e₁ + b₂e₂`), clamped into the triangle.
-    fn barycentric(&self, i: usize, p: V3) -> (f32, f32) {
+    /// equations of `p − v0 = b₁e₁ + b₂e₂`), clamped into the triangle; `None` where the
+    /// equations have no finite solution in `f32` (a sliver whose determinant rounds to 0, or
+    /// edges whose squared lengths overflow).
+    fn barycentric(&self, i: usize, p: V3) -> Option<(f32, f32)> {
         let t = &self.tris[i];
         let (e1, e2, d) = (v3(t.v1 - t.v0), v3(t.v2 - t.v0), p - v3(t.v0));
         let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
         let (p1, p2) = (d.dot(e1), d.dot(e2));
         let det = a * c - b * b;
-        let b1 = ((c * p1 - b * p2) / det).clamp(0.0, 1.0);
-        let b2 = ((a * p2 - b * p1) / det).clamp(0.0, 1.0 - b1);
-        (b1, b2)
+        let (b1, b2) = ((c * p1 - b * p2) / det, (a * p2 - b * p1) / det);
+        if !(b1.is_finite() && b2.is_finite()) {
+            return None;
+        }
+        let b1 = b1.clamp(0.0, 1.0);
+        Some((b1, b2.clamp(0.0, 1.0 - b1)))
     }
 
     /// The vertex normals `vn` of triangle `i` interpolated at its point `p` ([`Self::barycentric`]);
-    /// the geometric normal where they cancel.
+    /// the geometric normal where they cancel or the barycentrics are not finite.
     fn interpolated(&self, i: usize, vn: &[V3; 3], p: V3) -> V3 {
-        let (b1, b2) = self.barycentric(i, p);
+        let Some((b1, b2)) = self.barycentric(i, p) else {
+            return self.normals[i];
+        };
         let n = vn[0] * (1.0 - b1 - b2) + vn[1] * b1 + vn[2] * b2;
         let l = n.length();
         if l.is_finite() && l > 1e-6 {
@@ -470,21 +478,47 @@ pub(crate) fn mesh_error(path: &Path, why: impl Into<String>) -> Error {
 /// added. Faces use the OBJ material of the same name in `place.map` (`usemtl NAME` with the
 /// `.mtl` file beside), else `place.default`.
 pub fn load_obj(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
+    // the OBJ and its `.mtl` files through the bounded, regular-file read (a `mtllib` naming a
+    // device or a FIFO is refused, never read); `tobj` parses the bytes
+    let bytes = specpoly_formats::read::bytes(path)?;
+    let folder = path.parent().unwrap_or(Path::new("."));
+    parse_obj(path, &bytes, MtlSource::Folder(folder), place, soup)
+}
+
+/// Where [`parse_obj`] reads the material libraries an OBJ names (`mtllib NAME`).
+#[derive(Clone, Copy, Debug)]
+pub enum MtlSource<'a> {
+    /// `NAME` in this folder, through the bounded, regular-file read (a missing file is no
+    /// error: its faces take the default material).
+    Folder(&'a Path),
+    /// These bytes, whatever the name (a file-less reader: the fuzz target gives the OBJ's own
+    /// bytes, so one input exercises both parsers).
+    Bytes(&'a [u8]),
+}
+
+/// [`load_obj`] of an OBJ file's bytes already read; `path` names it in errors.
+pub fn parse_obj(
+    path: &Path,
+    bytes: &[u8],
+    mtl: MtlSource<'_>,
+    place: &ObjPlacement<'_>,
+    soup: &mut TriangleSoup,
+) -> Result<usize> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
-    // the OBJ and its `.mtl` files through the bounded, regular-file read (a `mtllib` naming a
-    // device or a FIFO is refused, never read); `tobj` parses the bytes
-    let bytes = specpoly_formats::read::bytes(path)?;
-    let folder = path.parent().unwrap_or(Path::new("."));
+    check_face_indices(bytes).map_err(|why| mesh_error(path, why))?;
     let mtl_error = std::cell::RefCell::new(None);
     let load_mtl = |name: &Path| -> tobj::MTLLoadResult {
-        let mtl_path = folder.join(name);
+        let read = match mtl {
+            MtlSource::Folder(folder) => specpoly_formats::read::bytes(&folder.join(name)),
+            MtlSource::Bytes(b) => Ok(b.to_vec()),
+        };
         // a missing `.mtl` is not an error (its faces take the default material); one that
         // cannot be read safely, or that `tobj` would panic on, is
-        let problem = match specpoly_formats::read::bytes(&mtl_path) {
+        let problem = match read {
             Ok(b) => match check_mtl(&b) {
                 Ok(()) => return tobj::load_mtl_buf(&mut &b[..]),
                 Err(why) => why,
@@ -573,6 +607,60 @@ fn check_mtl(bytes: &[u8]) -> std::result::Result<(), String> {
         if let Some(k @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
             if words.count() < 3 {
                 return Err(format!("line {}: `{k}` needs three numbers", i + 1));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks an OBJ file's face indices (`f`, `l`: `v`, `v/vt`, `v//vn`, `v/vt/vn`) before `tobj`
+/// resolves them: a negative (relative) index reaching before the first element of its kind
+/// so far, or a positive one beyond the file's count of that kind (when it has any), is
+/// refused with its line. `tobj` 4 turns such an index into a huge `usize` and multiplies it
+/// unchecked (`vt * 2`, `vn * 3`: an overflow panic with overflow checks, a wrapped index
+/// without). Lines are split and counted as `tobj` does (`v`, `vt`, `vn` lines, words
+/// separated by white space).
+fn check_face_indices(bytes: &[u8]) -> std::result::Result<(), String> {
+    const KIND: [&str; 3] = ["v", "vt", "vn"];
+    let text = String::from_utf8_lossy(bytes);
+    let count = |w: Option<&str>| KIND.iter().position(|k| w == Some(*k));
+    let mut total = [0usize; 3];
+    for line in text.lines() {
+        if let Some(k) = count(line.split_whitespace().next()) {
+            total[k] += 1;
+        }
+    }
+    let mut seen = [0usize; 3];
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let first = words.next();
+        if let Some(k) = count(first) {
+            seen[k] += 1;
+            continue;
+        }
+        if !matches!(first, Some("f" | "l")) {
+            continue;
+        }
+        for word in words {
+            for (k, part) in word.split('/').enumerate().take(3) {
+                let Ok(i) = part.parse::<isize>() else {
+                    continue;
+                };
+                let kind = KIND[k];
+                if i < 0 && i.unsigned_abs() > seen[k] {
+                    return Err(format!(
+                        "line {}: index {i} refers before the first `{kind}` ({} so far)",
+                        n + 1,
+                        seen[k]
+                    ));
+                }
+                if i > 0 && total[k] > 0 && i.unsigned_abs() > total[k] {
+                    return Err(format!(
+                        "line {}: index {i} is beyond the file's {} `{kind}` lines",
+                        n + 1,
+                        total[k]
+                    ));
+                }
             }
         }
     }
@@ -831,6 +919,26 @@ mod tests {
             .intersect(&ray([0.2, 0.2, 0.0], [0.0, 0.0, 1.0]), 1e9)
             .unwrap();
         assert!((hit.0 - 3.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn face_indices_outside_their_elements_are_refused() {
+        let v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
+        let ok = |f: &str| check_face_indices(format!("{v}{f}\n").as_bytes());
+        assert_eq!(ok("f 1/1 2/1 3/1"), Ok(()));
+        assert_eq!(ok("f -3/-1 -2/-1 -1/-1"), Ok(()));
+        // no `vn` lines: `tobj` ignores normal indices, and so does the check
+        assert_eq!(ok("f 1//9 2//9 3//9"), Ok(()));
+        assert_eq!(
+            ok("f -4 -2 -1"),
+            Err("line 5: index -4 refers before the first `v` (3 so far)".into())
+        );
+        assert_eq!(
+            ok("l 1/2 2/1"),
+            Err("line 5: index 2 is beyond the file's 1 `vt` lines".into())
+        );
+        // a vertex defined after the face counts (as `tobj` resolves positive indices late)
+        assert_eq!(ok("f 1 2 4\nv 1 1 1"), Ok(()));
     }
 
     #[test]

@@ -28,7 +28,9 @@
 //! together may not exceed that limit. Every buffer view and accessor is checked to lie inside
 //! its data before it is read (the `gltf` crate's own readers index without checking), a GLB
 //! header shorter than itself is refused before the crate reads it (its length arithmetic
-//! would underflow), children that form a cycle are refused, node trees are walked at most
+//! would underflow), a primitive whose `POSITION` names a missing accessor is refused before
+//! the crate validates the file (its validation indexes with it unchecked), children that
+//! form a cycle are refused, node trees are walked at most
 //! [`MAX_NODE_VISITS`] node visits in total (subtrees shared many times in malformed files),
 //! and a non-finite transform is refused. Every error is one line naming the file and the JSON path (`accessors[3]`,
 //! `nodes[2].matrix`, `buffers[0].uri`).
@@ -55,6 +57,8 @@ pub struct GltfFile {
     pub doc: gltf::Document,
     /// Each buffer's bytes (at least its `byteLength`).
     buffers: Vec<Vec<u8>>,
+    /// Where files its `uri`s name are read (buffers, images); `None`: none are read.
+    folder: Option<PathBuf>,
 }
 
 /// A node placed in the scene: its index and its world matrix (glTF frame).
@@ -126,11 +130,56 @@ fn component_size(t: DataType) -> usize {
     }
 }
 
+/// Checks that every mesh primitive's `POSITION` names an accessor that exists, before the
+/// `gltf` crate validates the file: its validation indexes `accessors` with that number
+/// unchecked (a panic; `gltf-json` 1.4 `mesh.rs`). A file the check cannot parse is left to
+/// the crate, which reports it.
+fn check_positions(bytes: &[u8]) -> std::result::Result<(), String> {
+    use gltf::json::mesh::Semantic;
+    use gltf::json::validation::Checked;
+    let glb;
+    let json: &[u8] = if bytes.starts_with(b"glTF") {
+        match gltf::Glb::from_slice(bytes) {
+            Ok(g) => {
+                glb = g;
+                &glb.json
+            }
+            Err(_) => return Ok(()),
+        }
+    } else {
+        bytes
+    };
+    let Ok(root) = gltf::json::Root::from_slice(json) else {
+        return Ok(());
+    };
+    for (i, m) in root.meshes.iter().enumerate() {
+        for (j, p) in m.primitives.iter().enumerate() {
+            if let Some(a) = p.attributes.get(&Checked::Valid(Semantic::Positions)) {
+                if a.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "meshes[{i}].primitives[{j}].attributes.POSITION: accessor {} does not exist (the file has {})",
+                        a.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 impl GltfFile {
     /// Reads and checks `path` (a `.gltf` or `.glb` file) and its buffers.
     pub fn open(path: &Path) -> Result<Self> {
-        let bad = |why: String| mesh_error(path, why);
         let bytes = specpoly_formats::read::bytes(path)?;
+        Self::from_bytes(path, bytes, path.parent().or(Some(Path::new("."))))
+    }
+
+    /// [`GltfFile::open`] of a file's bytes already read; `path` names it in errors. External
+    /// buffers and images (`uri` a file name) are read from `folder`; with `None` they are
+    /// refused (a file-less reader: the fuzz target).
+    pub fn from_bytes(path: &Path, bytes: Vec<u8>, folder: Option<&Path>) -> Result<Self> {
+        let bad = |why: String| mesh_error(path, why);
         if bytes.starts_with(b"glTF") {
             // the crate subtracts the header's size from its length field unchecked
             let length = bytes
@@ -144,6 +193,7 @@ impl GltfFile {
                 )));
             }
         }
+        check_positions(&bytes).map_err(bad)?;
         let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| {
             let text = match e {
                 gltf::Error::Validation(v) => v
@@ -159,7 +209,6 @@ impl GltfFile {
                 text.replace(['\n', '\r'], " ")
             ))
         })?;
-        let folder = path.parent().unwrap_or(Path::new("."));
         let mut total = bytes.len() as u64;
         let limit = specpoly_formats::read::max_input_bytes();
         let mut blob = blob;
@@ -186,8 +235,10 @@ impl GltfFile {
                             .ok_or_else(|| {
                                 bad(format!("{at}.uri `{uri}`: only relative file names and data URIs are read"))
                             })?;
-                        let file = folder.join(&name);
-                        specpoly_formats::read::bytes(&file)
+                        let folder = folder.ok_or_else(|| {
+                            bad(format!("{at}.uri `{uri}`: external buffers are not read here"))
+                        })?;
+                        specpoly_formats::read::bytes(&folder.join(&name))
                             .map_err(|e| bad(format!("{at}.uri: {e}")))?
                     }
                 }
@@ -225,6 +276,7 @@ impl GltfFile {
             path: path.to_path_buf(),
             doc: document,
             buffers,
+            folder: folder.map(Path::to_path_buf),
         })
     }
 
@@ -274,7 +326,10 @@ impl GltfFile {
                     "{at} `{uri}`: only relative file names and data URIs are read"
                 ))
             })?;
-        let folder = self.path.parent().unwrap_or(Path::new("."));
+        let folder = self
+            .folder
+            .as_ref()
+            .ok_or_else(|| self.bad(format!("{at} `{uri}`: external files are not read here")))?;
         specpoly_formats::read::bytes(&folder.join(&name))
             .map_err(|e| self.bad(format!("{at}: {e}")))
     }
@@ -641,7 +696,16 @@ pub struct Tri {
 /// Reads a glTF file's triangles into `soup` (see the module docs for materials and frame);
 /// returns how many it added.
 pub fn load_gltf(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    let file = GltfFile::open(path)?;
+    add_gltf(&GltfFile::open(path)?, place, soup)
+}
+
+/// [`load_gltf`] of a file already read and checked.
+pub fn add_gltf(
+    file: &GltfFile,
+    place: &ObjPlacement<'_>,
+    soup: &mut TriangleSoup,
+) -> Result<usize> {
+    let path = &file.path;
     let materials: Vec<usize> = file
         .doc
         .materials()

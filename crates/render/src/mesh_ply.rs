@@ -53,9 +53,19 @@ fn first_line(e: &dyn std::fmt::Display) -> String {
 /// Reads a PLY file into `soup` with material `place.default`; returns how many triangles it
 /// added.
 pub fn load_ply(path: &Path, place: &ObjPlacement<'_>, soup: &mut TriangleSoup) -> Result<usize> {
-    let bad = |what: String| mesh_error(path, what);
     let bytes = specpoly_formats::read::bytes(path)?;
-    let mut r = std::io::Cursor::new(&bytes[..]);
+    parse_ply(path, &bytes, place, soup)
+}
+
+/// [`load_ply`] of a PLY file's bytes already read; `path` names it in errors.
+pub fn parse_ply(
+    path: &Path,
+    bytes: &[u8],
+    place: &ObjPlacement<'_>,
+    soup: &mut TriangleSoup,
+) -> Result<usize> {
+    let bad = |what: String| mesh_error(path, what);
+    let mut r = std::io::Cursor::new(bytes);
     let parser = Parser::<DefaultElement>::new();
     let header = parser
         .read_header(&mut r)

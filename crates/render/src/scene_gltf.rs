@@ -143,7 +143,12 @@ fn material(m: &gltf::Material<'_>, file: &Path) -> Result<MaterialSection> {
 /// The scene file a glTF file makes (see the module docs). Its `[[mesh]]` names the file by
 /// its name; resolve it with the file's folder as the base.
 pub fn scene_file(path: &Path) -> Result<SceneFile> {
-    let file = GltfFile::open(path)?;
+    scene_file_of(&GltfFile::open(path)?)
+}
+
+/// [`scene_file`] of a file already read and checked.
+pub fn scene_file_of(file: &GltfFile) -> Result<SceneFile> {
+    let path = file.path.as_path();
     let bad = |why: String| crate::mesh::mesh_error(path, why);
     let mut materials = BTreeMap::new();
     for (i, m) in file.doc.materials().enumerate() {

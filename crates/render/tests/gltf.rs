@@ -237,6 +237,23 @@ fn malformed_files_are_one_line_errors_with_the_json_path() {
             triangle(|d| d["meshes"][0]["primitives"][0]["indices"] = json!(7)),
             "indices",
         ),
+        // a POSITION naming an accessor that does not exist (the `gltf` crate's validation
+        // indexed with it and panicked; the fuzz corpus's input)
+        (
+            triangle(|d| d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(5)),
+            "meshes[0].primitives[0].attributes.POSITION: accessor 5 does not exist (the file has 2)",
+        ),
+        (
+            String::from_utf8(
+                std::fs::read(
+                    Path::new(env!("CARGO_MANIFEST_DIR"))
+                        .join("../../fuzz/corpus/gltf/crash-position-accessor-missing.gltf"),
+                )
+                .unwrap(),
+            )
+            .unwrap(),
+            "accessor 0 does not exist (the file has 0)",
+        ),
         ("{ not json".to_string(), "not a valid glTF"),
     ];
     for (text, want) in cases {

@@ -8,6 +8,7 @@ mod gltf;
 mod gltf_texture;
 mod hero;
 mod interaction;
+mod mesh_files;
 mod path;
 #[path = "../../core/tests/common/reference_1nm.rs"]
 mod reference_1nm;
