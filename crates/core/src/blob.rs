@@ -51,8 +51,22 @@ impl Parts {
         }
     }
 
-    /// The display: [`Display::from_primaries`].
+    /// The display: [`Display::from_primaries`], once each primary's luminance is positive (an
+    /// emitted light: [`Error::Negative`] with the field's index, 6–8, for one below zero,
+    /// [`Error::Singular`] for zero). A blob of a negative luminance would load and not write
+    /// back (its primaries, recovered from the matrix, are singular).
     pub fn display(self) -> Result<Display, Error> {
+        for (i, &l) in self.luminance.iter().enumerate() {
+            if !l.is_finite() {
+                return Err(Error::NonFinite(6 + i));
+            }
+            if l < 0.0 {
+                return Err(Error::Negative(6 + i));
+            }
+            if l == 0.0 {
+                return Err(Error::Singular);
+            }
+        }
         Display::from_primaries(self.primaries, self.luminance, self.black, self.transfer)
     }
 }
