@@ -2,6 +2,7 @@
 //! render as their OBJ twins do, a published sample asset (Khronos' Box) renders its closed
 //! form, and malformed files are one-line errors naming the JSON path.
 
+use crate::common::b64;
 use specpoly_core::{delta_e2000, Lab, Xyz};
 use specpoly_render as render;
 use specpoly_spectra::repr::Repr;
@@ -112,25 +113,6 @@ fn the_box_sample_asset_renders_its_closed_form() {
 /// sRGB cube, `upsample.rs`) and the renderer's f32 sums; the earlier three-band upsampling
 /// missed this colour by ≈ 2.5.
 const UPSAMPLE_DE: f64 = 0.02;
-
-/// Base64 (RFC 4648), written here for the test files.
-fn b64(data: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
 
 /// A one-triangle glTF whose buffer (3 positions, then 3 u16 indices) is a data URI; `edit`
 /// changes the JSON before it is written.

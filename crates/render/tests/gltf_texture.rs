@@ -3,29 +3,11 @@
 //! decoding and matrix for a texel's colour under D65; Lambert's cosine for a normal map's
 //! normal), and malformed textures as one-line errors with the JSON path.
 
+use crate::common::b64;
 use serde_json::{json, Value};
 use specpoly_core::{delta_e2000, Lab, Xyz};
 use specpoly_render as render;
 use specpoly_spectra::repr::Repr;
-
-/// Base64 (RFC 4648).
-fn b64(data: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in data.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
 
 /// An 8-bit RGB PNG of `w × h` texels, rows from the top.
 fn png(w: u32, h: u32, texels: &[[u8; 3]]) -> Vec<u8> {
