@@ -7,7 +7,7 @@
 //! prints them: 6 decimals, CCT to 0.01 K). A metric a light does not have (farther than
 //! 0.05 Duv from the Planckian locus) is NaN.
 
-use crate::arrays::{out_1d, out_rows};
+use crate::arrays::{out_1d, out_rows, Rows};
 use crate::lib_err;
 use crate::spectra::{named, sampled};
 use pyo3::prelude::*;
@@ -17,6 +17,7 @@ use specpoly_core::light::cct::Cct;
 use specpoly_core::light::cri::cri_spd;
 use specpoly_core::light::mix_limits::{Limit, Metric as LimitMetric};
 use specpoly_core::light::tm30::tm30_spd;
+use specpoly_core::light::Spd;
 use specpoly_core::light::Target;
 use specpoly_core::Transfer;
 use specpoly_spectra::light::{
@@ -36,6 +37,28 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 
 /// One optional metric of a report.
 type Metric = fn(&LightReport) -> Option<f64>;
+
+/// `f` of each light (a row of `rows`) on the standard 380–780 nm grid, in parallel with the
+/// GIL released; a bad row gives the library's one-line error.
+fn per_light<T: Send>(
+    py: Python<'_>,
+    rows: &Rows,
+    wl: &[f32],
+    extrapolate: bool,
+    f: impl Fn(&Spd) -> T + Sync,
+) -> PyResult<Vec<T>> {
+    py.detach(|| {
+        (0..rows.n)
+            .into_par_iter()
+            .map(|i| {
+                let n = named(rows, wl, i).map_err(|e| e.to_string())?;
+                let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
+                Ok(f(&s))
+            })
+            .collect::<Result<Vec<_>, String>>()
+    })
+    .map_err(lib_err)
+}
 
 fn nan(v: Option<f64>) -> f64 {
     v.unwrap_or(f64::NAN)
@@ -156,18 +179,7 @@ fn colour_rendering_index<'py>(
     extrapolate: bool,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let (rows, wl) = sampled(values, wavelengths)?;
-    let cri: Vec<Option<_>> = py
-        .detach(|| {
-            (0..rows.n)
-                .into_par_iter()
-                .map(|i| {
-                    let n = named(&rows, &wl, i).map_err(|e| e.to_string())?;
-                    let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
-                    Ok(cri_spd(&s).ok())
-                })
-                .collect::<Result<Vec<_>, String>>()
-        })
-        .map_err(lib_err)?;
+    let cri = per_light(py, &rows, &wl, extrapolate, |s| cri_spd(s).ok())?;
     let ra: Vec<f64> = cri.iter().map(|c| nan(c.map(|c| c.ra))).collect();
     let ri: Vec<f64> = cri
         .iter()
@@ -194,18 +206,9 @@ fn colour_fidelity_index<'py>(
     extrapolate: bool,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
     let (rows, wl) = sampled(values, wavelengths)?;
-    let rfg: Vec<[f64; 2]> = py
-        .detach(|| {
-            (0..rows.n)
-                .into_par_iter()
-                .map(|i| {
-                    let n = named(&rows, &wl, i).map_err(|e| e.to_string())?;
-                    let s = standard_spd(&n, extrapolate).map_err(|e| e.to_string())?;
-                    Ok(tm30_spd(&s).map_or([f64::NAN; 2], |t| [t.rf, t.rg]))
-                })
-                .collect::<Result<Vec<_>, String>>()
-        })
-        .map_err(lib_err)?;
+    let rfg = per_light(py, &rows, &wl, extrapolate, |s| {
+        tm30_spd(s).map_or([f64::NAN; 2], |t| [t.rf, t.rg])
+    })?;
     let out = |k: usize| -> PyResult<Bound<'py, PyAny>> {
         let v: Vec<f64> = rfg.iter().map(|r| r[k]).collect();
         if rows.one {
